@@ -1,0 +1,68 @@
+# wovenff — build, run, test, bench.
+#   make deps    install the Debian packages this project needs (root or sudo)
+#   make         build the C core, the C tests and the FreeFEM module
+#   make run     the paper's ballistic scene (SCENE=name for another, ARGS="-mesh fine ...")
+#   make test    C tests, .edp tests and physics checks; ends with "N passed, N failed"
+#   make bench   benchmarks (not part of make test)
+
+CC       ?= gcc
+CXX      ?= g++
+BUILD    := build
+# -fno-math-errno lets gcc vectorise sqrt; never -ffast-math (it removes NaN checks).
+OPT      ?= -O2 -fno-math-errno
+CFLAGS   := -std=gnu11 $(OPT) -Wall -Wextra -Werror -fPIC -Iinclude
+CXXFLAGS := -std=c++14 -O2 -fPIC -DBAMG_LONG_LONG -DNCHECKPTR -Wno-deprecated-declarations \
+            -I/usr/include/freefem++ -Iinclude
+LDLIBS   := -lgsl -lgslcblas -lgmsh -lm
+
+DEB_PACKAGES := freefem++ libfreefem++-dev gmsh libgmsh-dev libgsl-dev gnuplot-nox ghostscript \
+                gcc g++ make
+
+CORE_SRC := $(sort $(wildcard plugin/*.c plugin/cells/*.c))
+CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
+CTEST_SRC := $(sort $(wildcard tests/c/test_*.c))
+CTEST_BIN := $(CTEST_SRC:tests/c/%.c=$(BUILD)/tests/%)
+TESTLIB_SRC := $(sort $(wildcard tests/c/lib/*.c))
+TESTLIB_OBJ := $(TESTLIB_SRC:%.c=$(BUILD)/%.o)
+MODULE   := $(BUILD)/wovenff.so
+MODULE_SRC := $(sort $(wildcard plugin/ff/*.cpp))
+
+SCENE ?= ballistic_impact
+ARGS  ?=
+
+.PHONY: all deps run test bench clean
+all: $(CORE_OBJ) $(CTEST_BIN) $(MODULE)
+
+$(BUILD)/%.o: %.c $(wildcard include/wovenff/*.h) $(wildcard plugin/*.h plugin/cells/*.h tests/c/lib/*.h)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -Iplugin -Itests/c/lib -c $< -o $@
+
+$(BUILD)/tests/%: tests/c/%.c $(CORE_OBJ) $(TESTLIB_OBJ)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -Iplugin -Itests/c/lib $< $(TESTLIB_OBJ) $(CORE_OBJ) $(LDLIBS) -o $@
+
+$(MODULE): $(MODULE_SRC) $(CORE_OBJ) $(wildcard include/wovenff/*.h)
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS) -shared $(MODULE_SRC) $(CORE_OBJ) $(LDLIBS) -o $@
+
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing:$$missing"; \
+	  SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO=sudo; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
+	else echo "all Debian packages present"; fi
+
+run: all
+	@sh tools/ff.sh freefem_scripts/$(SCENE).edp $(ARGS)
+
+test: all
+	@sh tests/run.sh
+
+bench: all
+	@sh bench/run.sh
+
+clean:
+	rm -rf $(BUILD)

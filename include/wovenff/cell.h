@@ -1,0 +1,136 @@
+/* wovenff — the weave unit-cell interface.
+ *
+ * A unit cell turns the membrane deformation gradient F (3x2), the changes in
+ * crimp amplitude dA and the dissipative shear angle gamma_f at one material
+ * point into a membrane stress resultant, amplitude residuals, stored energy
+ * and diagnostics. It is pure pointwise physics: no mesh, no I/O, no
+ * allocation.
+ *
+ * A cell is a constant ops table (in the spirit of SUNDIALS' N_Vector):
+ *
+ *   required   parse, evaluate, wave_speeds
+ *   optional   energy_split (NULL when absent)
+ *
+ * and registers itself by name in its own source file with
+ * WFF_REGISTER_CELL(table). Nothing outside that file names a cell: the
+ * material file's `cell = NAME` line selects it through wff_cell_find().
+ *
+ * Conventions (all SI):
+ *   F        row-major 3x2: F11 F12 F21 F22 F31 F32, F_iJ = dx_i/dX_J; X_1 is
+ *            the warp direction E1, X_2 the weft direction E2.
+ *   stress   first Piola-Kirchhoff membrane resultant P, N/m (force per unit
+ *            reference length), same layout as F; P = dW/dF for the elastic
+ *            part.
+ *   residual amplitude residual R_k = -dW/d(dA_k), N/m^2 (force per unit
+ *            reference area on the amplitude degree of freedom).
+ *   energy   stored energy W per unit reference area, J/m^2.
+ */
+#ifndef WOVENFF_CELL_H
+#define WOVENFF_CELL_H
+
+#include "wovenff/error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Storage for one cell's parameters, in doubles. A cell keeps its own struct
+ * there (checked with a static assertion in the cell's file). 64 doubles hold
+ * a plain weave with all its derived reference quantities twice over. */
+#define WFF_CELL_PARAMS_MAX 64
+/* Most diagnostics one cell may report per point. */
+#define WFF_DIAG_MAX 12
+/* Most mechanisms an energy split may name. */
+#define WFF_MECH_MAX 8
+/* Most amplitude degrees of freedom per node (the two crimp amplitudes). */
+#define WFF_AMPLITUDES_MAX 2
+
+typedef struct wff_cell_type wff_cell_type;
+typedef struct wff_kv wff_kv; /* parsed material file, see material.h */
+
+/* A material: the cell that models it and that cell's parameters. */
+typedef struct wff_material {
+    const wff_cell_type *cell;
+    double areal_density;                /* rho_A = rho_f t_f, kg/m^2 */
+    double params[WFF_CELL_PARAMS_MAX];  /* the cell's own parameter struct */
+    char source[256];                    /* where it came from, for messages */
+} wff_material;
+
+/* What one evaluation returns. */
+typedef struct wff_point_result {
+    double stress[6];             /* P, N/m, row-major 3x2 */
+    double residual[WFF_AMPLITUDES_MAX]; /* R_k, N/m^2 (0 for cells without amplitudes) */
+    double gamma_f;               /* updated dissipative shear angle, rad */
+    double energy;                /* stored energy W, J/m^2 */
+    double dissipated;            /* energy dissipated by this update, J/m^2 (>= 0) */
+    double diag[WFF_DIAG_MAX];    /* cell-specific, named by diag_names */
+} wff_point_result;
+
+/* evaluate() status */
+enum {
+    WFF_POINT_OK = 0,
+    WFF_POINT_DEGENERATE = 1  /* a yarn direction has zero length or the yarns are parallel */
+};
+
+struct wff_cell_type {
+    const char *name;      /* the `cell = ` value in material files */
+    const char *summary;   /* one line for listings */
+    int n_amplitudes;      /* amplitude DOFs per node this cell uses: 0 or 2 */
+
+    int n_diag;                         /* entries of diag[] that are filled */
+    const char *const *diag_names;      /* e.g. "T1" */
+    const char *const *diag_units;      /* e.g. "N" */
+
+    int n_mech;                         /* mechanisms in energy_split */
+    const char *const *mech_names;      /* e.g. "yarn_stretch" */
+
+    /* Required. Read this cell's keys from kv (wff_kv_number and friends),
+     * validate them, compute derived reference quantities into mat->params.
+     * Keys the cell does not take are reported by the caller as unknown. */
+    int (*parse)(wff_kv *kv, wff_material *mat, wff_error *err);
+
+    /* Required. One material point. dt > 0 advances gamma_f by the cell's flow
+     * rule (backward Euler); dt = 0 holds it fixed, which makes stress and
+     * residual the exact derivatives of energy. Returns WFF_POINT_OK or
+     * WFF_POINT_DEGENERATE (out is then filled with NaN). */
+    int (*evaluate)(const void *params, const double F[6], const double dA[2],
+                    double gamma_f, double dt, wff_point_result *out);
+
+    /* Required. Upper bounds for the stable explicit step at this state:
+     * membrane_speed, m/s, the fastest in-plane wave (dt <= h / speed), and
+     * amplitude_omega, rad/s, the highest frequency of the amplitude
+     * oscillator with lumped mass rho_A/6 (dt <= 2 / omega; 0 when the cell
+     * has no amplitudes). */
+    void (*wave_speeds)(const void *params, double areal_density,
+                        const double F[6], const double dA[2],
+                        double *membrane_speed, double *amplitude_omega);
+
+    /* Optional. Stored energy per mechanism, J/m^2, n_mech values that add up
+     * to evaluate()'s energy. */
+    void (*energy_split)(const void *params, const double F[6], const double dA[2],
+                         double gamma_f, double *mech_energy);
+};
+
+/* Registry. Cells register with WFF_REGISTER_CELL in their own file; the
+ * linker gathers the entries (constant data, no start-up code). */
+const wff_cell_type *wff_cell_find(const char *name);   /* NULL if unknown */
+int wff_cell_count(void);
+const wff_cell_type *wff_cell_at(int index);            /* 0 <= index < count */
+
+#define WFF_REGISTER_CELL(table)                                              \
+    static const wff_cell_type *const wff_cell_entry_##table                  \
+        __attribute__((used, section("wff_cells"), aligned(sizeof(void *)))) \
+        = &(table)
+
+/* Convenience: evaluate a material point with a loaded material. */
+static inline int wff_material_evaluate(const wff_material *mat, const double F[6],
+                                        const double dA[2], double gamma_f, double dt,
+                                        wff_point_result *out)
+{
+    return mat->cell->evaluate(mat->params, F, dA, gamma_f, dt, out);
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,57 @@
+/* wovenff — material files.
+ *
+ * Format: plain text, one `key = value` per line, `#` starts a comment (put
+ * the unit there), SI units. `cell = NAME` picks the unit cell and
+ * `rho_A = ...` (kg/m^2) is common to every cell; all other keys belong to the
+ * cell. Unknown, missing, duplicate and non-numeric keys are errors that name
+ * the file, the line and the key; so are values the cell finds physically
+ * impossible. */
+#ifndef WOVENFF_MATERIAL_H
+#define WOVENFF_MATERIAL_H
+
+#include "wovenff/cell.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Limits of the key-value reader, with the reason: a material has a few
+ * dozen keys; longer keys or values are a sign of a wrong file. */
+#define WFF_KV_MAX 64
+#define WFF_KV_KEY_MAX 48
+#define WFF_KV_VALUE_MAX 96
+
+typedef struct wff_kv_entry {
+    char key[WFF_KV_KEY_MAX];
+    char value[WFF_KV_VALUE_MAX];
+    int line;   /* 1-based line in the source */
+    int used;   /* set when a cell takes the key */
+} wff_kv_entry;
+
+struct wff_kv {
+    const char *source;  /* file name for messages */
+    int n;
+    wff_kv_entry entry[WFF_KV_MAX];
+};
+
+/* Load and validate a material file. On failure mat is left unusable and err
+ * names file, line and key. */
+int wff_material_load(const char *path, wff_material *mat, wff_error *err);
+
+/* The same from text in memory; source_name is used in messages. */
+int wff_material_parse_text(const char *text, const char *source_name,
+                            wff_material *mat, wff_error *err);
+
+/* For cells' parse(): take a required number. Missing or non-numeric is an error. */
+int wff_kv_number(wff_kv *kv, const char *key, double *value, wff_error *err);
+/* Take an optional number; absent means fallback. */
+int wff_kv_number_or(wff_kv *kv, const char *key, double fallback, double *value,
+                     wff_error *err);
+/* Report a bad value of key: "FILE:LINE: key 'KEY' = VALUE: <message>". Returns -1. */
+int wff_kv_reject(const wff_kv *kv, const char *key, wff_error *err, const char *format, ...)
+    __attribute__((format(printf, 4, 5)));
+
+#ifdef __cplusplus
+}
+#endif
+#endif

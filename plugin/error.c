@@ -1,0 +1,15 @@
+#include "wovenff/error.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+
+int wff_fail(wff_error *err, const char *format, ...)
+{
+    if (err) {
+        va_list args;
+        va_start(args, format);
+        vsnprintf(err->message, sizeof err->message, format, args);
+        va_end(args);
+    }
+    return -1;
+}
