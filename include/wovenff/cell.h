@@ -52,6 +52,9 @@ typedef struct wff_kv wff_kv; /* parsed material file, see material.h */
 typedef struct wff_material {
     const wff_cell_type *cell;
     double areal_density;                /* rho_A = rho_f t_f, kg/m^2 */
+    double yarn_spacing[2];              /* distance between neighbouring yarns of
+                                            family k, m: one yarn carries
+                                            P_kk * yarn_spacing[k] (set by parse) */
     double params[WFF_CELL_PARAMS_MAX];  /* the cell's own parameter struct */
     char source[256];                    /* where it came from, for messages */
 } wff_material;
@@ -80,6 +83,10 @@ struct wff_cell_type {
     int n_diag;                         /* entries of diag[] that are filled */
     const char *const *diag_names;      /* e.g. "T1" */
     const char *const *diag_units;      /* e.g. "N" */
+
+    int yarn_tension_diag[2];           /* index in diag[] of the tension of a yarn of
+                                           each family (N), or -1: used to impose
+                                           a yarn force (preload, strip loads) */
 
     int n_mech;                         /* mechanisms in energy_split */
     const char *const *mech_names;      /* e.g. "yarn_stretch" */

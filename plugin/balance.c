@@ -1,0 +1,182 @@
+/* Static balance of the crimp amplitudes and biaxial states with GSL's
+ * hybrid (Powell) root finder. Unknowns and equations are scaled to O(1):
+ * amplitudes in units of AMPLITUDE_SCALE, stretches as strains, amplitude
+ * residuals as forces per cell (R × yarn_spacing_1 × yarn_spacing_2) and
+ * resultants as forces per yarn. */
+#include "wovenff/balance.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_multiroots.h>
+#include <gsl/gsl_vector.h>
+#include <math.h>
+#include <string.h>
+
+/* Crimp amplitudes are tens of micrometres. */
+#define AMPLITUDE_SCALE 1e-5
+#define MAX_ITERATIONS 400
+
+typedef struct problem {
+    const wff_material *mat;
+    double gamma_f;
+    double F[6];          /* used as is when no stretch is unknown */
+    int biaxial;          /* 1: F = diag(stretch) with the unknown ones from x */
+    wff_hold hold[2];
+    double target[2];
+    int n_unknown_stretch;
+    int stretch_index[2]; /* which direction each unknown stretch is */
+} problem;
+
+static void unpack(const problem *pb, const gsl_vector *x, double F[6], double dA[2],
+                   double stretch[2])
+{
+    dA[0] = gsl_vector_get(x, 0) * AMPLITUDE_SCALE;
+    dA[1] = gsl_vector_get(x, 1) * AMPLITUDE_SCALE;
+    if (!pb->biaxial) {
+        memcpy(F, pb->F, sizeof pb->F);
+        return;
+    }
+    for (int k = 0; k < 2; k++)
+        stretch[k] = pb->hold[k] == WFF_HOLD_STRETCH ? pb->target[k] : 1;
+    for (int u = 0; u < pb->n_unknown_stretch; u++)
+        stretch[pb->stretch_index[u]] = 1 + gsl_vector_get(x, 2 + u);
+    double f[6] = {stretch[0], 0, 0, stretch[1], 0, 0};
+    memcpy(F, f, sizeof f);
+}
+
+static int equations(const gsl_vector *x, void *data, gsl_vector *out)
+{
+    const problem *pb = data;
+    double F[6], dA[2], stretch[2];
+    unpack(pb, x, F, dA, stretch);
+    wff_point_result r;
+    if (wff_material_evaluate(pb->mat, F, dA, pb->gamma_f, 0, &r) != WFF_POINT_OK)
+        return GSL_EDOM;
+    double cell = pb->mat->yarn_spacing[0] * pb->mat->yarn_spacing[1];
+    gsl_vector_set(out, 0, r.residual[0] * cell);
+    gsl_vector_set(out, 1, r.residual[1] * cell);
+    for (int u = 0; u < pb->n_unknown_stretch; u++) {
+        int k = pb->stretch_index[u];
+        double value;
+        if (pb->hold[k] == WFF_HOLD_RESULTANT) /* P_11 or P_22, as force per yarn */
+            value = (r.stress[k == 0 ? 0 : 3] - pb->target[k]) * pb->mat->yarn_spacing[k];
+        else
+            value = r.diag[pb->mat->cell->yarn_tension_diag[k]] - pb->target[k];
+        gsl_vector_set(out, 2 + u, value);
+    }
+    for (size_t i = 0; i < out->size; i++)
+        if (!isfinite(gsl_vector_get(out, i)))
+            return GSL_EDOM;
+    return GSL_SUCCESS;
+}
+
+static int solve(problem *pb, gsl_vector *x, wff_error *err, const char *what)
+{
+    size_t n = x->size;
+    gsl_multiroot_function fn = {equations, n, pb};
+    gsl_multiroot_fsolver *s = gsl_multiroot_fsolver_alloc(gsl_multiroot_fsolver_hybrids, n);
+    if (!s)
+        return wff_fail(err, "%s: out of memory", what);
+    gsl_error_handler_t *old = gsl_set_error_handler_off();
+    int status = gsl_multiroot_fsolver_set(s, &fn, x);
+    int iter = 0;
+    while (status == GSL_SUCCESS && iter++ < MAX_ITERATIONS) {
+        status = gsl_multiroot_fsolver_iterate(s);
+        if (status != GSL_SUCCESS)
+            break;
+        if (gsl_multiroot_test_residual(s->f, 1e-13) == GSL_SUCCESS)
+            break;
+        status = gsl_multiroot_test_delta(s->dx, s->x, 0, 1e-14);
+        if (status == GSL_SUCCESS)
+            break;
+        status = GSL_SUCCESS;
+    }
+    /* A step that can no longer improve (GSL_ENOPROG*) is fine if the residual is tiny. */
+    double worst = 0;
+    for (size_t i = 0; i < n; i++)
+        worst = fmax(worst, fabs(gsl_vector_get(s->f, i)));
+    int ok = isfinite(worst) && worst <= 1e-9;
+    if (ok)
+        gsl_vector_memcpy(x, s->x);
+    gsl_multiroot_fsolver_free(s);
+    gsl_set_error_handler(old);
+    if (!ok)
+        return wff_fail(err, "%s: static balance did not converge (GSL: %s, largest residual "
+                        "%.3g N after %d iterations, material %s)", what,
+                        gsl_strerror(status), worst, iter, pb->mat->source);
+    return 0;
+}
+
+int wff_balance_amplitudes(const wff_material *mat, const double F[6], double gamma_f,
+                           double dA[2], wff_error *err)
+{
+    if (mat->cell->n_amplitudes == 0) {
+        dA[0] = dA[1] = 0;
+        return 0;
+    }
+    problem pb = {.mat = mat, .gamma_f = gamma_f};
+    memcpy(pb.F, F, sizeof pb.F);
+    gsl_vector *x = gsl_vector_alloc(2);
+    gsl_vector_set(x, 0, dA[0] / AMPLITUDE_SCALE);
+    gsl_vector_set(x, 1, dA[1] / AMPLITUDE_SCALE);
+    int rc = solve(&pb, x, err, "amplitude balance");
+    if (rc == 0) {
+        dA[0] = gsl_vector_get(x, 0) * AMPLITUDE_SCALE;
+        dA[1] = gsl_vector_get(x, 1) * AMPLITUDE_SCALE;
+    }
+    gsl_vector_free(x);
+    return rc;
+}
+
+int wff_biaxial_static(const wff_material *mat, const wff_hold hold[2], const double target[2],
+                       double gamma_f, wff_biaxial_state *state, wff_error *err)
+{
+    problem pb = {.mat = mat, .gamma_f = gamma_f, .biaxial = 1};
+    for (int k = 0; k < 2; k++) {
+        pb.hold[k] = hold[k];
+        pb.target[k] = target[k];
+        if (hold[k] == WFF_HOLD_YARN_TENSION && mat->cell->yarn_tension_diag[k] < 0)
+            return wff_fail(err, "biaxial static state: cell '%s' reports no yarn tension",
+                            mat->cell->name);
+        if (hold[k] != WFF_HOLD_STRETCH)
+            pb.stretch_index[pb.n_unknown_stretch++] = k;
+    }
+    int amplitudes = mat->cell->n_amplitudes > 0;
+    size_t n = 2 + (size_t)pb.n_unknown_stretch;
+    gsl_vector *x = gsl_vector_alloc(n);
+    gsl_vector_set(x, 0, amplitudes ? state->dA[0] / AMPLITUDE_SCALE : 0);
+    gsl_vector_set(x, 1, amplitudes ? state->dA[1] / AMPLITUDE_SCALE : 0);
+    for (int u = 0; u < pb.n_unknown_stretch; u++)
+        gsl_vector_set(x, 2 + u, state->stretch[pb.stretch_index[u]] - 1);
+    int rc = solve(&pb, x, err, "biaxial static state");
+    if (rc == 0) {
+        double F[6];
+        unpack(&pb, x, F, state->dA, state->stretch);
+        wff_material_evaluate(mat, F, state->dA, gamma_f, 0, &state->point);
+        state->resultant[0] = state->point.stress[0];
+        state->resultant[1] = state->point.stress[3];
+    }
+    gsl_vector_free(x);
+    return rc;
+}
+
+int wff_preload_equal_force(const wff_material *mat, double yarn_force,
+                            wff_biaxial_state *state, wff_error *err)
+{
+    const wff_hold hold[2] = {WFF_HOLD_YARN_TENSION, WFF_HOLD_YARN_TENSION};
+    const double target[2] = {yarn_force, yarn_force};
+    return wff_biaxial_static(mat, hold, target, 0, state, err);
+}
+
+int wff_uniaxial_static(const wff_material *mat, int family, double stretch,
+                        wff_biaxial_state *state, wff_error *err)
+{
+    if (family != 0 && family != 1)
+        return wff_fail(err, "uniaxial: family must be 0 (warp) or 1 (weft), got %d", family);
+    wff_hold hold[2];
+    double target[2];
+    hold[family] = WFF_HOLD_STRETCH;
+    target[family] = stretch;
+    hold[1 - family] = WFF_HOLD_RESULTANT;
+    target[1 - family] = 0;
+    return wff_biaxial_static(mat, hold, target, 0, state, err);
+}

@@ -1,0 +1,450 @@
+/* The King plain-weave unit cell (King, Jearanaisilawong & Socrate 2005), as
+ * run by Parsons, Socrate, Arata & Weerasooriya: see docs/MODEL.md, §1–7.
+ *
+ * Reference cell 2 p1⁰ × 2 p2⁰, one crossover. Family k = 1 (warp) along E1,
+ * k = 2 (weft) along E2; l is the other family. Kinematics (eq. 1):
+ *
+ *   g_k = F G_k,  G_k = p_k⁰ E_k,  p_k = |g_k|,  ĝ_k = g_k / p_k
+ *   J = |g_1 × g_2|,  cosθ = ĝ_1·ĝ_2,  sinθ = J/(p_1 p_2),  γ = θ⁰ − θ, θ⁰ = π/2
+ *
+ * Crimp truss: A_k = A_k⁰ + ΔA_k, L_k = √(p_k² + A_k²), β_k = atan2(A_k, p_k),
+ * interference I = −ΔA_1 − ΔA_2. Locking spar: s_k = J/p_k, d_k = √(s_k² + A_k²).
+ *
+ * Laws:   T_k = k_k (L_k − L_k⁰)           M_bk = k_bk (β_k − β_k⁰)
+ *         F_I = K_I (exp(a I) − 1)          F_Lk = K_d (d_k⁰ − d_k)^c, d_k < d_k⁰
+ *         M_s = K_s (γ − γᶠ),  dγᶠ/dt = γ̇₀ sign(M_s) |M_s/M₀|^n
+ *
+ * Stored energy per cell (one truss pair and one bending pair per yarn):
+ *
+ *   W_cell = Σ_k [k_k (L_k − L_k⁰)² + k_bk (β_k − β_k⁰)²]
+ *          + (K_I/a)(exp(a I) − 1) − K_I I
+ *          + 2 Σ_k K_d (d_k⁰ − d_k)^(c+1)/(c+1)
+ *          + ½ K_s (γ − γᶠ)²,                 W = W_cell / (4 p1⁰ p2⁰)
+ *
+ * Amplitude residual (eq. 2–3, 9):  R_k = (F_I − F_k^N)/(4 p1⁰ p2⁰) = −∂W/∂ΔA_k,
+ *   F_k^N = 2 T_k sinβ_k − 2 F_Lk sinα_k [1 + λ p_l|cosθ|cosβ_k/L_k] + 2 M_bk cosβ_k/L_k
+ * (λ = 0 by default keeps R = −∂W/∂ΔA exactly; λ = 1 is the paper's literal eq. 3.)
+ *
+ * Stress: P = (1/(4 p1⁰ p2⁰)) Σ_k Q_k ⊗ G_k with Q_k = ∂W_cell/∂g_k. Every term
+ * of Q_k lies in the plane of ĝ_1, ĝ_2, so Q_k = q_k1 ĝ_1 + q_k2 ĝ_2 with
+ *
+ *   yarn and bending   2 (T_k cosβ_k − M_bk sinβ_k/L_k)            on ĝ_k
+ *   shear couple       M_s/(p_k sinθ) (ĝ_l − cosθ ĝ_k)
+ *   own spar (s_k)     −2 F_Lk cosα_k · p_l cosθ/(p_k sinθ) (cosθ ĝ_k − ĝ_l)
+ *   other spar (s_l)   −2 F_Ll cosα_l · (ĝ_k − cosθ ĝ_l)/sinθ
+ *
+ * using ∂J/∂g_k = p_l (ĝ_k − cosθ ĝ_l)/sinθ. The compaction law is continued
+ * past exp(30) by a cubic in the exponent (same value, slope and curvature)
+ * so that the energy stays finite and consistent when compaction is extreme.
+ */
+#include "wovenff/cell.h"
+#include "wovenff/material.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+
+#define FAMILIES 2
+
+/* Exponent a·I past which the compaction exponential is continued by its
+ * third-order Taylor polynomial: exp(30) ≈ 1e13, far beyond any physical
+ * compaction force, and far below overflow. */
+#define COMPACTION_EXPONENT_MAX 30.0
+
+typedef struct king_params {
+    double pitch0[FAMILIES];             /* p_k⁰, quarter wavelength, m */
+    double amplitude0[FAMILIES];         /* A_k⁰, crimp amplitude, m */
+    double yarn_stiffness[FAMILIES];     /* k_k, N/m */
+    double bending_stiffness[FAMILIES];  /* k_bk, N·m/rad */
+    double compaction_force;             /* K_I, N */
+    double compaction_rate;              /* a, 1/m */
+    double locking_stiffness;            /* K_d, N/m^c */
+    double locking_exponent;             /* c, - */
+    double shear_stiffness;              /* K_s, N·m/rad */
+    double flow_moment;                  /* M₀, N·m */
+    double flow_rate;                    /* γ̇₀, 1/s */
+    double flow_exponent;                /* n, - */
+    double lever;                        /* λ, 0 or 1 */
+    double tension_only;                 /* 1: yarns carry no compression */
+    /* derived from the reference state */
+    double length0[FAMILIES];            /* L_k⁰, m */
+    double crimp_angle0[FAMILIES];       /* β_k⁰, rad */
+    double spar_length0[FAMILIES];       /* d_k⁰, m */
+    double cell_area;                    /* 4 p1⁰ p2⁰, m² */
+} king_params;
+
+_Static_assert(sizeof(king_params) <= sizeof(((wff_material *)0)->params),
+               "king_params must fit in wff_material.params");
+
+/* Everything one evaluation computes, kept for evaluate() and energy_split(). */
+typedef struct king_point {
+    double gh[FAMILIES][3];     /* ĝ_k */
+    double p[FAMILIES];         /* p_k */
+    double cos_t, sin_t;        /* cosθ, sinθ */
+    double gamma;               /* γ, rad */
+    double amplitude[FAMILIES]; /* A_k */
+    double length[FAMILIES];    /* L_k */
+    double crimp[FAMILIES];     /* β_k */
+    double tension[FAMILIES];   /* T_k */
+    double moment[FAMILIES];    /* M_bk */
+    double interference;        /* I */
+    double compaction;          /* F_I */
+    double spar[FAMILIES];      /* s_k */
+    double spar_length[FAMILIES]; /* d_k */
+    double locking[FAMILIES];   /* F_Lk */
+    double energy_yarn, energy_bending, energy_compaction, energy_locking;
+} king_point;
+
+static const char *const king_diag_names[] = {"T1", "T2", "beta1", "beta2",
+                                              "F_I", "F_L1", "F_L2", "M_s"};
+static const char *const king_diag_units[] = {"N", "N", "rad", "rad", "N", "N", "N", "N*m"};
+enum { DIAG_T1, DIAG_T2, DIAG_BETA1, DIAG_BETA2, DIAG_FI, DIAG_FL1, DIAG_FL2, DIAG_MS,
+       DIAG_COUNT };
+static const char *const king_mech_names[] = {"yarn_stretch", "yarn_bending", "compaction",
+                                              "locking", "shear"};
+enum { MECH_YARN, MECH_BENDING, MECH_COMPACTION, MECH_LOCKING, MECH_SHEAR, MECH_COUNT };
+
+/* exp(x) continued past COMPACTION_EXPONENT_MAX; *primitive gets ∫exp, *slope exp'. */
+static double compaction_exp(double x, double *primitive, double *slope)
+{
+    if (x <= COMPACTION_EXPONENT_MAX) {
+        double e = exp(x);
+        *primitive = e;
+        *slope = e;
+        return e;
+    }
+    double e = exp(COMPACTION_EXPONENT_MAX), u = x - COMPACTION_EXPONENT_MAX;
+    *primitive = e * (1 + u + u * u / 2 + u * u * u / 6);
+    *slope = e * (1 + u);
+    return e * (1 + u + u * u / 2);
+}
+
+/* gap^c for the locking law; integer exponents by multiplication. */
+static double locking_power(double gap, double c)
+{
+    if (c == 1.0)
+        return gap;
+    if (c == 2.0)
+        return gap * gap;
+    if (c == 3.0)
+        return gap * gap * gap;
+    return pow(gap, c);
+}
+
+/* Backward-Euler update of γᶠ (MODEL.md §7): solve
+ *   x = γᶠ + Δt γ̇₀ sign(m)|m/M₀|^n,  m = K_s (γ − x).
+ * The root lies between γᶠ and γ; n = 1 has a closed form. */
+static double shear_flow_update(const king_params *k, double gamma, double gamma_f, double dt)
+{
+    if (!(dt > 0) || k->flow_rate == 0 || k->shear_stiffness == 0)
+        return gamma_f;
+    double rate = dt * k->flow_rate; /* Δt γ̇₀ */
+    if (k->flow_exponent == 1.0) {
+        double r = rate * k->shear_stiffness / k->flow_moment;
+        return (gamma_f + r * gamma) / (1 + r);
+    }
+    double lo = fmin(gamma_f, gamma), hi = fmax(gamma_f, gamma), x = gamma_f;
+    for (int it = 0; it < 100; it++) {
+        double m = k->shear_stiffness * (gamma - x);
+        double ratio = fabs(m) / k->flow_moment;
+        double flow = rate * pow(ratio, k->flow_exponent);
+        double f = x - gamma_f - (m >= 0 ? flow : -flow);
+        if (f > 0)
+            hi = x;
+        else
+            lo = x;
+        /* d/dx of sign(m)|m/M₀|^n is −n K_s |m/M₀|^(n−1)/M₀ */
+        double df = 1 + rate * k->flow_exponent * k->shear_stiffness / k->flow_moment *
+                            pow(ratio, k->flow_exponent - 1);
+        double next = x - f / df;
+        if (!(next > lo && next < hi))
+            next = 0.5 * (lo + hi);
+        if (fabs(next - x) <= 1e-15 * (fabs(x) + fabs(gamma) + 1e-300))
+            return next;
+        x = next;
+    }
+    return x;
+}
+
+/* Kinematics, laws and energies (all but shear, which needs the flow update). */
+static int king_point_eval(const king_params *k, const double F[6], const double dA[2],
+                           king_point *pt)
+{
+    double g[FAMILIES][3];
+    for (int f = 0; f < FAMILIES; f++) {
+        for (int i = 0; i < 3; i++)
+            g[f][i] = k->pitch0[f] * F[2 * i + f];
+        pt->p[f] = sqrt(g[f][0] * g[f][0] + g[f][1] * g[f][1] + g[f][2] * g[f][2]);
+        if (!(pt->p[f] > 0))
+            return WFF_POINT_DEGENERATE;
+        for (int i = 0; i < 3; i++)
+            pt->gh[f][i] = g[f][i] / pt->p[f];
+    }
+    double n0 = g[0][1] * g[1][2] - g[0][2] * g[1][1];
+    double n1 = g[0][2] * g[1][0] - g[0][0] * g[1][2];
+    double n2 = g[0][0] * g[1][1] - g[0][1] * g[1][0];
+    double area = sqrt(n0 * n0 + n1 * n1 + n2 * n2); /* J */
+    pt->cos_t = pt->gh[0][0] * pt->gh[1][0] + pt->gh[0][1] * pt->gh[1][1] +
+                pt->gh[0][2] * pt->gh[1][2];
+    pt->sin_t = area / (pt->p[0] * pt->p[1]);
+    if (!(pt->sin_t > 0))
+        return WFF_POINT_DEGENERATE;
+    pt->gamma = M_PI_2 - atan2(pt->sin_t, pt->cos_t);
+
+    pt->interference = -dA[0] - dA[1];
+    double x = k->compaction_rate * pt->interference, primitive, slope;
+    double e = compaction_exp(x, &primitive, &slope);
+    pt->compaction = k->compaction_force * (e - 1);
+    pt->energy_compaction = k->compaction_force / k->compaction_rate * (primitive - 1) -
+                            k->compaction_force * pt->interference;
+
+    pt->energy_yarn = pt->energy_bending = pt->energy_locking = 0;
+    for (int f = 0; f < FAMILIES; f++) {
+        double A = k->amplitude0[f] + dA[f];
+        pt->amplitude[f] = A;
+        pt->length[f] = sqrt(pt->p[f] * pt->p[f] + A * A);
+        pt->crimp[f] = atan2(A, pt->p[f]);
+        double stretch = pt->length[f] - k->length0[f];
+        if (k->tension_only != 0 && stretch < 0)
+            stretch = 0;
+        pt->tension[f] = k->yarn_stiffness[f] * stretch;
+        pt->energy_yarn += k->yarn_stiffness[f] * stretch * stretch;
+        double bend = pt->crimp[f] - k->crimp_angle0[f];
+        pt->moment[f] = k->bending_stiffness[f] * bend;
+        pt->energy_bending += k->bending_stiffness[f] * bend * bend;
+
+        pt->spar[f] = area / pt->p[f];
+        pt->spar_length[f] = sqrt(pt->spar[f] * pt->spar[f] + A * A);
+        double gap = k->spar_length0[f] - pt->spar_length[f];
+        if (gap > 0) {
+            double power = locking_power(gap, k->locking_exponent);
+            pt->locking[f] = k->locking_stiffness * power;
+            pt->energy_locking +=
+                2 * k->locking_stiffness * power * gap / (k->locking_exponent + 1);
+        } else {
+            pt->locking[f] = 0;
+        }
+    }
+    return WFF_POINT_OK;
+}
+
+static void fill_nan(wff_point_result *out)
+{
+    double nan = NAN;
+    for (int i = 0; i < 6; i++)
+        out->stress[i] = nan;
+    out->residual[0] = out->residual[1] = nan;
+    out->energy = out->dissipated = out->gamma_f = nan;
+    for (int i = 0; i < DIAG_COUNT; i++)
+        out->diag[i] = nan;
+}
+
+static int king_evaluate(const void *params, const double F[6], const double dA[2],
+                         double gamma_f, double dt, wff_point_result *out)
+{
+    const king_params *k = params;
+    king_point pt;
+    if (king_point_eval(k, F, dA, &pt) != WFF_POINT_OK) {
+        fill_nan(out);
+        return WFF_POINT_DEGENERATE;
+    }
+    double gamma_f_new = shear_flow_update(k, pt.gamma, gamma_f, dt);
+    double shear_moment = k->shear_stiffness * (pt.gamma - gamma_f_new); /* M_s */
+    double shear_elastic = pt.gamma - gamma_f_new;                        /* γᵉ */
+
+    /* q[f][m]: component of Q_f along ĝ_m */
+    double q[FAMILIES][FAMILIES] = {{0, 0}, {0, 0}};
+    double cs = pt.cos_t, sn = pt.sin_t;
+    for (int f = 0; f < FAMILIES; f++) {
+        int l = 1 - f;
+        double L = pt.length[f];
+        double sin_b = pt.amplitude[f] / L, cos_b = pt.p[f] / L;
+        q[f][f] += 2 * (pt.tension[f] * cos_b - pt.moment[f] * sin_b / L);
+        double couple = shear_moment / (pt.p[f] * sn);
+        q[f][l] += couple;
+        q[f][f] -= couple * cs;
+        /* own spar s_f = J/p_f */
+        double own = 2 * pt.locking[f] * (pt.spar[f] / pt.spar_length[f]);
+        double c_own = own * pt.p[l] * cs / (pt.p[f] * sn);
+        q[f][f] -= c_own * cs;
+        q[f][l] += c_own;
+        /* the other spar s_l = J/p_l */
+        double other = 2 * pt.locking[l] * (pt.spar[l] / pt.spar_length[l]) / sn;
+        q[f][f] -= other;
+        q[f][l] += other * cs;
+
+        double sin_a = pt.amplitude[f] / pt.spar_length[f];
+        double lever = 1 + k->lever * pt.p[l] * fabs(cs) * cos_b / L;
+        double normal = 2 * pt.tension[f] * sin_b - 2 * pt.locking[f] * sin_a * lever +
+                        2 * pt.moment[f] * cos_b / L; /* F_k^N, eq. 3 */
+        out->residual[f] = (pt.compaction - normal) / k->cell_area;
+    }
+    for (int i = 0; i < 3; i++)
+        for (int f = 0; f < FAMILIES; f++)
+            out->stress[2 * i + f] = k->pitch0[f] / k->cell_area *
+                                     (q[f][0] * pt.gh[0][i] + q[f][1] * pt.gh[1][i]);
+
+    double energy_shear = 0.5 * k->shear_stiffness * shear_elastic * shear_elastic;
+    out->energy = (pt.energy_yarn + pt.energy_bending + pt.energy_compaction +
+                   pt.energy_locking + energy_shear) / k->cell_area;
+    out->gamma_f = gamma_f_new;
+    out->dissipated = shear_moment * (gamma_f_new - gamma_f) / k->cell_area;
+    out->diag[DIAG_T1] = pt.tension[0];
+    out->diag[DIAG_T2] = pt.tension[1];
+    out->diag[DIAG_BETA1] = pt.crimp[0];
+    out->diag[DIAG_BETA2] = pt.crimp[1];
+    out->diag[DIAG_FI] = pt.compaction;
+    out->diag[DIAG_FL1] = pt.locking[0];
+    out->diag[DIAG_FL2] = pt.locking[1];
+    out->diag[DIAG_MS] = shear_moment;
+    return WFF_POINT_OK;
+}
+
+static void king_energy_split(const void *params, const double F[6], const double dA[2],
+                              double gamma_f, double *mech)
+{
+    const king_params *k = params;
+    king_point pt;
+    if (king_point_eval(k, F, dA, &pt) != WFF_POINT_OK) {
+        for (int i = 0; i < MECH_COUNT; i++)
+            mech[i] = NAN;
+        return;
+    }
+    double shear_elastic = pt.gamma - gamma_f;
+    mech[MECH_YARN] = pt.energy_yarn / k->cell_area;
+    mech[MECH_BENDING] = pt.energy_bending / k->cell_area;
+    mech[MECH_COMPACTION] = pt.energy_compaction / k->cell_area;
+    mech[MECH_LOCKING] = pt.energy_locking / k->cell_area;
+    mech[MECH_SHEAR] = 0.5 * k->shear_stiffness * shear_elastic * shear_elastic / k->cell_area;
+}
+
+/* Stable-step bounds. Membrane: the straight-yarn stiffness per unit width
+ * k_k p_k⁰/(2 p_l⁰) (crimp only lowers it) plus geometric, shear and locking
+ * terms; speed = sqrt(S/ρ_A). Amplitudes: Gershgorin bound of the 2×2
+ * Hessian ∂²W_cell/∂A_k∂A_m over the lumped mass ρ_A/6 per unit area. */
+static void king_wave_speeds(const void *params, double areal_density, const double F[6],
+                             const double dA[2], double *membrane_speed,
+                             double *amplitude_omega)
+{
+    const king_params *k = params;
+    king_point pt;
+    if (king_point_eval(k, F, dA, &pt) != WFF_POINT_OK) {
+        *membrane_speed = *amplitude_omega = INFINITY;
+        return;
+    }
+    double primitive, slope;
+    compaction_exp(k->compaction_rate * pt.interference, &primitive, &slope);
+    double compaction_stiffness = k->compaction_force * k->compaction_rate * slope; /* ∂F_I/∂I */
+    double sn = fmax(pt.sin_t, 0.05);
+    double shear = k->shear_stiffness / (sn * sn); /* torsional, per rad², N·m */
+    double membrane = 0, amplitude = 0;
+    for (int f = 0; f < FAMILIES; f++) {
+        int l = 1 - f;
+        double L = pt.length[f];
+        double sin_b = pt.amplitude[f] / L, cos_b = pt.p[f] / L;
+        double stretch_active = (k->tension_only != 0 && pt.tension[f] <= 0) ? 0 : 1;
+        double lock_stiff = 0; /* ∂F_L/∂d */
+        double gap = k->spar_length0[f] - pt.spar_length[f];
+        if (gap > 0)
+            lock_stiff = k->locking_stiffness * k->locking_exponent *
+                         locking_power(gap, k->locking_exponent - 1);
+        double axial = stretch_active * k->yarn_stiffness[f] + fabs(pt.tension[f]) / L +
+                       k->bending_stiffness[f] / (L * L);
+        /* stiffness per unit width when family f is stretched: two trusses per
+         * cell (2 k p_f⁰² / 4p1⁰p2⁰ = k p_f⁰/2p_l⁰), the spars across, shear */
+        double s_f = (2 * axial * k->pitch0[f] * k->pitch0[f] +
+                      4 * lock_stiff * k->pitch0[l] * k->pitch0[l] + shear) / k->cell_area;
+        membrane = fmax(membrane, s_f);
+        double a_diag = 2 * (stretch_active * k->yarn_stiffness[f] * sin_b * sin_b +
+                             fabs(pt.tension[f]) * cos_b * cos_b / L) +
+                        2 * k->bending_stiffness[f] * cos_b * cos_b / (L * L) +
+                        4 * fabs(pt.moment[f]) / (L * L) + compaction_stiffness +
+                        2 * (lock_stiff + pt.locking[f] / pt.spar_length[f]) * (1 + k->lever);
+        amplitude = fmax(amplitude, a_diag + compaction_stiffness);
+    }
+    *membrane_speed = sqrt(membrane / areal_density);
+    *amplitude_omega = sqrt(amplitude / k->cell_area / (areal_density / 6));
+}
+
+static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
+{
+    king_params *k = (king_params *)mat->params;
+    memset(k, 0, sizeof *k);
+    struct { const char *key; double *value; } required[] = {
+        {"p0_1", &k->pitch0[0]}, {"p0_2", &k->pitch0[1]},
+        {"A0_1", &k->amplitude0[0]}, {"A0_2", &k->amplitude0[1]},
+        {"k_1", &k->yarn_stiffness[0]}, {"k_2", &k->yarn_stiffness[1]},
+        {"kb_1", &k->bending_stiffness[0]}, {"kb_2", &k->bending_stiffness[1]},
+        {"K_I", &k->compaction_force}, {"a", &k->compaction_rate},
+        {"K_d", &k->locking_stiffness}, {"c", &k->locking_exponent},
+        {"K_s", &k->shear_stiffness}, {"M_0", &k->flow_moment},
+        {"gammadot_0", &k->flow_rate},
+    };
+    for (size_t i = 0; i < sizeof required / sizeof required[0]; i++)
+        if (wff_kv_number(kv, required[i].key, required[i].value, err))
+            return -1;
+    if (wff_kv_number_or(kv, "n", 1.0, &k->flow_exponent, err) ||
+        wff_kv_number_or(kv, "lever", 0.0, &k->lever, err) ||
+        wff_kv_number_or(kv, "tension_only", 0.0, &k->tension_only, err))
+        return -1;
+
+    const char *positive[] = {"p0_1", "p0_2", "A0_1", "A0_2", "k_1", "k_2",
+                              "K_I", "a", "M_0"};
+    double *positive_v[] = {&k->pitch0[0], &k->pitch0[1], &k->amplitude0[0],
+                            &k->amplitude0[1], &k->yarn_stiffness[0], &k->yarn_stiffness[1],
+                            &k->compaction_force, &k->compaction_rate, &k->flow_moment};
+    for (size_t i = 0; i < sizeof positive / sizeof positive[0]; i++)
+        if (!(*positive_v[i] > 0))
+            return wff_kv_reject(kv, positive[i], err, "must be > 0");
+    const char *nonneg[] = {"kb_1", "kb_2", "K_d", "K_s", "gammadot_0"};
+    double *nonneg_v[] = {&k->bending_stiffness[0], &k->bending_stiffness[1],
+                          &k->locking_stiffness, &k->shear_stiffness, &k->flow_rate};
+    for (size_t i = 0; i < sizeof nonneg / sizeof nonneg[0]; i++)
+        if (!(*nonneg_v[i] >= 0))
+            return wff_kv_reject(kv, nonneg[i], err, "must be >= 0");
+    if (!(k->locking_exponent >= 1))
+        return wff_kv_reject(kv, "c", err, "locking exponent must be >= 1 "
+                             "(below 1 the locking stiffness is infinite at contact)");
+    if (!(k->flow_exponent >= 1))
+        return wff_kv_reject(kv, "n", err, "shear-flow exponent must be >= 1 "
+                             "(below 1 the flow rate is singular at rest)");
+    if (k->lever != 0 && k->lever != 1)
+        return wff_kv_reject(kv, "lever", err, "must be 0 (energy-consistent) or 1 "
+                             "(the paper's literal eq. 3)");
+    if (k->tension_only != 0 && k->tension_only != 1)
+        return wff_kv_reject(kv, "tension_only", err, "must be 0 or 1");
+    for (int f = 0; f < FAMILIES; f++)
+        if (!(k->amplitude0[f] < k->pitch0[f]))
+            return wff_kv_reject(kv, f == 0 ? "A0_1" : "A0_2", err,
+                                 "crimp amplitude must be smaller than the quarter "
+                                 "wavelength p0 (crimp angle above 45 degrees)");
+
+    for (int f = 0; f < FAMILIES; f++) {
+        int l = 1 - f;
+        k->length0[f] = sqrt(k->pitch0[f] * k->pitch0[f] + k->amplitude0[f] * k->amplitude0[f]);
+        k->crimp_angle0[f] = atan2(k->amplitude0[f], k->pitch0[f]);
+        double s0 = k->pitch0[l]; /* J⁰/p_f⁰ at θ⁰ = 90° */
+        k->spar_length0[f] = sqrt(s0 * s0 + k->amplitude0[f] * k->amplitude0[f]);
+        mat->yarn_spacing[f] = 2 * k->pitch0[l];
+    }
+    k->cell_area = 4 * k->pitch0[0] * k->pitch0[1];
+    return 0;
+}
+
+static const wff_cell_type king_plain = {
+    .name = "king_plain",
+    .summary = "King et al. (2005) plain weave: crimped yarn trusses, bending, compaction, "
+               "locking spars, visco-elastic shear",
+    .n_amplitudes = 2,
+    .n_diag = DIAG_COUNT,
+    .diag_names = king_diag_names,
+    .diag_units = king_diag_units,
+    .yarn_tension_diag = {DIAG_T1, DIAG_T2},
+    .n_mech = MECH_COUNT,
+    .mech_names = king_mech_names,
+    .parse = king_parse,
+    .evaluate = king_evaluate,
+    .wave_speeds = king_wave_speeds,
+    .energy_split = king_energy_split,
+};
+WFF_REGISTER_CELL(king_plain);
