@@ -31,6 +31,7 @@ SCENE ?= ballistic_impact
 ARGS  ?=
 
 .PHONY: all deps run test bench clean
+.SECONDARY:
 all: $(CORE_OBJ) $(CTEST_BIN) $(MODULE)
 
 $(BUILD)/%.o: %.c $(wildcard include/wovenff/*.h) $(wildcard plugin/*.h plugin/cells/*.h tests/c/lib/*.h)
