@@ -1,0 +1,97 @@
+/* wovenff — membrane elements with crimp-amplitude DOFs (paper §2.2, MODEL.md §8).
+ *
+ * Each node carries five DOFs, interleaved node-major: u_x, u_y, u_z, ΔA1, ΔA2
+ * (the layout of FreeFEM's fespace [P1,P1,P1,P1,P1]). Two element types:
+ *
+ *   tri3   three-point nodal quadrature (weights A/3 at the vertices): F is
+ *          constant, the amplitudes are the nodal values, so each vertex
+ *          is one material point; F_I is purely nodal.
+ *   quad4  bilinear, 2×2 Gauss.
+ *
+ * Internal forces (eqs. 7, 9), per unit mesh area:
+ *   f_a^u  = −∫ P ∇_X N_a dA₀          f_a^Ak = ∫ R_k N_a dA₀
+ * A preload F_pre (2×2) acts at the material point: the cell sees
+ * F_eff = F F_pre, and stress, residual, energy and mass per mesh area are
+ * divided by J_pre = det F_pre (the mesh is the preloaded configuration).
+ *
+ * Kernels only read the geometry and state they are given and add into the
+ * force array: no allocation, no I/O. */
+#ifndef WOVENFF_MEMBRANE_H
+#define WOVENFF_MEMBRANE_H
+
+#include "wovenff/cell.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define WFF_DOFS_PER_NODE 5
+#define WFF_TRI_POINTS 3
+#define WFF_QUAD_POINTS 4
+
+/* Reference geometry of a mesh, precomputed once. */
+typedef struct wff_elements {
+    int n_tris, n_quads;
+    const int *tri;       /* 3 per triangle */
+    const int *quad;      /* 4 per quad */
+    double *tri_grad;     /* 6 per triangle: dN_a/dX, dN_a/dY, a = 0..2 */
+    double *tri_area;     /* 1 per triangle, m² */
+    double *quad_grad;    /* 32 per quad: point q, node a: dN_a/dX, dN_a/dY */
+    double *quad_weight;  /* 4 per quad: Gauss weight × det J, m² */
+    double *size;         /* characteristic length per element (tris, then quads), m */
+} wff_elements;
+
+/* Preload and material as the element sees them. */
+typedef struct wff_element_material {
+    const wff_material *mat;
+    double F_pre[4];      /* row-major 2×2 */
+    double J_pre;         /* det F_pre */
+} wff_element_material;
+
+/* What one force pass sums (per mesh, J or J/step). */
+typedef struct wff_force_totals {
+    double internal_energy;  /* Σ ∫ W dA, J */
+    double dissipated;       /* shear-flow dissipation in this pass, J */
+    int bad_element;         /* −1, or the first element whose point failed */
+    int bad_point;           /* quadrature point of bad_element */
+    int bad_status;          /* WFF_POINT_DEGENERATE, or 2 for a non-finite result */
+} wff_force_totals;
+
+/* Allocate and compute the reference geometry; -1 with the element named if
+ * an element has zero or negative area. X holds 2 coordinates per node. */
+int wff_elements_init(wff_elements *el, const double *X, int n_tris, const int *tri,
+                      int n_quads, const int *quad, wff_error *err);
+void wff_elements_free(wff_elements *el);
+
+/* Add internal forces of every element at displacement u (5 per node) into f,
+ * update gamma_f (3 per tri then 4 per quad) with step dt (0: hold it). */
+void wff_elements_forces(const wff_elements *el, const wff_element_material *em, const double *X,
+                         const double *u, double *gamma_f, double dt, double *f,
+                         wff_force_totals *totals);
+
+/* Lumped masses: each element's ρ_A A / J_pre shared equally among its
+ * nodes; amplitude DOFs get 1/6 of that (eqs. 10–12). mass has 5 per node,
+ * zeroed first. */
+void wff_elements_masses(const wff_elements *el, const wff_element_material *em, int n_nodes,
+                         double *mass);
+
+/* Stable explicit step over all elements: min(size/c, 2/ω) at the current
+ * state. *worst gets the element that sets it. */
+double wff_elements_stable_step(const wff_elements *el, const wff_element_material *em,
+                                const double *X, const double *u, int *worst);
+
+/* Deformation gradient (F, 3×2 row-major, mesh reference) at the centre of
+ * element e (tris first, then quads), and the element's mean amplitudes. */
+void wff_element_center_state(const wff_elements *el, const double *X, const double *u, int e,
+                              double F[6], double dA[2]);
+
+/* Point evaluation at the centre of element e with the preload applied
+ * (gamma_f held at the element's mean); for output. Returns the status. */
+int wff_element_center_eval(const wff_elements *el, const wff_element_material *em,
+                            const double *X, const double *u, const double *gamma_f, int e,
+                            wff_point_result *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

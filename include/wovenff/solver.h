@@ -1,0 +1,147 @@
+/* wovenff — explicit central-difference solver for a fabric membrane.
+ *
+ * A model owns a mesh, a material and the state (u, v per DOF; γᶠ per
+ * quadrature point), and advances with lumped masses:
+ *
+ *   v^{n+½} = v^{n−½} + Δt M⁻¹ (f_int + f_contact + f_friction)(u^n)
+ *   u^{n+1} = u^n + Δt v^{n+½}
+ *
+ * Boundary conditions are per DOF: free, fixed (held at its value) or moved
+ * at a prescribed velocity (its reaction does external work). A friction
+ * clamp presses chosen nodes flat (u_z = 0) and resists in-plane motion by
+ * Coulomb friction up to μ N_a on each face. A rigid projectile (cylinder
+ * with a hemispherical nose, moving along +z) touches the fabric by penalty
+ * contact, stiffness κ m_a/Δt² per node, with Coulomb friction.
+ *
+ * Energies are those of the modelled part multiplied by symmetry_factor
+ * (4 for a quarter model), so they read as the whole specimen's. */
+#ifndef WOVENFF_SOLVER_H
+#define WOVENFF_SOLVER_H
+
+#include "wovenff/membrane.h"
+#include "wovenff/mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { WFF_DOF_FREE = 0, WFF_DOF_FIXED = 1, WFF_DOF_PRESCRIBED = 2 };
+enum { WFF_UX = 0, WFF_UY = 1, WFF_UZ = 2, WFF_DA1 = 3, WFF_DA2 = 4 };
+
+typedef struct wff_projectile {
+    int active;
+    double radius;        /* nose and shank radius, m */
+    double mass;          /* of the modelled part (whole mass / symmetry_factor), kg */
+    double tip;           /* z of the nose tip, m */
+    double velocity;      /* along +z, m/s */
+    double mu;            /* Coulomb friction with the fabric */
+    double penalty;       /* κ: node contact stiffness κ m_a/Δt² (dimensionless, < 1) */
+    double axis[2];       /* x, y of the projectile axis, m */
+    int n_candidates;     /* nodes that may touch it, refreshed as it moves */
+    int *candidates;
+    double max_penetration;  /* largest penetration seen, m */
+    double force;         /* contact force on the projectile along −z, last step, N (model part) */
+} wff_projectile;
+
+typedef struct wff_clamp {
+    int n;                /* nodes held between the clamp faces */
+    int *node;
+    double *normal_force; /* clamping force on each node, N */
+    double mu;            /* Coulomb friction, each of two faces */
+} wff_clamp;
+
+typedef struct wff_energies {
+    double kinetic_inplane, kinetic_transverse, kinetic_amplitude, kinetic_projectile;
+    double internal;          /* stored energy of the cells + contact springs */
+    double dissipated_shear, dissipated_friction;
+    double external_work;     /* work done on the model by prescribed-velocity DOFs */
+    double error;             /* (E_now + D − W) − E_0, relative to the reference energy */
+    double reference;         /* normaliser: initial kinetic energy, or largest term */
+} wff_energies;
+
+typedef struct wff_model {
+    wff_mesh mesh;
+    wff_material mat;
+    wff_elements el;
+    wff_element_material em;
+    int n_nodes, n_dofs;
+    double *u, *v, *f, *mass;
+    unsigned char *dof_kind;
+    double *v_prescribed;     /* per DOF, used where dof_kind is PRESCRIBED */
+    double *gamma_f;
+    double *reaction;         /* per DOF: −f_int on fixed and prescribed DOFs, last step */
+
+    double time, dt, dt_stable, dt_factor;
+    long step;
+    int dt_interval;          /* steps between stable-step updates */
+    int dt_worst_element;
+    double symmetry_factor;
+
+    wff_projectile projectile;
+    wff_clamp clamp;
+
+    /* accumulated */
+    double internal_energy;   /* at the last force pass, J (model part) */
+    double contact_energy;
+    double dissipated_shear, dissipated_friction, external_work;
+    double initial_total;     /* kinetic + internal at the start, J (model part) */
+    double initial_kinetic;
+    int v_half_valid;         /* 1 once v holds a half-step velocity */
+    long element_steps;       /* elements × steps done, for cost figures */
+} wff_model;
+
+/* Create a model from a mesh file (.geo or .msh, see mesh.h) and a material
+ * file. F_pre is the 2×2 preload (row-major) applied at the material point,
+ * dA0 the initial amplitude changes. On failure nothing is allocated. */
+int wff_model_create(wff_model *m, const char *mesh_path, const wff_mesh_options *mesh_options,
+                     const char *material_path, wff_error *err);
+/* The same from a mesh already in memory; the model takes the mesh's arrays
+ * over (mesh is emptied, also on failure, when they are freed). */
+int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *material_path,
+                               wff_error *err);
+void wff_model_free(wff_model *m);
+
+/* Preload: F_pre (row-major 2×2, det > 0) and uniform initial amplitudes. */
+int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[2],
+                          wff_error *err);
+
+/* Fix DOF `component` (WFF_UX..WFF_DA2) of every node on the physical curve
+ * named `curve` (dim 1) or in the physical surface (dim 2) named so. Returns
+ * the number of nodes, or -1 if no group has that name (an error). */
+int wff_model_fix_group(wff_model *m, const char *group, int component, wff_error *err);
+
+/* Move DOF `component` of the group's nodes at velocity `velocity` (m/s). */
+int wff_model_prescribe_group(wff_model *m, const char *group, int component, double velocity,
+                              wff_error *err);
+
+/* Friction clamp on the nodes of a group: total clamping force `normal_force`
+ * (N, on the modelled part) shared by nodal area, friction μ on each face. */
+int wff_model_clamp_friction(wff_model *m, const char *group, double normal_force, double mu,
+                             wff_error *err);
+
+/* Rigid projectile with its nose tip at z = tip touching the fabric plane,
+ * moving along +z. mass is the modelled part's. */
+int wff_model_set_projectile(wff_model *m, double radius, double mass, double velocity,
+                             double mu, wff_error *err);
+
+/* Advance until time >= t_end (or max_steps). Stops with -1 and a message
+ * naming what, where and when on NaN, a degenerate element, an unstable
+ * step or a projectile that passes through the fabric. */
+int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err);
+
+/* Energies now (whole specimen: model part × symmetry_factor). */
+void wff_model_energies(const wff_model *m, wff_energies *out);
+
+/* Node nearest (x, y) in the reference configuration. */
+int wff_model_nearest_node(const wff_model *m, double x, double y);
+
+/* Per-node output: value of a named field at every node into out (n_nodes).
+ * Names: ux uy uz dA1 dA2 vz, the cell's diagnostics (e.g. T1 T2 F_I), and
+ * gamma (shear angle, rad). Element values are averaged to nodes by area.
+ * Returns -1 for an unknown name (listing the known ones). */
+int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,644 @@
+/* Explicit central-difference time integration of a fabric membrane with
+ * boundary conditions, a friction clamp and a rigid projectile. See
+ * include/wovenff/solver.h. */
+#include "wovenff/solver.h"
+#include "wovenff/material.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define D WFF_DOFS_PER_NODE
+
+/* Penetration, as a fraction of the nose radius, taken as the projectile
+ * having passed through the fabric (penalty contact keeps it to ~1e-3). */
+#define RUNAWAY_PENETRATION 0.5
+/* Relative energy error beyond which the run is taken as unstable. */
+#define ENERGY_BLOWUP 0.5
+
+static const char *const dof_names[D] = {"ux", "uy", "uz", "dA1", "dA2"};
+
+void wff_model_free(wff_model *m)
+{
+    free(m->u);
+    free(m->v);
+    free(m->f);
+    free(m->mass);
+    free(m->dof_kind);
+    free(m->v_prescribed);
+    free(m->gamma_f);
+    free(m->reaction);
+    free(m->projectile.candidates);
+    free(m->clamp.node);
+    free(m->clamp.normal_force);
+    wff_elements_free(&m->el);
+    wff_mesh_free(&m->mesh);
+    memset(m, 0, sizeof *m);
+}
+
+int wff_model_create(wff_model *m, const char *mesh_path, const wff_mesh_options *mesh_options,
+                     const char *material_path, wff_error *err)
+{
+    wff_mesh mesh;
+    if (wff_mesh_load(mesh_path, mesh_options, &mesh, err))
+        return -1;
+    if (wff_model_create_from_mesh(m, &mesh, material_path, err)) {
+        char why[WFF_ERROR_MAX];
+        snprintf(why, sizeof why, "%s", err->message);
+        return wff_fail(err, "%s: %s", mesh_path, why);
+    }
+    return 0;
+}
+
+int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *material_path,
+                               wff_error *err)
+{
+    memset(m, 0, sizeof *m);
+    m->mesh = *mesh;
+    memset(mesh, 0, sizeof *mesh);
+    if (wff_material_load(material_path, &m->mat, err)) {
+        wff_mesh_free(&m->mesh);
+        return -1;
+    }
+    if (wff_elements_init(&m->el, m->mesh.xy, m->mesh.n_tris, m->mesh.tri, m->mesh.n_quads,
+                          m->mesh.quad, err)) {
+        wff_mesh_free(&m->mesh);
+        return -1;
+    }
+    m->n_nodes = m->mesh.n_nodes;
+    m->n_dofs = D * m->n_nodes;
+    size_t nd = (size_t)m->n_dofs;
+    size_t nq = (size_t)(WFF_TRI_POINTS * m->el.n_tris + WFF_QUAD_POINTS * m->el.n_quads);
+    m->u = calloc(nd, sizeof(double));
+    m->v = calloc(nd, sizeof(double));
+    m->f = calloc(nd, sizeof(double));
+    m->mass = calloc(nd, sizeof(double));
+    m->dof_kind = calloc(nd, 1);
+    m->v_prescribed = calloc(nd, sizeof(double));
+    m->reaction = calloc(nd, sizeof(double));
+    m->gamma_f = calloc(nq ? nq : 1, sizeof(double));
+    if (!m->u || !m->v || !m->f || !m->mass || !m->dof_kind || !m->v_prescribed ||
+        !m->reaction || !m->gamma_f) {
+        wff_model_free(m);
+        return wff_fail(err, "out of memory for a model of %d nodes", m->n_nodes);
+    }
+    m->em.mat = &m->mat;
+    m->em.F_pre[0] = m->em.F_pre[3] = 1;
+    m->em.J_pre = 1;
+    wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
+    /* amplitude DOFs of a cell without amplitudes stay put */
+    if (m->mat.cell->n_amplitudes == 0)
+        for (int n = 0; n < m->n_nodes; n++)
+            m->dof_kind[D * n + 3] = m->dof_kind[D * n + 4] = WFF_DOF_FIXED;
+    m->dt_factor = 0.8;
+    m->dt_interval = 20;
+    m->symmetry_factor = 1;
+    m->projectile.penalty = 0.25;
+    return 0;
+}
+
+int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[2],
+                          wff_error *err)
+{
+    double det = F_pre[0] * F_pre[3] - F_pre[1] * F_pre[2];
+    if (!(det > 0))
+        return wff_fail(err, "preload F_pre = [%g %g; %g %g] has det %g: must be > 0", F_pre[0],
+                        F_pre[1], F_pre[2], F_pre[3], det);
+    memcpy(m->em.F_pre, F_pre, 4 * sizeof(double));
+    m->em.J_pre = det;
+    wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
+    if (m->mat.cell->n_amplitudes)
+        for (int n = 0; n < m->n_nodes; n++) {
+            m->u[D * n + 3] = dA0[0];
+            m->u[D * n + 4] = dA0[1];
+        }
+    return 0;
+}
+
+/* Mark the nodes of a named group; calls visit(m, node, data) once per node. */
+static int for_group_nodes(wff_model *m, const char *group, wff_error *err,
+                           void (*visit)(wff_model *, int, void *), void *data)
+{
+    int tag1 = wff_mesh_group_tag(&m->mesh, 1, group);
+    int tag2 = wff_mesh_group_tag(&m->mesh, 2, group);
+    if (tag1 < 0 && tag2 < 0) {
+        char names[256] = "";
+        for (int g = 0; g < m->mesh.n_groups; g++) {
+            size_t used = strlen(names);
+            snprintf(names + used, sizeof names - used, "%s%s", g ? ", " : "",
+                     m->mesh.groups[g].name);
+        }
+        return wff_fail(err, "no physical group named '%s' in the mesh (groups: %s)", group,
+                        names[0] ? names : "none");
+    }
+    unsigned char *seen = calloc((size_t)m->n_nodes, 1);
+    if (!seen)
+        return wff_fail(err, "out of memory");
+    if (tag1 >= 0)
+        for (int e = 0; e < m->mesh.n_edges; e++)
+            if (m->mesh.edge_label[e] == tag1)
+                seen[m->mesh.edge[2 * e]] = seen[m->mesh.edge[2 * e + 1]] = 1;
+    if (tag2 >= 0) {
+        for (int e = 0; e < m->mesh.n_tris; e++)
+            if (m->mesh.tri_region[e] == tag2)
+                for (int a = 0; a < 3; a++)
+                    seen[m->mesh.tri[3 * e + a]] = 1;
+        for (int e = 0; e < m->mesh.n_quads; e++)
+            if (m->mesh.quad_region[e] == tag2)
+                for (int a = 0; a < 4; a++)
+                    seen[m->mesh.quad[4 * e + a]] = 1;
+    }
+    int count = 0;
+    for (int n = 0; n < m->n_nodes; n++)
+        if (seen[n]) {
+            visit(m, n, data);
+            count++;
+        }
+    free(seen);
+    if (count == 0)
+        return wff_fail(err, "physical group '%s' has no nodes", group);
+    return count;
+}
+
+typedef struct dof_setting { int component, kind; double velocity; } dof_setting;
+
+static void set_dof(wff_model *m, int node, void *data)
+{
+    const dof_setting *s = data;
+    int i = D * node + s->component;
+    m->dof_kind[i] = (unsigned char)s->kind;
+    m->v_prescribed[i] = s->velocity;
+    m->v[i] = s->kind == WFF_DOF_PRESCRIBED ? s->velocity : 0;
+}
+
+static int check_component(int component, wff_error *err)
+{
+    if (component < 0 || component >= D)
+        return wff_fail(err, "DOF component %d: must be 0..4 (ux uy uz dA1 dA2)", component);
+    return 0;
+}
+
+int wff_model_fix_group(wff_model *m, const char *group, int component, wff_error *err)
+{
+    if (check_component(component, err))
+        return -1;
+    dof_setting s = {component, WFF_DOF_FIXED, 0};
+    return for_group_nodes(m, group, err, set_dof, &s);
+}
+
+int wff_model_prescribe_group(wff_model *m, const char *group, int component, double velocity,
+                              wff_error *err)
+{
+    if (check_component(component, err))
+        return -1;
+    if (!isfinite(velocity))
+        return wff_fail(err, "prescribed velocity of '%s' is not finite", group);
+    dof_setting s = {component, WFF_DOF_PRESCRIBED, velocity};
+    return for_group_nodes(m, group, err, set_dof, &s);
+}
+
+static void add_clamp_node(wff_model *m, int node, void *data)
+{
+    (void)data;
+    m->clamp.node[m->clamp.n++] = node;
+    m->dof_kind[D * node + WFF_UZ] = WFF_DOF_FIXED; /* pressed flat */
+    m->v[D * node + WFF_UZ] = 0;
+}
+
+int wff_model_clamp_friction(wff_model *m, const char *group, double normal_force, double mu,
+                             wff_error *err)
+{
+    if (!(normal_force > 0) || !(mu >= 0))
+        return wff_fail(err, "friction clamp '%s': normal force %g N must be > 0 and mu %g >= 0",
+                        group, normal_force, mu);
+    free(m->clamp.node);
+    free(m->clamp.normal_force);
+    m->clamp.n = 0;
+    m->clamp.node = malloc(sizeof(int) * (size_t)m->n_nodes);
+    m->clamp.normal_force = malloc(sizeof(double) * (size_t)m->n_nodes);
+    if (!m->clamp.node || !m->clamp.normal_force)
+        return wff_fail(err, "out of memory");
+    int count = for_group_nodes(m, group, err, add_clamp_node, NULL);
+    if (count < 0)
+        return -1;
+    /* share the force by lumped (displacement) mass, i.e. by nodal area */
+    double total = 0;
+    for (int i = 0; i < m->clamp.n; i++)
+        total += m->mass[D * m->clamp.node[i]];
+    for (int i = 0; i < m->clamp.n; i++)
+        m->clamp.normal_force[i] = normal_force * m->mass[D * m->clamp.node[i]] / total;
+    m->clamp.mu = mu;
+    return count;
+}
+
+int wff_model_set_projectile(wff_model *m, double radius, double mass, double velocity,
+                             double mu, wff_error *err)
+{
+    if (!(radius > 0))
+        return wff_fail(err, "projectile radius %g m must be > 0", radius);
+    if (!(mass > 0))
+        return wff_fail(err, "projectile mass %g kg must be > 0", mass);
+    if (!(velocity >= 0) || !isfinite(velocity))
+        return wff_fail(err, "projectile velocity %g m/s must be >= 0 (it moves along +z)",
+                        velocity);
+    if (!(mu >= 0))
+        return wff_fail(err, "projectile friction coefficient %g must be >= 0", mu);
+    wff_projectile *p = &m->projectile;
+    free(p->candidates);
+    p->candidates = malloc(sizeof(int) * (size_t)m->n_nodes);
+    if (!p->candidates)
+        return wff_fail(err, "out of memory");
+    p->active = 1;
+    p->radius = radius;
+    p->mass = mass;
+    p->velocity = velocity;
+    p->mu = mu;
+    p->axis[0] = p->axis[1] = 0;
+    /* nose tip on the highest fabric point under it (the fabric lies at z = 0) */
+    p->tip = 0;
+    for (int n = 0; n < m->n_nodes; n++) {
+        double dx = m->mesh.xy[2 * n] + m->u[D * n] - p->axis[0];
+        double dy = m->mesh.xy[2 * n + 1] + m->u[D * n + 1] - p->axis[1];
+        if (dx * dx + dy * dy < radius * radius && m->u[D * n + 2] < p->tip)
+            return wff_fail(err, "projectile starts inside the fabric: node %d at z = %g m is "
+                            "behind the nose tip at z = 0", n + 1, m->u[D * n + 2]);
+    }
+    p->n_candidates = 0;
+    p->max_penetration = 0;
+    return 0;
+}
+
+int wff_model_nearest_node(const wff_model *m, double x, double y)
+{
+    int best = 0;
+    double best_d = INFINITY;
+    for (int n = 0; n < m->n_nodes; n++) {
+        double d = hypot(m->mesh.xy[2 * n] - x, m->mesh.xy[2 * n + 1] - y);
+        if (d < best_d) {
+            best_d = d;
+            best = n;
+        }
+    }
+    return best;
+}
+
+/* Nodes whose current in-plane position is near enough the projectile axis
+ * to touch it before the next refresh. */
+static void refresh_candidates(wff_model *m)
+{
+    wff_projectile *p = &m->projectile;
+    double reach = 1.2 * p->radius + 2e-3;
+    p->n_candidates = 0;
+    for (int n = 0; n < m->n_nodes; n++) {
+        double dx = m->mesh.xy[2 * n] + m->u[D * n] - p->axis[0];
+        double dy = m->mesh.xy[2 * n + 1] + m->u[D * n + 1] - p->axis[1];
+        if (dx * dx + dy * dy < reach * reach)
+            p->candidates[p->n_candidates++] = n;
+    }
+}
+
+/* Penetration δ and outward normal of a point against the nose (sphere of the
+ * nose radius centred a radius behind the tip) or the shank behind it. */
+static double penetration(const wff_projectile *p, const double x[3], double normal[3])
+{
+    double c[3] = {p->axis[0], p->axis[1], p->tip - p->radius};
+    double d[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
+    if (d[2] > 0) {
+        double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (r >= p->radius || r == 0)
+            return 0;
+        for (int i = 0; i < 3; i++)
+            normal[i] = d[i] / r;
+        return p->radius - r;
+    }
+    double r = hypot(d[0], d[1]);
+    if (r >= p->radius || r == 0)
+        return 0;
+    normal[0] = d[0] / r, normal[1] = d[1] / r, normal[2] = 0;
+    return p->radius - r;
+}
+
+/* Kinetic energies of the model part at v (per DOF) and projectile velocity. */
+static void kinetic(const wff_model *m, const double *v, double vp, double out[4])
+{
+    out[0] = out[1] = out[2] = out[3] = 0;
+    for (int n = 0; n < m->n_nodes; n++) {
+        const double *vn = v + D * n, *mn = m->mass + D * n;
+        out[0] += 0.5 * (mn[0] * vn[0] * vn[0] + mn[1] * vn[1] * vn[1]);
+        out[1] += 0.5 * mn[2] * vn[2] * vn[2];
+        out[2] += 0.5 * (mn[3] * vn[3] * vn[3] + mn[4] * vn[4] * vn[4]);
+    }
+    if (m->projectile.active)
+        out[3] = 0.5 * m->projectile.mass * vp * vp;
+}
+
+/* Internal and contact forces at the current u; returns 0 or -1 (err set). */
+static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
+{
+    memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
+    wff_force_totals t;
+    wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, dt_flow, m->f, &t);
+    m->element_steps += m->el.n_tris + m->el.n_quads;
+    if (t.bad_element >= 0) {
+        int e = t.bad_element;
+        const int *node = e < m->el.n_tris ? m->el.tri + 3 * e : m->el.quad + 4 * (e - m->el.n_tris);
+        int nn = e < m->el.n_tris ? 3 : 4;
+        char nodes[64];
+        snprintf(nodes, sizeof nodes, nn == 3 ? "%d %d %d" : "%d %d %d %d", node[0] + 1,
+                 node[1] + 1, node[2] + 1, nn == 4 ? node[3] + 1 : 0);
+        return wff_fail(err, "t = %.6g s (step %ld): %s %d (nodes %s), quadrature point %d: %s",
+                        m->time, m->step, nn == 3 ? "triangle" : "quadrilateral",
+                        (nn == 3 ? e : e - m->el.n_tris) + 1, nodes, t.bad_point + 1,
+                        t.bad_status == WFF_POINT_DEGENERATE
+                            ? "degenerate deformation (yarns collapsed or parallel: "
+                              "inverted element)"
+                            : "stress, residual or energy is NaN or infinite");
+    }
+    m->internal_energy = t.internal_energy;
+    m->dissipated_shear += t.dissipated;
+
+    /* projectile: normal penalty forces */
+    m->contact_energy = 0;
+    wff_projectile *p = &m->projectile;
+    p->force = 0;
+    if (p->active) {
+        for (int c = 0; c < p->n_candidates; c++) {
+            int n = p->candidates[c];
+            double *un = m->u + D * n;
+            double x[3] = {m->mesh.xy[2 * n] + un[0], m->mesh.xy[2 * n + 1] + un[1], un[2]}, nrm[3];
+            double delta = penetration(p, x, nrm);
+            if (delta <= 0)
+                continue;
+            if (delta > p->max_penetration)
+                p->max_penetration = delta;
+            if (delta > RUNAWAY_PENETRATION * p->radius)
+                return wff_fail(err, "t = %.6g s (step %ld): node %d is %.3g m inside the "
+                                "projectile (more than %.0f%% of its radius): the projectile "
+                                "has passed through the fabric", m->time, m->step, n + 1,
+                                delta, 100 * RUNAWAY_PENETRATION);
+            double k = p->penalty * m->mass[D * n] / (m->dt * m->dt);
+            for (int i = 0; i < 3; i++)
+                if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
+                    m->f[D * n + i] += k * delta * nrm[i];
+            p->force += k * delta * nrm[2];
+            m->contact_energy += 0.5 * k * delta * delta;
+        }
+    }
+    return 0;
+}
+
+/* Coulomb friction as a velocity correction: an impulse up to `limit`
+ * against the tangential velocity vt (relative), applied to a node of mass
+ * mass; returns the impulse and adds the energy it dissipates. */
+static double friction_impulse(double mass, double speed, double limit, double *dissipated)
+{
+    double stick = mass * speed;
+    double impulse = stick < limit ? stick : limit;
+    double after = speed - impulse / mass;
+    *dissipated += impulse * 0.5 * (speed + after);
+    return impulse;
+}
+
+static void update_velocities(wff_model *m, double dt_mid)
+{
+    for (int i = 0; i < m->n_dofs; i++) {
+        switch (m->dof_kind[i]) {
+        case WFF_DOF_FREE:
+            m->v[i] += dt_mid * m->f[i] / m->mass[i];
+            m->reaction[i] = 0;
+            break;
+        case WFF_DOF_FIXED:
+            m->v[i] = 0;
+            m->reaction[i] = -m->f[i];
+            break;
+        default:
+            m->v[i] = m->v_prescribed[i];
+            m->reaction[i] = -m->f[i];
+            break;
+        }
+    }
+    wff_projectile *p = &m->projectile;
+    double dissipated = 0;
+    if (p->active) {
+        p->velocity -= dt_mid * p->force / p->mass;
+        /* tangential friction at touching nodes */
+        for (int c = 0; c < p->n_candidates && p->mu > 0; c++) {
+            int n = p->candidates[c];
+            double *un = m->u + D * n, *vn = m->v + D * n;
+            double x[3] = {m->mesh.xy[2 * n] + un[0], m->mesh.xy[2 * n + 1] + un[1], un[2]}, nrm[3];
+            double delta = penetration(p, x, nrm);
+            if (delta <= 0)
+                continue;
+            double fn = p->penalty * m->mass[D * n] / (m->dt * m->dt) * delta;
+            double rel[3] = {vn[0], vn[1], vn[2] - p->velocity};
+            double vn_dot = rel[0] * nrm[0] + rel[1] * nrm[1] + rel[2] * nrm[2];
+            double vt[3], speed = 0;
+            for (int i = 0; i < 3; i++) {
+                vt[i] = rel[i] - vn_dot * nrm[i];
+                speed += vt[i] * vt[i];
+            }
+            speed = sqrt(speed);
+            if (speed == 0)
+                continue;
+            double impulse = friction_impulse(m->mass[D * n], speed, p->mu * fn * dt_mid,
+                                              &dissipated);
+            for (int i = 0; i < 3; i++)
+                if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
+                    vn[i] -= impulse * vt[i] / speed / m->mass[D * n];
+            p->velocity += impulse * vt[2] / speed / p->mass;
+        }
+    }
+    /* friction clamp: in-plane, two faces */
+    for (int c = 0; c < m->clamp.n; c++) {
+        int n = m->clamp.node[c];
+        double *vn = m->v + D * n;
+        if (m->dof_kind[D * n] != WFF_DOF_FREE || m->dof_kind[D * n + 1] != WFF_DOF_FREE)
+            continue;
+        double speed = hypot(vn[0], vn[1]);
+        if (speed == 0)
+            continue;
+        double impulse = friction_impulse(m->mass[D * n], speed,
+                                          2 * m->clamp.mu * m->clamp.normal_force[c] * dt_mid,
+                                          &dissipated);
+        double scale = 1 - impulse / (m->mass[D * n] * speed);
+        vn[0] *= scale;
+        vn[1] *= scale;
+    }
+    m->dissipated_friction += dissipated;
+}
+
+static int update_time_step(wff_model *m, wff_error *err)
+{
+    int worst;
+    double dt = wff_elements_stable_step(&m->el, &m->em, m->mesh.xy, m->u, &worst);
+    if (!(dt > 0) || !isfinite(dt))
+        return wff_fail(err, "t = %.6g s (step %ld): stable time step %g s at element %d is "
+                        "not positive: degenerate state", m->time, m->step, dt, worst + 1);
+    m->dt_stable = dt;
+    m->dt_worst_element = worst;
+    m->dt = m->dt_factor * dt;
+    return 0;
+}
+
+void wff_model_energies(const wff_model *m, wff_energies *out)
+{
+    /* v at the integer step: v^{n+½} − ½Δt a^n, from the last half step */
+    double *vn = malloc(sizeof(double) * (size_t)m->n_dofs);
+    double k[4];
+    double vp = m->projectile.velocity;
+    if (vn) {
+        for (int i = 0; i < m->n_dofs; i++)
+            vn[i] = m->dof_kind[i] == WFF_DOF_FREE && m->v_half_valid
+                        ? m->v[i] - 0.5 * m->dt * m->f[i] / m->mass[i]
+                        : m->v[i];
+        if (m->projectile.active && m->v_half_valid)
+            vp += 0.5 * m->dt * m->projectile.force / m->projectile.mass;
+        kinetic(m, vn, vp, k);
+        free(vn);
+    } else {
+        kinetic(m, m->v, vp, k);
+    }
+    double s = m->symmetry_factor;
+    out->kinetic_inplane = s * k[0];
+    out->kinetic_transverse = s * k[1];
+    out->kinetic_amplitude = s * k[2];
+    out->kinetic_projectile = s * k[3];
+    out->internal = s * (m->internal_energy + m->contact_energy);
+    out->dissipated_shear = s * m->dissipated_shear;
+    out->dissipated_friction = s * m->dissipated_friction;
+    out->external_work = s * m->external_work;
+    double total = k[0] + k[1] + k[2] + k[3] + m->internal_energy + m->contact_energy +
+                   m->dissipated_shear + m->dissipated_friction - m->external_work;
+    double ref = fmax(m->initial_kinetic, fabs(m->external_work));
+    ref = fmax(ref, 1e-12 * fmax(1, fabs(m->initial_total)));
+    out->reference = s * ref;
+    out->error = (total - m->initial_total) / ref;
+}
+
+int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err)
+{
+    if (m->step == 0 && !m->v_half_valid) {
+        /* start: forces at u⁰, energy reference */
+        if (update_time_step(m, err))
+            return -1;
+        if (m->projectile.active)
+            refresh_candidates(m);
+        if (compute_forces(m, 0, err))
+            return -1;
+        double k[4];
+        kinetic(m, m->v, m->projectile.velocity, k);
+        m->initial_kinetic = k[0] + k[1] + k[2] + k[3];
+        m->initial_total = m->initial_kinetic + m->internal_energy + m->contact_energy;
+        m->v_half_valid = 1;
+        /* first half step */
+        update_velocities(m, 0.5 * m->dt);
+    }
+    if (m->projectile.active)
+        refresh_candidates(m);
+    long done = 0;
+    while (m->time < t_end && done < max_steps) {
+        /* u^{n+1} = u^n + Δt v^{n+½} */
+        double dt = m->dt;
+        for (int i = 0; i < m->n_dofs; i++) {
+            double du = dt * m->v[i];
+            if (m->dof_kind[i] == WFF_DOF_PRESCRIBED)
+                m->external_work += m->reaction[i] * du;
+            m->u[i] += du;
+        }
+        if (m->projectile.active)
+            m->projectile.tip += dt * m->projectile.velocity;
+        m->time += dt;
+        m->step++;
+        done++;
+        if (m->step % m->dt_interval == 0 && update_time_step(m, err))
+            return -1;
+        if (compute_forces(m, dt, err))
+            return -1;
+        update_velocities(m, 0.5 * (dt + m->dt));
+        if (m->step % m->dt_interval == 0) {
+            wff_energies e;
+            wff_model_energies(m, &e);
+            if (!isfinite(e.error) || fabs(e.error) > ENERGY_BLOWUP)
+                return wff_fail(err, "t = %.6g s (step %ld): energy balance off by %.3g%% of "
+                                "the reference energy: unstable (time step %.3g s; stable "
+                                "estimate %.3g s at element %d; try a smaller -dtfactor)",
+                                m->time, m->step, 100 * e.error, m->dt, m->dt_stable,
+                                m->dt_worst_element + 1);
+        }
+    }
+    return 0;
+}
+
+int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff_error *err)
+{
+    for (int c = 0; c < D; c++)
+        if (strcmp(name, dof_names[c]) == 0) {
+            for (int n = 0; n < m->n_nodes; n++)
+                out[n] = m->u[D * n + c];
+            return 0;
+        }
+    if (strcmp(name, "vz") == 0) {
+        for (int n = 0; n < m->n_nodes; n++)
+            out[n] = m->v[D * n + 2];
+        return 0;
+    }
+    const wff_cell_type *cell = m->mat.cell;
+    int diag = -1;
+    for (int d = 0; d < cell->n_diag; d++)
+        if (strcmp(name, cell->diag_names[d]) == 0)
+            diag = d;
+    int shear = strcmp(name, "gamma") == 0, energy = strcmp(name, "W") == 0;
+    if (diag < 0 && !shear && !energy) {
+        char known[512] = "ux uy uz dA1 dA2 vz gamma W";
+        for (int d = 0; d < cell->n_diag; d++) {
+            size_t used = strlen(known);
+            snprintf(known + used, sizeof known - used, " %s", cell->diag_names[d]);
+        }
+        return wff_fail(err, "unknown field '%s' (known: %s)", name, known);
+    }
+    double *weight = calloc((size_t)m->n_nodes, sizeof(double));
+    if (!weight)
+        return wff_fail(err, "out of memory");
+    memset(out, 0, sizeof(double) * (size_t)m->n_nodes);
+    int n_el = m->el.n_tris + m->el.n_quads;
+    for (int e = 0; e < n_el; e++) {
+        double value;
+        if (shear) {
+            double F[6], dA[2];
+            wff_element_center_state(&m->el, m->mesh.xy, m->u, e, F, dA);
+            const double *Fp = m->em.F_pre;
+            double g1[3], g2[3];
+            for (int i = 0; i < 3; i++) {
+                g1[i] = F[2 * i] * Fp[0] + F[2 * i + 1] * Fp[2];
+                g2[i] = F[2 * i] * Fp[1] + F[2 * i + 1] * Fp[3];
+            }
+            double dot = g1[0] * g2[0] + g1[1] * g2[1] + g1[2] * g2[2];
+            double cx = g1[1] * g2[2] - g1[2] * g2[1], cy = g1[2] * g2[0] - g1[0] * g2[2],
+                   cz = g1[0] * g2[1] - g1[1] * g2[0];
+            value = M_PI_2 - atan2(sqrt(cx * cx + cy * cy + cz * cz), dot);
+        } else {
+            wff_point_result r;
+            wff_element_center_eval(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, e, &r);
+            value = energy ? r.energy : r.diag[diag];
+        }
+        int nn = e < m->el.n_tris ? 3 : 4;
+        const int *node = e < m->el.n_tris ? m->el.tri + 3 * e : m->el.quad + 4 * (e - m->el.n_tris);
+        double area;
+        if (e < m->el.n_tris)
+            area = m->el.tri_area[e];
+        else {
+            area = 0;
+            for (int q = 0; q < 4; q++)
+                area += m->el.quad_weight[4 * (e - m->el.n_tris) + q];
+        }
+        for (int a = 0; a < nn; a++) {
+            out[node[a]] += area * value;
+            weight[node[a]] += area;
+        }
+    }
+    for (int n = 0; n < m->n_nodes; n++)
+        out[n] = weight[n] > 0 ? out[n] / weight[n] : 0;
+    free(weight);
+    return 0;
+}
