@@ -232,6 +232,55 @@ int wff_model_clamp_friction(wff_model *m, const char *group, double normal_forc
     return count;
 }
 
+typedef struct reaction_sum { const wff_model *m; int component; double sum; } reaction_sum;
+
+static void add_reaction(wff_model *m, int node, void *data)
+{
+    reaction_sum *r = data;
+    r->sum += m->reaction[D * node + r->component];
+}
+
+int wff_model_group_reaction(wff_model *m, const char *group, int component, double *sum,
+                             wff_error *err)
+{
+    if (check_component(component, err))
+        return -1;
+    reaction_sum r = {m, component, 0};
+    int n = for_group_nodes(m, group, err, add_reaction, &r);
+    *sum = r.sum;
+    return n;
+}
+
+int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err)
+{
+    if (strcmp(key, "dtfactor") == 0) {
+        if (!(value > 0 && value <= 2))
+            return wff_fail(err, "dtfactor = %g: must be in (0, 2] (1 is the stability limit)",
+                            value);
+        m->dt_factor = value;
+        if (m->dt_stable > 0)
+            m->dt = value * m->dt_stable;
+    } else if (strcmp(key, "dtinterval") == 0) {
+        if (!(value >= 1 && value <= 1e6) || value != floor(value))
+            return wff_fail(err, "dtinterval = %g: must be a whole number of steps >= 1", value);
+        m->dt_interval = (int)value;
+    } else if (strcmp(key, "symmetry") == 0) {
+        if (value != 1 && value != 2 && value != 4)
+            return wff_fail(err, "symmetry = %g: must be 1 (full), 2 (half) or 4 (quarter)",
+                            value);
+        m->symmetry_factor = value;
+    } else if (strcmp(key, "penalty") == 0) {
+        if (!(value > 0 && value <= 1))
+            return wff_fail(err, "penalty = %g: contact stiffness factor must be in (0, 1]",
+                            value);
+        m->projectile.penalty = value;
+    } else {
+        return wff_fail(err, "unknown solver setting '%s' (known: dtfactor, dtinterval, "
+                        "symmetry, penalty)", key);
+    }
+    return 0;
+}
+
 int wff_model_set_projectile(wff_model *m, double radius, double mass, double velocity,
                              double mu, wff_error *err)
 {

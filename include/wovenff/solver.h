@@ -129,6 +129,16 @@ int wff_model_set_projectile(wff_model *m, double radius, double mass, double ve
  * step or a projectile that passes through the fabric. */
 int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err);
 
+/* Sum of the reactions (−f_int, N, model part) on DOF `component` of the
+ * group's fixed or prescribed nodes at the last step; returns the node count. */
+int wff_model_group_reaction(wff_model *m, const char *group, int component, double *sum,
+                             wff_error *err);
+
+/* Solver settings by name: dtfactor (0, 2], dtinterval (steps between
+ * stable-step updates, >= 1), symmetry (1, 2 or 4: energies and projectile
+ * force reported for the whole specimen), penalty (contact κ, (0, 1]). */
+int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err);
+
 /* Energies now (whole specimen: model part × symmetry_factor). */
 void wff_model_energies(const wff_model *m, wff_energies *out);
 

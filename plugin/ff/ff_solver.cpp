@@ -1,0 +1,270 @@
+// wovenff FreeFEM binding: the explicit solver (include/wovenff/solver.h).
+//
+// A script creates a model and gets an integer handle:
+//   int md = wovenffModel(meshFile, materialFile, meshSettings);
+//   mesh Th = wovenffMesh(md);            // triangles (quads split), same vertex numbering
+//   wovenffFix(md, "sym_x", 0);           // fix a DOF (0 ux, 1 uy, 2 uz, 3 dA1, 4 dA2)
+//   wovenffAdvance(md, tEnd);             // explicit steps until tEnd
+//   wovenffState(md, st);                 // time, energies, projectile ... (see kStateNames)
+//   wovenffField(md, "uz", values);       // nodal values, P1 DOF order
+//   wovenffFree(md);
+// Models live in a table owned by this binding (FreeFEM passes no user data
+// to functions); the C core itself keeps no global state.
+#include "ff++.hpp"
+#include "AFunction_ext.hpp"
+
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+extern "C" {
+#include "wovenff/solver.h"
+#include "wovenff/options.h"
+}
+
+using namespace Fem2D;
+
+namespace {
+
+std::vector<wff_model *> &models()
+{
+    static std::vector<wff_model *> table; // binding-level handle table
+    return table;
+}
+
+wff_model *model_of(long id, const char *fn)
+{
+    if (id < 0 || id >= (long)models().size() || !models()[id]) {
+        char msg[200];
+        snprintf(msg, sizeof msg, "%s: %ld is not a live wovenff model handle", fn, id);
+        ExecError(msg);
+    }
+    return models()[id];
+}
+
+void fail(const char *fn, const wff_error &err)
+{
+    std::string msg = std::string(fn) + ": " + err.message;
+    ExecError(msg.c_str());
+}
+
+// state vector layout, also printed by wovenffStateNames
+const char *const kStateNames[] = {
+    "time", "step", "dt", "dt_stable", "projectile_tip", "projectile_velocity",
+    "projectile_force", "max_penetration", "kinetic_inplane", "kinetic_transverse",
+    "kinetic_amplitude", "kinetic_projectile", "internal_energy", "dissipated_shear",
+    "dissipated_friction", "external_work", "energy_error", "element_steps", "elements",
+    "nodes", "dt_worst_element"};
+const int kStateSize = sizeof kStateNames / sizeof kStateNames[0];
+
+long ffModel(string *const &meshFile, string *const &materialFile, string *const &settings)
+{
+    wff_mesh_options opt;
+    wff_error err;
+    if (wff_mesh_options_parse(settings->c_str(), &opt, &err))
+        fail("wovenffModel", err);
+    wff_model *m = (wff_model *)calloc(1, sizeof(wff_model));
+    if (!m)
+        ExecError("wovenffModel: out of memory");
+    if (wff_model_create(m, meshFile->c_str(), &opt, materialFile->c_str(), &err)) {
+        free(m);
+        fail("wovenffModel", err);
+    }
+    models().push_back(m);
+    return (long)models().size() - 1;
+}
+
+long ffFree(const long &id)
+{
+    wff_model *m = model_of(id, "wovenffFree");
+    wff_model_free(m);
+    free(m);
+    models()[id] = nullptr;
+    return 0;
+}
+
+pmesh ffMesh(Stack stack, const long &id)
+{
+    const wff_model *m = model_of(id, "wovenffMesh");
+    const wff_mesh &g = m->mesh;
+    int nt = g.n_tris + 2 * g.n_quads;
+    std::vector<int> tri(3 * (size_t)nt), region((size_t)nt);
+    wff_mesh_triangulate(&g, tri.data(), region.data());
+    Mesh::Vertex *v = new Mesh::Vertex[g.n_nodes];
+    for (int i = 0; i < g.n_nodes; i++) {
+        v[i].x = g.xy[2 * i];
+        v[i].y = g.xy[2 * i + 1];
+        v[i].lab = 0;
+    }
+    for (int e = 0; e < g.n_edges; e++)
+        for (int a = 0; a < 2; a++)
+            v[g.edge[2 * e + a]].lab = g.edge_label[e];
+    Mesh::Triangle *t = new Mesh::Triangle[nt];
+    for (int e = 0; e < nt; e++)
+        t[e].set(v, tri[3 * e], tri[3 * e + 1], tri[3 * e + 2], region[e]);
+    Mesh::BorderElement *b = new Mesh::BorderElement[g.n_edges > 0 ? g.n_edges : 1];
+    for (int e = 0; e < g.n_edges; e++)
+        b[e].set(v, g.edge[2 * e], g.edge[2 * e + 1], g.edge_label[e]);
+    Mesh *th = new Mesh(g.n_nodes, nt, g.n_edges, v, t, b);
+    R2 pmin, pmax;
+    th->BoundingBox(pmin, pmax);
+    if (!th->quadtree)
+        th->quadtree = new FQuadTree(th, pmin, pmax, th->nv);
+    return Add2StackOfPtr2FreeRC(stack, th);
+}
+
+long ffSetPreload(const long &id, KN<double> *const &F, KN<double> *const &dA)
+{
+    wff_model *m = model_of(id, "wovenffSetPreload");
+    if (F->N() != 4 || dA->N() != 2)
+        ExecError("wovenffSetPreload: F_pre must have 4 entries (F11 F12 F21 F22) and dA0 2");
+    double Fp[4] = {(*F)[0], (*F)[1], (*F)[2], (*F)[3]}, d[2] = {(*dA)[0], (*dA)[1]};
+    wff_error err;
+    if (wff_model_set_preload(m, Fp, d, &err))
+        fail("wovenffSetPreload", err);
+    return 0;
+}
+
+long ffFix(const long &id, string *const &group, const long &component)
+{
+    wff_error err;
+    int n = wff_model_fix_group(model_of(id, "wovenffFix"), group->c_str(), (int)component, &err);
+    if (n < 0)
+        fail("wovenffFix", err);
+    return n;
+}
+
+long ffPrescribe(const long &id, string *const &group, const long &component,
+                 const double &velocity)
+{
+    wff_error err;
+    int n = wff_model_prescribe_group(model_of(id, "wovenffPrescribe"), group->c_str(),
+                                      (int)component, velocity, &err);
+    if (n < 0)
+        fail("wovenffPrescribe", err);
+    return n;
+}
+
+long ffClampFriction(const long &id, string *const &group, const double &force, const double &mu)
+{
+    wff_error err;
+    int n = wff_model_clamp_friction(model_of(id, "wovenffClampFriction"), group->c_str(), force,
+                                     mu, &err);
+    if (n < 0)
+        fail("wovenffClampFriction", err);
+    return n;
+}
+
+long ffProjectile(const long &id, const double &radius, const double &mass,
+                  const double &velocity, const double &mu)
+{
+    wff_error err;
+    if (wff_model_set_projectile(model_of(id, "wovenffProjectile"), radius, mass, velocity, mu,
+                                 &err))
+        fail("wovenffProjectile", err);
+    return 0;
+}
+
+long ffSet(const long &id, string *const &key, const double &value)
+{
+    wff_model *m = model_of(id, "wovenffSet");
+    wff_error err;
+    if (wff_model_set_option(m, key->c_str(), value, &err))
+        fail("wovenffSet", err);
+    return 0;
+}
+
+long ffAdvance(const long &id, const double &t_end)
+{
+    wff_model *m = model_of(id, "wovenffAdvance");
+    wff_error err;
+    if (wff_model_advance(m, t_end, 2000000000L, &err))
+        fail("wovenffAdvance", err);
+    return m->step;
+}
+
+long ffState(const long &id, KN<double> *const &out)
+{
+    const wff_model *m = model_of(id, "wovenffState");
+    wff_energies e;
+    wff_model_energies(m, &e);
+    out->resize(kStateSize);
+    double s = m->symmetry_factor;
+    double values[] = {m->time, (double)m->step, m->dt, m->dt_stable, m->projectile.tip,
+                       m->projectile.velocity, s * m->projectile.force,
+                       m->projectile.max_penetration, e.kinetic_inplane, e.kinetic_transverse,
+                       e.kinetic_amplitude, e.kinetic_projectile, e.internal, e.dissipated_shear,
+                       e.dissipated_friction, e.external_work, e.error, (double)m->element_steps,
+                       (double)(m->el.n_tris + m->el.n_quads), (double)m->n_nodes,
+                       (double)(m->dt_worst_element + 1)};
+    static_assert(sizeof values / sizeof values[0] == kStateSize, "state layout");
+    for (int i = 0; i < kStateSize; i++)
+        (*out)[i] = values[i];
+    return 0;
+}
+
+string *ffStateNames(Stack stack, const long &id)
+{
+    (void)id;
+    std::string names;
+    for (int i = 0; i < kStateSize; i++)
+        names += std::string(i ? " " : "") + kStateNames[i];
+    return Add2StackOfPtr2Free(stack, new string(names));
+}
+
+long ffField(const long &id, string *const &name, KN<double> *const &out)
+{
+    const wff_model *m = model_of(id, "wovenffField");
+    out->resize(m->n_nodes);
+    wff_error err;
+    if (wff_model_nodal_field(m, name->c_str(), &(*out)[0], &err))
+        fail("wovenffField", err);
+    return m->n_nodes;
+}
+
+long ffNearestNode(const long &id, const double &x, const double &y)
+{
+    return wff_model_nearest_node(model_of(id, "wovenffNearestNode"), x, y);
+}
+
+long ffReaction(const long &id, string *const &group, const long &component, KN<double> *const &out)
+{
+    wff_model *m = model_of(id, "wovenffReaction");
+    double sum;
+    wff_error err;
+    int n = wff_model_group_reaction(m, group->c_str(), (int)component, &sum, &err);
+    if (n < 0)
+        fail("wovenffReaction", err);
+    out->resize(1);
+    (*out)[0] = sum;
+    return n;
+}
+
+} // namespace
+
+void wff_ff_register_solver()
+{
+    Global.Add("wovenffModel", "(",
+               new OneOperator3_<long, string *, string *, string *>(ffModel));
+    Global.Add("wovenffFree", "(", new OneOperator1_<long, long>(ffFree));
+    Global.Add("wovenffMesh", "(", new OneOperator1s_<pmesh, long>(ffMesh));
+    Global.Add("wovenffSetPreload", "(",
+               new OneOperator3_<long, long, KN<double> *, KN<double> *>(ffSetPreload));
+    Global.Add("wovenffFix", "(", new OneOperator3_<long, long, string *, long>(ffFix));
+    Global.Add("wovenffPrescribe", "(",
+               new OneOperator4_<long, long, string *, long, double>(ffPrescribe));
+    Global.Add("wovenffClampFriction", "(",
+               new OneOperator4_<long, long, string *, double, double>(ffClampFriction));
+    Global.Add("wovenffProjectile", "(",
+               new OneOperator5_<long, long, double, double, double, double>(ffProjectile));
+    Global.Add("wovenffSet", "(", new OneOperator3_<long, long, string *, double>(ffSet));
+    Global.Add("wovenffAdvance", "(", new OneOperator2_<long, long, double>(ffAdvance));
+    Global.Add("wovenffState", "(", new OneOperator2_<long, long, KN<double> *>(ffState));
+    Global.Add("wovenffStateNames", "(", new OneOperator1s_<string *, long>(ffStateNames));
+    Global.Add("wovenffField", "(",
+               new OneOperator3_<long, long, string *, KN<double> *>(ffField));
+    Global.Add("wovenffNearestNode", "(",
+               new OneOperator3_<long, long, double, double>(ffNearestNode));
+    Global.Add("wovenffReaction", "(",
+               new OneOperator4_<long, long, string *, long, KN<double> *>(ffReaction));
+}
