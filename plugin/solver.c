@@ -438,14 +438,16 @@ static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
 }
 
 /* Coulomb friction as a velocity correction: an impulse up to `limit`
- * against the tangential velocity vt (relative), applied to a node of mass
- * mass; returns the impulse and adds the energy it dissipates. */
+ * against the relative tangential speed `speed` of a node of mass `mass`
+ * (sticking if the limit allows). The friction force impulse/Δt works
+ * against the slip that remains, speed − impulse/mass, over the step: that is
+ * the energy it dissipates (zero while sticking). Returns the impulse. */
 static double friction_impulse(double mass, double speed, double limit, double *dissipated)
 {
     double stick = mass * speed;
     double impulse = stick < limit ? stick : limit;
-    double after = speed - impulse / mass;
-    *dissipated += impulse * 0.5 * (speed + after);
+    double slip = speed - impulse / mass;
+    *dissipated += impulse * slip;
     return impulse;
 }
 
@@ -562,7 +564,7 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     double ref = fmax(m->initial_kinetic, fabs(m->external_work));
     ref = fmax(ref, 1e-12 * fmax(1, fabs(m->initial_total)));
     out->reference = s * ref;
-    out->error = (total - m->initial_total) / ref;
+    out->error = m->v_half_valid ? (total - m->initial_total) / ref : 0; /* not started: exact */
 }
 
 int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err)
@@ -637,9 +639,13 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
     for (int d = 0; d < cell->n_diag; d++)
         if (strcmp(name, cell->diag_names[d]) == 0)
             diag = d;
+    /* generic names for the yarn tensions, whatever the cell calls them */
+    for (int k = 0; k < 2; k++)
+        if (strcmp(name, k ? "yarn_tension2" : "yarn_tension1") == 0)
+            diag = cell->yarn_tension_diag[k];
     int shear = strcmp(name, "gamma") == 0, energy = strcmp(name, "W") == 0;
     if (diag < 0 && !shear && !energy) {
-        char known[512] = "ux uy uz dA1 dA2 vz gamma W";
+        char known[512] = "ux uy uz dA1 dA2 vz gamma W yarn_tension1 yarn_tension2";
         for (int d = 0; d < cell->n_diag; d++) {
             size_t used = strlen(known);
             snprintf(known + used, sizeof known - used, " %s", cell->diag_names[d]);
