@@ -56,7 +56,9 @@ typedef struct wff_energies {
     double dissipated_shear, dissipated_friction;
     double external_work;     /* work done on the model by prescribed-velocity DOFs */
     double error;             /* (E_now + D − W) − E_0, relative to the reference energy */
-    double reference;         /* normaliser: initial kinetic energy, or largest term */
+    double reference;         /* normaliser: the largest of the initial kinetic energy,
+                                 the external work, the kinetic energy now and the change
+                                 of stored energy since the start */
 } wff_energies;
 
 typedef struct wff_model {
