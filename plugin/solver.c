@@ -11,8 +11,9 @@
 
 #define D WFF_DOFS_PER_NODE
 
-/* Penetration, as a fraction of the nose radius, taken as the projectile
- * having passed through the fabric (penalty contact keeps it to ~1e-3). */
+/* Predicted penetration, as a fraction of the nose radius, taken as the
+ * projectile having passed through the fabric (a step moves a node by far
+ * less than this). */
 #define RUNAWAY_PENETRATION 0.5
 /* Energy created, relative to the reference energy, beyond which the run is
  * taken as unstable. */
@@ -95,7 +96,6 @@ int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *materia
     m->dt_factor = 0.8;
     m->dt_interval = 20;
     m->symmetry_factor = 1;
-    m->projectile.penalty = 0.25;
     return 0;
 }
 
@@ -270,14 +270,9 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
             return wff_fail(err, "symmetry = %g: must be 1 (full), 2 (half) or 4 (quarter)",
                             value);
         m->symmetry_factor = value;
-    } else if (strcmp(key, "penalty") == 0) {
-        if (!(value > 0 && value <= 1))
-            return wff_fail(err, "penalty = %g: contact stiffness factor must be in (0, 1]",
-                            value);
-        m->projectile.penalty = value;
     } else {
         return wff_fail(err, "unknown solver setting '%s' (known: dtfactor, dtinterval, "
-                        "symmetry, penalty)", key);
+                        "symmetry)", key);
     }
     return 0;
 }
@@ -408,33 +403,6 @@ static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
     m->internal_energy = t.internal_energy;
     m->dissipated_shear += t.dissipated;
 
-    /* projectile: normal penalty forces */
-    m->contact_energy = 0;
-    wff_projectile *p = &m->projectile;
-    p->force = 0;
-    if (p->active) {
-        for (int c = 0; c < p->n_candidates; c++) {
-            int n = p->candidates[c];
-            double *un = m->u + D * n;
-            double x[3] = {m->mesh.xy[2 * n] + un[0], m->mesh.xy[2 * n + 1] + un[1], un[2]}, nrm[3];
-            double delta = penetration(p, x, nrm);
-            if (delta <= 0)
-                continue;
-            if (delta > p->max_penetration)
-                p->max_penetration = delta;
-            if (delta > RUNAWAY_PENETRATION * p->radius)
-                return wff_fail(err, "t = %.6g s (step %ld): node %d is %.3g m inside the "
-                                "projectile (more than %.0f%% of its radius): the projectile "
-                                "has passed through the fabric", m->time, m->step, n + 1,
-                                delta, 100 * RUNAWAY_PENETRATION);
-            double k = p->penalty * m->mass[D * n] / (m->dt * m->dt);
-            for (int i = 0; i < 3; i++)
-                if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
-                    m->f[D * n + i] += k * delta * nrm[i];
-            p->force += k * delta * nrm[2];
-            m->contact_energy += 0.5 * k * delta * delta;
-        }
-    }
     return 0;
 }
 
@@ -450,6 +418,92 @@ static double friction_impulse(double mass, double speed, double limit, double *
     double slip = speed - impulse / mass;
     *dissipated += impulse * slip;
     return impulse;
+}
+
+/* Kinematic (hard) contact with the projectile, a predictor–corrector on
+ * velocities: with the trial velocities of this step, find the nodes whose
+ * predicted position at t + dt lies inside the projectile, and give each an
+ * impulse along the surface normal, shared with the projectile by their
+ * masses, that puts it back on the surface (perfectly inelastic, like a hard
+ * contact in an explicit code); then Coulomb friction limits the tangential
+ * impulse to μ times the normal one. The kinetic energy the impulses remove
+ * is counted as dissipated. Returns -1 (err set) if a node is found deep
+ * inside, i.e. the projectile has gone through the fabric. */
+static int contact_correct(wff_model *m, double dt, wff_error *err)
+{
+    wff_projectile *p = &m->projectile;
+    p->force = 0;
+    if (!p->active)
+        return 0;
+    double tip_now = p->tip;
+    double impulse_z = 0, lost = 0;
+    for (int c = 0; c < p->n_candidates; c++) {
+        int n = p->candidates[c];
+        double *un = m->u + D * n, *vn = m->v + D * n;
+        const double mass = m->mass[D * n];
+        double x[3] = {m->mesh.xy[2 * n] + un[0] + dt * vn[0],
+                       m->mesh.xy[2 * n + 1] + un[1] + dt * vn[1], un[2] + dt * vn[2]};
+        p->tip = tip_now + dt * p->velocity; /* predicted */
+        double nrm[3], delta = penetration(p, x, nrm);
+        p->tip = tip_now;
+        if (delta <= 0)
+            continue;
+        if (delta > RUNAWAY_PENETRATION * p->radius)
+            return wff_fail(err, "t = %.6g s (step %ld): node %d would be %.3g m inside the "
+                            "projectile (more than %.0f%% of its radius): the projectile has "
+                            "passed through the fabric", m->time, m->step, n + 1, delta,
+                            100 * RUNAWAY_PENETRATION);
+        /* inverse mass along the normal: free node components and the projectile (z) */
+        double w_node = 0;
+        for (int i = 0; i < 3; i++)
+            if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
+                w_node += nrm[i] * nrm[i];
+        w_node /= mass;
+        double w = w_node + nrm[2] * nrm[2] / p->mass;
+        if (w_node == 0)
+            continue;
+        double before = 0.5 * mass * (vn[0] * vn[0] + vn[1] * vn[1] + vn[2] * vn[2]) +
+                        0.5 * p->mass * p->velocity * p->velocity;
+        double jn = delta / dt / w; /* normal impulse, N·s */
+        for (int i = 0; i < 3; i++)
+            if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
+                vn[i] += jn * nrm[i] / mass;
+        p->velocity -= jn * nrm[2] / p->mass;
+        impulse_z += jn * nrm[2];
+        /* friction against the tangential relative velocity */
+        if (p->mu > 0) {
+            double rel[3] = {vn[0], vn[1], vn[2] - p->velocity};
+            double along = rel[0] * nrm[0] + rel[1] * nrm[1] + rel[2] * nrm[2];
+            double vt[3], speed = 0;
+            for (int i = 0; i < 3; i++) {
+                vt[i] = rel[i] - along * nrm[i];
+                speed += vt[i] * vt[i];
+            }
+            speed = sqrt(speed);
+            if (speed > 0) {
+                double jt = fmin(p->mu * jn, mass * speed); /* stick if the cone allows */
+                for (int i = 0; i < 3; i++)
+                    if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
+                        vn[i] -= jt * vt[i] / speed / mass;
+                p->velocity += jt * vt[2] / speed / p->mass;
+                impulse_z -= jt * vt[2] / speed;
+            }
+        }
+        double after = 0.5 * mass * (vn[0] * vn[0] + vn[1] * vn[1] + vn[2] * vn[2]) +
+                       0.5 * p->mass * p->velocity * p->velocity;
+        lost += before - after;
+        /* what remains inside after the correction */
+        double x2[3] = {m->mesh.xy[2 * n] + un[0] + dt * vn[0],
+                        m->mesh.xy[2 * n + 1] + un[1] + dt * vn[1], un[2] + dt * vn[2]};
+        p->tip = tip_now + dt * p->velocity;
+        double rest = penetration(p, x2, nrm);
+        p->tip = tip_now;
+        if (rest > p->max_penetration)
+            p->max_penetration = rest;
+    }
+    p->force = impulse_z / dt; /* mean contact force on the projectile along −z over the step */
+    m->dissipated_friction += lost;
+    return 0;
 }
 
 static void update_velocities(wff_model *m, double dt_mid)
@@ -470,37 +524,7 @@ static void update_velocities(wff_model *m, double dt_mid)
             break;
         }
     }
-    wff_projectile *p = &m->projectile;
     double dissipated = 0;
-    if (p->active) {
-        p->velocity -= dt_mid * p->force / p->mass;
-        /* tangential friction at touching nodes */
-        for (int c = 0; c < p->n_candidates && p->mu > 0; c++) {
-            int n = p->candidates[c];
-            double *un = m->u + D * n, *vn = m->v + D * n;
-            double x[3] = {m->mesh.xy[2 * n] + un[0], m->mesh.xy[2 * n + 1] + un[1], un[2]}, nrm[3];
-            double delta = penetration(p, x, nrm);
-            if (delta <= 0)
-                continue;
-            double fn = p->penalty * m->mass[D * n] / (m->dt * m->dt) * delta;
-            double rel[3] = {vn[0], vn[1], vn[2] - p->velocity};
-            double vn_dot = rel[0] * nrm[0] + rel[1] * nrm[1] + rel[2] * nrm[2];
-            double vt[3], speed = 0;
-            for (int i = 0; i < 3; i++) {
-                vt[i] = rel[i] - vn_dot * nrm[i];
-                speed += vt[i] * vt[i];
-            }
-            speed = sqrt(speed);
-            if (speed == 0)
-                continue;
-            double impulse = friction_impulse(m->mass[D * n], speed, p->mu * fn * dt_mid,
-                                              &dissipated);
-            for (int i = 0; i < 3; i++)
-                if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
-                    vn[i] -= impulse * vt[i] / speed / m->mass[D * n];
-            p->velocity += impulse * vt[2] / speed / p->mass;
-        }
-    }
     /* friction clamp: in-plane, two faces */
     for (int c = 0; c < m->clamp.n; c++) {
         int n = m->clamp.node[c];
@@ -556,15 +580,15 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     out->kinetic_transverse = s * k[1];
     out->kinetic_amplitude = s * k[2];
     out->kinetic_projectile = s * k[3];
-    out->internal = s * (m->internal_energy + m->contact_energy);
+    out->internal = s * (m->internal_energy);
     out->dissipated_shear = s * m->dissipated_shear;
     out->dissipated_friction = s * m->dissipated_friction;
     out->external_work = s * m->external_work;
-    double total = k[0] + k[1] + k[2] + k[3] + m->internal_energy + m->contact_energy +
+    double total = k[0] + k[1] + k[2] + k[3] + m->internal_energy +
                    m->dissipated_shear + m->dissipated_friction - m->external_work;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
      * boundaries) the work done on it or the energy it now holds */
-    double stored = m->internal_energy + m->contact_energy - (m->initial_total - m->initial_kinetic);
+    double stored = m->internal_energy - (m->initial_total - m->initial_kinetic);
     double ref = fmax(m->initial_kinetic, fabs(m->external_work));
     ref = fmax(ref, fmax(k[0] + k[1] + k[2] + k[3], fabs(stored)));
     /* below the kinetic energy of the fabric moving at ~3e-5 m/s, energies are
@@ -590,10 +614,12 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         double k[4];
         kinetic(m, m->v, m->projectile.velocity, k);
         m->initial_kinetic = k[0] + k[1] + k[2] + k[3];
-        m->initial_total = m->initial_kinetic + m->internal_energy + m->contact_energy;
+        m->initial_total = m->initial_kinetic + m->internal_energy;
         m->v_half_valid = 1;
         /* first half step */
         update_velocities(m, 0.5 * m->dt);
+        if (contact_correct(m, m->dt, err))
+            return -1;
     }
     if (m->projectile.active)
         refresh_candidates(m);
@@ -621,6 +647,8 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
             if (m->dof_kind[i] == WFF_DOF_PRESCRIBED)
                 m->external_work += 0.5 * (-m->f[i]) * dt * m->v[i];
         update_velocities(m, 0.5 * (dt + m->dt));
+        if (contact_correct(m, m->dt, err))
+            return -1;
         if (m->step % m->dt_interval == 0) {
             wff_energies e;
             wff_model_energies(m, &e);

@@ -10,8 +10,9 @@
  * at a prescribed velocity (its reaction does external work). A friction
  * clamp presses chosen nodes flat (u_z = 0) and resists in-plane motion by
  * Coulomb friction up to μ N_a on each face. A rigid projectile (cylinder
- * with a hemispherical nose, moving along +z) touches the fabric by penalty
- * contact, stiffness κ m_a/Δt² per node, with Coulomb friction.
+ * with a hemispherical nose, moving along +z) touches the fabric by
+ * kinematic (hard, inelastic) contact with Coulomb friction: a velocity
+ * predictor–corrector that keeps nodes on its surface.
  *
  * Energies are those of the modelled part multiplied by symmetry_factor
  * (4 for a quarter model), so they read as the whole specimen's. */
@@ -35,12 +36,12 @@ typedef struct wff_projectile {
     double tip;           /* z of the nose tip, m */
     double velocity;      /* along +z, m/s */
     double mu;            /* Coulomb friction with the fabric */
-    double penalty;       /* κ: node contact stiffness κ m_a/Δt² (dimensionless, < 1) */
     double axis[2];       /* x, y of the projectile axis, m */
     int n_candidates;     /* nodes that may touch it, refreshed as it moves */
     int *candidates;
-    double max_penetration;  /* largest penetration seen, m */
-    double force;         /* contact force on the projectile along −z, last step, N (model part) */
+    double max_penetration;  /* largest penetration left after a contact correction, m */
+    double force;         /* mean contact force on the projectile along −z over the last
+                             step, N (model part) */
 } wff_projectile;
 
 typedef struct wff_clamp {
@@ -52,8 +53,10 @@ typedef struct wff_clamp {
 
 typedef struct wff_energies {
     double kinetic_inplane, kinetic_transverse, kinetic_amplitude, kinetic_projectile;
-    double internal;          /* stored energy of the cells + contact springs */
-    double dissipated_shear, dissipated_friction;
+    double internal;          /* stored energy of the cells */
+    double dissipated_shear;
+    double dissipated_friction;  /* clamp friction, projectile friction and the inelastic
+                                    normal contact */
     double external_work;     /* work done on the model by prescribed-velocity DOFs */
     double error;             /* (E_now + D − W) − E_0, relative to the reference energy */
     double reference;         /* normaliser: the largest of the initial kinetic energy,
@@ -84,7 +87,6 @@ typedef struct wff_model {
 
     /* accumulated */
     double internal_energy;   /* at the last force pass, J (model part) */
-    double contact_energy;
     double dissipated_shear, dissipated_friction, external_work;
     double initial_total;     /* kinetic + internal at the start, J (model part) */
     double initial_kinetic;
@@ -138,7 +140,7 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
 
 /* Solver settings by name: dtfactor (0, 2], dtinterval (steps between
  * stable-step updates, >= 1), symmetry (1, 2 or 4: energies and projectile
- * force reported for the whole specimen), penalty (contact κ, (0, 1]). */
+ * force reported for the whole specimen). */
 int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err);
 
 /* Energies now (whole specimen: model part × symmetry_factor). */
