@@ -32,6 +32,8 @@ void wff_model_free(wff_model *m)
     free(m->gamma_f);
     free(m->reaction);
     free(m->projectile.candidates);
+    free(m->projectile.contact_node);
+    free(m->projectile.impulse);
     free(m->clamp.node);
     free(m->clamp.normal_force);
     wff_elements_free(&m->el);
@@ -291,8 +293,12 @@ int wff_model_set_projectile(wff_model *m, double radius, double mass, double ve
         return wff_fail(err, "projectile friction coefficient %g must be >= 0", mu);
     wff_projectile *p = &m->projectile;
     free(p->candidates);
+    free(p->contact_node);
+    free(p->impulse);
     p->candidates = malloc(sizeof(int) * (size_t)m->n_nodes);
-    if (!p->candidates)
+    p->contact_node = malloc(sizeof(int) * (size_t)m->n_nodes);
+    p->impulse = malloc(3 * sizeof(double) * (size_t)m->n_nodes);
+    if (!p->candidates || !p->contact_node || !p->impulse)
         return wff_fail(err, "out of memory");
     p->active = 1;
     p->radius = radius;
@@ -426,20 +432,22 @@ static double friction_impulse(double mass, double speed, double limit, double *
  * impulse along the surface normal, shared with the projectile by their
  * masses, that puts it back on the surface (perfectly inelastic, like a hard
  * contact in an explicit code); then Coulomb friction limits the tangential
- * impulse to μ times the normal one. The kinetic energy the impulses remove
- * is counted as dissipated. Returns -1 (err set) if a node is found deep
- * inside, i.e. the projectile has gone through the fabric. */
-static int contact_correct(wff_model *m, double dt, wff_error *err)
+ * impulse to μ times the normal one. The impulses enter f as forces
+ * impulse/dt_mid, and their work J·vⁿ (vⁿ the integer-step velocity, the
+ * central-difference measure of the displacement over the step) is what the
+ * contact dissipates. Returns -1 (err set) if a node is found deep inside,
+ * i.e. the projectile has gone through the fabric. */
+static int contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
 {
     wff_projectile *p = &m->projectile;
     p->force = 0;
     if (!p->active)
         return 0;
-    double tip_now = p->tip;
-    double impulse_z = 0, lost = 0;
+    const double tip_now = p->tip, v_proj_before = p->velocity;
+    int touched = 0;
     for (int c = 0; c < p->n_candidates; c++) {
         int n = p->candidates[c];
-        double *un = m->u + D * n, *vn = m->v + D * n;
+        double *un = m->u + D * n, *vn = m->v + D * n, *jc = p->impulse + 3 * touched;
         const double mass = m->mass[D * n];
         double x[3] = {m->mesh.xy[2 * n] + un[0] + dt * vn[0],
                        m->mesh.xy[2 * n + 1] + un[1] + dt * vn[1], un[2] + dt * vn[2]};
@@ -458,21 +466,15 @@ static int contact_correct(wff_model *m, double dt, wff_error *err)
         for (int i = 0; i < 3; i++)
             if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
                 w_node += nrm[i] * nrm[i];
-        w_node /= mass;
-        double w = w_node + nrm[2] * nrm[2] / p->mass;
         if (w_node == 0)
             continue;
-        double before = 0.5 * mass * (vn[0] * vn[0] + vn[1] * vn[1] + vn[2] * vn[2]) +
-                        0.5 * p->mass * p->velocity * p->velocity;
-        double jn = delta / dt / w; /* normal impulse, N·s */
-        for (int i = 0; i < 3; i++)
-            if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
-                vn[i] += jn * nrm[i] / mass;
-        p->velocity -= jn * nrm[2] / p->mass;
-        impulse_z += jn * nrm[2];
-        /* friction against the tangential relative velocity */
+        w_node /= mass;
+        double jn = delta / dt / (w_node + nrm[2] * nrm[2] / p->mass); /* N·s */
+        double j[3] = {jn * nrm[0], jn * nrm[1], jn * nrm[2]};
+        /* friction against the tangential relative velocity left after jn */
         if (p->mu > 0) {
-            double rel[3] = {vn[0], vn[1], vn[2] - p->velocity};
+            double rel[3] = {vn[0] + j[0] / mass, vn[1] + j[1] / mass,
+                             vn[2] + j[2] / mass - (p->velocity - j[2] / p->mass)};
             double along = rel[0] * nrm[0] + rel[1] * nrm[1] + rel[2] * nrm[2];
             double vt[3], speed = 0;
             for (int i = 0; i < 3; i++) {
@@ -483,15 +485,17 @@ static int contact_correct(wff_model *m, double dt, wff_error *err)
             if (speed > 0) {
                 double jt = fmin(p->mu * jn, mass * speed); /* stick if the cone allows */
                 for (int i = 0; i < 3; i++)
-                    if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
-                        vn[i] -= jt * vt[i] / speed / mass;
-                p->velocity += jt * vt[2] / speed / p->mass;
-                impulse_z -= jt * vt[2] / speed;
+                    j[i] -= jt * vt[i] / speed;
             }
         }
-        double after = 0.5 * mass * (vn[0] * vn[0] + vn[1] * vn[1] + vn[2] * vn[2]) +
-                       0.5 * p->mass * p->velocity * p->velocity;
-        lost += before - after;
+        for (int i = 0; i < 3; i++) {
+            if (m->dof_kind[D * n + i] != WFF_DOF_FREE)
+                j[i] = 0;
+            vn[i] += j[i] / mass;
+            jc[i] = j[i];
+        }
+        p->velocity -= j[2] / p->mass;
+        p->contact_node[touched++] = n;
         /* what remains inside after the correction */
         double x2[3] = {m->mesh.xy[2 * n] + un[0] + dt * vn[0],
                         m->mesh.xy[2 * n + 1] + un[1] + dt * vn[1], un[2] + dt * vn[2]};
@@ -501,8 +505,24 @@ static int contact_correct(wff_model *m, double dt, wff_error *err)
         if (rest > p->max_penetration)
             p->max_penetration = rest;
     }
-    p->force = impulse_z / dt; /* mean contact force on the projectile along −z over the step */
-    m->dissipated_friction += lost;
+    /* forces and their work over the step */
+    double work = 0;
+    for (int c = 0; c < touched; c++) {
+        int n = p->contact_node[c];
+        const double *jc = p->impulse + 3 * c;
+        for (int i = 0; i < 3; i++) {
+            int k = D * n + i;
+            if (m->dof_kind[k] != WFF_DOF_FREE)
+                continue;
+            m->f[k] += jc[i] / dt_mid;
+            double v_int = m->v[k] - 0.5 * dt_mid * m->f[k] / m->mass[k]; /* vⁿ */
+            work += jc[i] * v_int;
+        }
+    }
+    double dv = p->velocity - v_proj_before;
+    p->force = -p->mass * dv / dt_mid;
+    work += p->mass * dv * (p->velocity - 0.5 * dv);
+    m->dissipated_friction -= work;
     return 0;
 }
 
@@ -618,7 +638,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         m->v_half_valid = 1;
         /* first half step */
         update_velocities(m, 0.5 * m->dt);
-        if (contact_correct(m, m->dt, err))
+        if (contact_correct(m, m->dt, 0.5 * m->dt, err))
             return -1;
     }
     if (m->projectile.active)
@@ -647,7 +667,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
             if (m->dof_kind[i] == WFF_DOF_PRESCRIBED)
                 m->external_work += 0.5 * (-m->f[i]) * dt * m->v[i];
         update_velocities(m, 0.5 * (dt + m->dt));
-        if (contact_correct(m, m->dt, err))
+        if (contact_correct(m, m->dt, 0.5 * (dt + m->dt), err))
             return -1;
         if (m->step % m->dt_interval == 0) {
             wff_energies e;

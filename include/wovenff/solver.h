@@ -39,6 +39,8 @@ typedef struct wff_projectile {
     double axis[2];       /* x, y of the projectile axis, m */
     int n_candidates;     /* nodes that may touch it, refreshed as it moves */
     int *candidates;
+    int *contact_node;    /* nodes corrected in the last step (workspace, n_nodes) */
+    double *impulse;      /* their contact impulses, 3 each, N·s (workspace) */
     double max_penetration;  /* largest penetration left after a contact correction, m */
     double force;         /* mean contact force on the projectile along −z over the last
                              step, N (model part) */
