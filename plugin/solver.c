@@ -384,6 +384,24 @@ static void kinetic(const wff_model *m, const double *v, double vp, double out[4
         out[3] = 0.5 * m->projectile.mass * vp * vp;
 }
 
+/* "triangle 3 (nodes 4 5 9)" or "quadrilateral 2 (nodes ...)" for element e
+ * (triangles first, then quads), numbered from 1 within its type. */
+static void element_name(const wff_model *m, int e, char *out, size_t size)
+{
+    if (e < 0) {
+        snprintf(out, size, "no element");
+        return;
+    }
+    int tri = e < m->el.n_tris;
+    const int *node = tri ? m->el.tri + 3 * e : m->el.quad + 4 * (e - m->el.n_tris);
+    if (tri)
+        snprintf(out, size, "triangle %d (nodes %d %d %d)", e + 1, node[0] + 1, node[1] + 1,
+                 node[2] + 1);
+    else
+        snprintf(out, size, "quadrilateral %d (nodes %d %d %d %d)", e - m->el.n_tris + 1,
+                 node[0] + 1, node[1] + 1, node[2] + 1, node[3] + 1);
+}
+
 /* Internal and contact forces at the current u; returns 0 or -1 (err set). */
 static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
 {
@@ -392,15 +410,10 @@ static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
     wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, dt_flow, m->f, &t);
     m->element_steps += m->el.n_tris + m->el.n_quads;
     if (t.bad_element >= 0) {
-        int e = t.bad_element;
-        const int *node = e < m->el.n_tris ? m->el.tri + 3 * e : m->el.quad + 4 * (e - m->el.n_tris);
-        int nn = e < m->el.n_tris ? 3 : 4;
-        char nodes[64];
-        snprintf(nodes, sizeof nodes, nn == 3 ? "%d %d %d" : "%d %d %d %d", node[0] + 1,
-                 node[1] + 1, node[2] + 1, nn == 4 ? node[3] + 1 : 0);
-        return wff_fail(err, "t = %.6g s (step %ld): %s %d (nodes %s), quadrature point %d: %s",
-                        m->time, m->step, nn == 3 ? "triangle" : "quadrilateral",
-                        (nn == 3 ? e : e - m->el.n_tris) + 1, nodes, t.bad_point + 1,
+        char name[96];
+        element_name(m, t.bad_element, name, sizeof name);
+        return wff_fail(err, "t = %.6g s (step %ld): %s, quadrature point %d: %s", m->time,
+                        m->step, name, t.bad_point + 1,
                         t.bad_status == WFF_POINT_DEGENERATE
                             ? "degenerate deformation (yarns collapsed or parallel: "
                               "inverted element)"
@@ -568,9 +581,13 @@ static int update_time_step(wff_model *m, wff_error *err)
 {
     int worst;
     double dt = wff_elements_stable_step(&m->el, &m->em, m->mesh.xy, m->u, &worst);
-    if (!(dt > 0) || !isfinite(dt))
-        return wff_fail(err, "t = %.6g s (step %ld): stable time step %g s at element %d is "
-                        "not positive: degenerate state", m->time, m->step, dt, worst + 1);
+    if (!(dt > 0) || !isfinite(dt)) {
+        char name[96];
+        element_name(m, worst, name, sizeof name);
+        return wff_fail(err, "t = %.6g s (step %ld): %s: stable time step %g s is not "
+                        "positive: degenerate deformation (yarns collapsed or parallel) or "
+                        "NaN", m->time, m->step, name, dt);
+    }
     m->dt_stable = dt;
     m->dt_worst_element = worst;
     m->dt = m->dt_factor * dt;
@@ -673,12 +690,14 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
             wff_energies e;
             wff_model_energies(m, &e);
             /* an unstable step creates energy: a deficit is not instability */
-            if (!isfinite(e.error) || e.error > ENERGY_BLOWUP)
+            if (!isfinite(e.error) || e.error > ENERGY_BLOWUP) {
+                char name[96];
+                element_name(m, m->dt_worst_element, name, sizeof name);
                 return wff_fail(err, "t = %.6g s (step %ld): energy balance off by %.3g%% of "
                                 "the reference energy: unstable (time step %.3g s; stable "
-                                "estimate %.3g s at element %d; try a smaller -dtfactor)",
-                                m->time, m->step, 100 * e.error, m->dt, m->dt_stable,
-                                m->dt_worst_element + 1);
+                                "estimate %.3g s at %s; try a smaller -dtfactor)",
+                                m->time, m->step, 100 * e.error, m->dt, m->dt_stable, name);
+            }
         }
     }
     return 0;
