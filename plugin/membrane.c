@@ -135,8 +135,16 @@ static void preload_pull_add(const wff_element_material *em, const double P[6], 
     }
 }
 
-static int point_ok(int status, const wff_point_result *r)
+/* 2 for a NaN or infinite state (F_eff, ΔA) or result, else the cell's status:
+ * a NaN state is not a degenerate one (cells report both as degenerate). */
+static int point_ok(int status, const double Fe[6], const double dA[2],
+                    const wff_point_result *r)
 {
+    double state = dA[0] + dA[1];
+    for (int i = 0; i < 6; i++)
+        state += Fe[i];
+    if (!isfinite(state))
+        return 2;
     if (status != WFF_POINT_OK)
         return status;
     double sum = r->energy + r->residual[0] + r->residual[1];
@@ -193,7 +201,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
             double dA[2] = {ua[3], ua[4]};
             wff_point_result r;
             double *gf = gamma_f + 3 * e + q;
-            int status = point_ok(mat->cell->evaluate(mat->params, Fe, dA, *gf, dt, &r), &r);
+            int status = point_ok(mat->cell->evaluate(mat->params, Fe, dA, *gf, dt, &r), Fe, dA, &r);
             if (status != WFF_POINT_OK) {
                 note_bad(totals, e, q, status);
                 continue;
@@ -229,7 +237,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
             preload_apply(em, F, Fe);
             wff_point_result r;
             double *gf = gamma_f + 3 * el->n_tris + 4 * e + q;
-            int status = point_ok(mat->cell->evaluate(mat->params, Fe, dA, *gf, dt, &r), &r);
+            int status = point_ok(mat->cell->evaluate(mat->params, Fe, dA, *gf, dt, &r), Fe, dA, &r);
             if (status != WFF_POINT_OK) {
                 note_bad(totals, id, q, status);
                 continue;

@@ -417,7 +417,7 @@ static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
                         t.bad_status == WFF_POINT_DEGENERATE
                             ? "degenerate deformation (yarns collapsed or parallel: "
                               "inverted element)"
-                            : "stress, residual or energy is NaN or infinite");
+                            : "NaN or infinite displacement, amplitude, stress or energy");
     }
     m->internal_energy = t.internal_energy;
     m->dissipated_shear += t.dissipated;
