@@ -9,7 +9,7 @@
  * A cell is a constant ops table (in the spirit of SUNDIALS' N_Vector):
  *
  *   required   parse, evaluate, wave_speeds
- *   optional   energy_split (NULL when absent)
+ *   optional   energy_split, evaluate_shared (NULL when absent)
  *
  * and registers itself by name in its own source file with
  * WFF_REGISTER_CELL(table). Nothing outside that file names a cell: the
@@ -116,6 +116,20 @@ struct wff_cell_type {
      * to evaluate()'s energy. */
     void (*energy_split)(const void *params, const double F[6], const double dA[2],
                          double gamma_f, double *mech_energy);
+
+    /* Optional fast path: n_points material points sharing one F (a linear
+     * triangle with nodal quadrature), so the F-dependent kinematics are done
+     * once. Point q has amplitudes dA[2q], dA[2q+1], weight weight[q] and state
+     * gamma_f[q] (updated in place with step dt). Adds Σ_q weight[q] P_q into
+     * stress_sum, writes residual[2q + k] = R_k at point q (unweighted), and
+     * adds Σ weight[q] W_q to *energy and Σ weight[q] × dissipated_q to
+     * *dissipated. Must agree with evaluate() to round-off (tested). Returns
+     * WFF_POINT_OK, or the status of the first failing point, whose index goes
+     * to *bad_point. */
+    int (*evaluate_shared)(const void *params, const double F[6], int n_points,
+                           const double *dA, const double *weight, double *gamma_f, double dt,
+                           double stress_sum[6], double *residual, double *energy,
+                           double *dissipated, int *bad_point);
 };
 
 /* Registry. Cells register with WFF_REGISTER_CELL in their own file; the

@@ -366,6 +366,106 @@ static void king_wave_speeds(const void *params, double areal_density, const dou
     *amplitude_omega = sqrt(amplitude / k->cell_area / (areal_density / 6));
 }
 
+/* Fast path (MODEL.md notes in docs/model.md): n points sharing one F. The
+ * F-dependent kinematics (g_k, p_k, θ, J, the spars' in-plane lengths) are
+ * computed once; cheaper exact forms replace the angles: γ = atan(cosθ/sinθ)
+ * for sinθ > 0, β − β⁰ = atan((A p⁰ − A⁰ p)/(p p⁰ + A A⁰)). The stress is
+ * assembled once from the weighted sum of the points' in-plane coefficients.
+ * Same model as king_evaluate, term by term; tests compare the two. */
+static int king_evaluate_shared(const void *params, const double F[6], int n_points,
+                                const double *dA, const double *weight, double *gamma_f,
+                                double dt, double stress_sum[6], double *residual,
+                                double *energy, double *dissipated, int *bad_point)
+{
+    const king_params *k = params;
+    double gh[FAMILIES][3], p[FAMILIES], g[FAMILIES][3];
+    *bad_point = 0;
+    for (int f = 0; f < FAMILIES; f++) {
+        for (int i = 0; i < 3; i++)
+            g[f][i] = k->pitch0[f] * F[2 * i + f];
+        p[f] = sqrt(g[f][0] * g[f][0] + g[f][1] * g[f][1] + g[f][2] * g[f][2]);
+        if (!(p[f] > 0))
+            return WFF_POINT_DEGENERATE;
+        double inv = 1 / p[f];
+        for (int i = 0; i < 3; i++)
+            gh[f][i] = g[f][i] * inv;
+    }
+    double n0 = g[0][1] * g[1][2] - g[0][2] * g[1][1];
+    double n1 = g[0][2] * g[1][0] - g[0][0] * g[1][2];
+    double n2 = g[0][0] * g[1][1] - g[0][1] * g[1][0];
+    double area = sqrt(n0 * n0 + n1 * n1 + n2 * n2); /* J */
+    double cs = gh[0][0] * gh[1][0] + gh[0][1] * gh[1][1] + gh[0][2] * gh[1][2];
+    double sn = area / (p[0] * p[1]);
+    if (!(sn > 0))
+        return WFF_POINT_DEGENERATE;
+    double gamma = atan(cs / sn);
+    double spar[FAMILIES] = {area / p[0], area / p[1]};
+    double couple_arm[FAMILIES] = {1 / (p[0] * sn), 1 / (p[1] * sn)};
+    double inv_cell = 1 / k->cell_area;
+
+    double q[FAMILIES][FAMILIES] = {{0, 0}, {0, 0}};
+    double energy_sum = 0, dissipated_sum = 0;
+    for (int pt = 0; pt < n_points; pt++) {
+        const double *a = dA + 2 * pt;
+        const double w = weight[pt];
+        double x = k->compaction_rate * (-a[0] - a[1]), primitive, slope;
+        double e = compaction_exp(x, &primitive, &slope);
+        double compaction = k->compaction_force * (e - 1);
+        double W = k->compaction_force / k->compaction_rate * (primitive - 1) +
+                   k->compaction_force * (a[0] + a[1]);
+        double locking[FAMILIES], cos_a[FAMILIES], yarn_q[FAMILIES];
+        for (int f = 0; f < FAMILIES; f++) {
+            int l = 1 - f;
+            double A = k->amplitude0[f] + a[f];
+            double L = sqrt(p[f] * p[f] + A * A), inv_L = 1 / L;
+            double sin_b = A * inv_L, cos_b = p[f] * inv_L;
+            double stretch = L - k->length0[f];
+            if (k->tension_only != 0 && stretch < 0)
+                stretch = 0;
+            double tension = k->yarn_stiffness[f] * stretch;
+            double bend = atan((A * k->pitch0[f] - k->amplitude0[f] * p[f]) /
+                               (p[f] * k->pitch0[f] + A * k->amplitude0[f]));
+            double moment = k->bending_stiffness[f] * bend;
+            W += k->yarn_stiffness[f] * stretch * stretch + k->bending_stiffness[f] * bend * bend;
+            double d = sqrt(spar[f] * spar[f] + A * A), inv_d = 1 / d;
+            double gap = k->spar_length0[f] - d;
+            locking[f] = 0;
+            if (gap > 0) {
+                double power = locking_power(gap, k->locking_exponent);
+                locking[f] = k->locking_stiffness * power;
+                W += 2 * k->locking_stiffness * power * gap / (k->locking_exponent + 1);
+            }
+            cos_a[f] = spar[f] * inv_d;
+            double lever = 1 + k->lever * p[l] * fabs(cs) * cos_b * inv_L;
+            double normal = 2 * tension * sin_b - 2 * locking[f] * (A * inv_d) * lever +
+                            2 * moment * cos_b * inv_L;
+            residual[2 * pt + f] = (compaction - normal) * inv_cell;
+            yarn_q[f] = 2 * (tension * cos_b - moment * sin_b * inv_L);
+        }
+        double gf_new = shear_flow_update(k, gamma, gamma_f[pt], dt);
+        double shear_moment = k->shear_stiffness * (gamma - gf_new);
+        W += 0.5 * k->shear_stiffness * (gamma - gf_new) * (gamma - gf_new);
+        dissipated_sum += w * shear_moment * (gf_new - gamma_f[pt]);
+        gamma_f[pt] = gf_new;
+        for (int f = 0; f < FAMILIES; f++) {
+            int l = 1 - f;
+            double couple = shear_moment * couple_arm[f];
+            double own = 2 * locking[f] * cos_a[f] * p[l] * cs * couple_arm[f];
+            double other = 2 * locking[l] * cos_a[l] / sn;
+            q[f][f] += w * (yarn_q[f] - couple * cs - own * cs - other);
+            q[f][l] += w * (couple + own + other * cs);
+        }
+        energy_sum += w * W;
+    }
+    for (int i = 0; i < 3; i++)
+        for (int f = 0; f < FAMILIES; f++)
+            stress_sum[2 * i + f] += k->pitch0[f] * inv_cell *
+                                     (q[f][0] * gh[0][i] + q[f][1] * gh[1][i]);
+    *energy += energy_sum * inv_cell;
+    *dissipated += dissipated_sum * inv_cell;
+    return WFF_POINT_OK;
+}
+
 static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
 {
     king_params *k = (king_params *)mat->params;
@@ -446,5 +546,6 @@ static const wff_cell_type king_plain = {
     .evaluate = king_evaluate,
     .wave_speeds = king_wave_speeds,
     .energy_split = king_energy_split,
+    .evaluate_shared = king_evaluate_shared,
 };
 WFF_REGISTER_CELL(king_plain);

@@ -193,8 +193,51 @@ void cell_suite_run(check_state *st, const cell_case *c)
                       (cell->n_amplitudes == 0 || omega > 0),
               "state %d: wave speed %g, amplitude omega %g", s, speed, omega);
     }
-    printf("  %-48s FD stress %.1e, FD residual %.1e, objectivity %.1e, swap %.1e, split %.1e\n",
-           c->material, worst_P, worst_R, worst_obj, worst_swap, worst_split);
+    /* the optional fast path equals the reference path, state update included */
+    double worst_fast = 0;
+    if (cell->evaluate_shared) {
+        for (int s = 0; s < N_STATES; s++) {
+            double F[6], dA[6], gf[3], gf_fast[3], w[3] = {0.2, 0.3, 0.5};
+            random_state(&r, c, F, dA, &gf[0]);
+            for (int q = 1; q < 3; q++)
+                random_state(&r, c, (double[6]){0}, dA + 2 * q, &gf[q]);
+            memcpy(gf_fast, gf, sizeof gf);
+            double dt = s % 2 ? 2e-7 : 0;
+            double P_ref[6] = {0}, W_ref = 0, D_ref = 0, P_fast[6] = {0}, R_fast[6];
+            double W_fast = 0, D_fast = 0, R_ref[6];
+            for (int q = 0; q < 3; q++) {
+                wff_material_evaluate(&mat, F, dA + 2 * q, gf[q], dt, &out);
+                for (int i = 0; i < 6; i++)
+                    P_ref[i] += w[q] * out.stress[i];
+                R_ref[2 * q] = out.residual[0];
+                R_ref[2 * q + 1] = out.residual[1];
+                W_ref += w[q] * out.energy;
+                D_ref += w[q] * out.dissipated;
+                gf[q] = out.gamma_f;
+            }
+            int bad = -1;
+            rc = cell->evaluate_shared(mat.params, F, 3, dA, w, gf_fast, dt, P_fast, R_fast,
+                                       &W_fast, &D_fast, &bad);
+            CHECK(st, rc == WFF_POINT_OK, "fast path state %d: status %d at point %d", s, rc, bad);
+            double e = 0, sP = fmax(max_abs(P_ref, 6), 1e-6 * stress_scale);
+            for (int i = 0; i < 6; i++)
+                e = fmax(e, fabs(P_fast[i] - P_ref[i]) / sP);
+            if (cell->n_amplitudes)
+                for (int i = 0; i < 6; i++)
+                    e = fmax(e, fabs(R_fast[i] - R_ref[i]) /
+                                    fmax(max_abs(R_ref, 6), 1e-6 * residual_scale));
+            e = fmax(e, fabs(W_fast - W_ref) / fmax(fabs(W_ref), 1e-300));
+            e = fmax(e, fabs(D_fast - D_ref) / fmax(fabs(W_ref), 1e-300));
+            for (int q = 0; q < 3; q++)
+                e = fmax(e, fabs(gf_fast[q] - gf[q]) / fmax(fabs(gf[q]), 1e-3));
+            worst_fast = fmax(worst_fast, e);
+        }
+        CHECK(st, worst_fast <= 1e-11, "%s: fast path differs from evaluate by %.3g",
+              c->material, worst_fast);
+    }
+    printf("  %-48s FD stress %.1e, FD residual %.1e, objectivity %.1e, swap %.1e, split %.1e, "
+           "fast path %.1e\n", c->material, worst_P, worst_R, worst_obj, worst_swap, worst_split,
+           worst_fast);
     if (c->energy_exact) {
         CHECK(st, worst_P <= 1e-6, "%s: P vs dW/dF relative error %.3g", c->material, worst_P);
         CHECK(st, worst_R <= 1e-6, "%s: R vs -dW/ddA relative error %.3g", c->material, worst_R);
