@@ -1,0 +1,210 @@
+// wovenff FreeFEM binding: the pointwise material API (one material point,
+// no mesh). Every function reads its material file afresh (no cache: see
+// docs/freefem_api.md for the cost) and reports failures with ExecError.
+//
+//   real r = wovenffPoint(matFile, F, dA, gammaf, out);   // P, R, W, diagnostics
+//   wovenffBalance(matFile, F, dA);                        // dA: guess in, balance out
+//   wovenffBalance(matFile, F, dA, gammaf);                //   the same with gamma_f held
+//   wovenffPreload(matFile, yarnTension, out);             // out = [l1, l2, dA1, dA2]
+//   wovenffUniaxial(matFile, family, stretch, out);        // [l1, l2, dA1, dA2, P11, P22]
+//   cout << wovenffCellInfo(matFile);                      // cell and out layout
+//
+// F is row-major 3x2 (F11 F12 F21 F22 F31 F32), dA = [dA1, dA2] in m; SI units.
+#include "ff++.hpp"
+#include "AFunction_ext.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "ff_wovenff.hpp"
+
+extern "C" {
+#include "wovenff/balance.h"
+#include "wovenff/material.h"
+}
+
+using namespace Fem2D;
+
+namespace {
+
+const char *const kFLayout = "F11 F12 F21 F22 F31 F32";
+const char *const kDALayout = "dA1 dA2";
+
+// wovenffPoint's out: P (6), R (2), W, then the cell's diagnostics.
+const int kOutFixed = 9;
+const char *const kOutNames[kOutFixed] = {"P11", "P12", "P21", "P22", "P31", "P32",
+                                          "R1",  "R2",  "W"};
+const char *const kOutUnits[kOutFixed] = {"N/m", "N/m",   "N/m",   "N/m", "N/m",
+                                          "N/m", "N/m^2", "N/m^2", "J/m^2"};
+
+// Copy a real[int] of known size, rejecting NaN and infinities.
+void take(const char *fn, const char *name, const KN<double> *v, long n, const char *layout,
+          double *dst)
+{
+    wff_ff_require_size(fn, name, v, n, layout);
+    for (long i = 0; i < n; i++) {
+        dst[i] = (*v)[i];
+        if (!std::isfinite(dst[i])) {
+            char msg[200];
+            snprintf(msg, sizeof msg, "%s[%ld] = %g is not a finite number", name, i, dst[i]);
+            wff_ff_fail(fn, msg);
+        }
+    }
+}
+
+void require_finite(const char *fn, const char *name, double x)
+{
+    if (!std::isfinite(x)) {
+        char msg[200];
+        snprintf(msg, sizeof msg, "%s = %g is not a finite number", name, x);
+        wff_ff_fail(fn, msg);
+    }
+}
+
+double ffPoint(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv,
+               const double &gamma_f, KN<double> *const &out)
+{
+    const char *fn = "wovenffPoint";
+    double F[6], dA[2];
+    take(fn, "F", Fv, 6, kFLayout, F);
+    take(fn, "dA", dAv, 2, kDALayout, dA);
+    require_finite(fn, "gammaf", gamma_f);
+    if (!out)
+        wff_ff_fail(fn, "no output array");
+    wff_material mat;
+    wff_ff_material(fn, material, &mat);
+    wff_point_result r;
+    if (wff_material_evaluate(&mat, F, dA, gamma_f, 0, &r) != WFF_POINT_OK) {
+        char msg[200 + sizeof mat.source];
+        snprintf(msg, sizeof msg, "degenerate point (a yarn direction has zero length or the "
+                 "yarns are parallel): F = [%g %g %g %g %g %g], material %s",
+                 F[0], F[1], F[2], F[3], F[4], F[5], mat.source);
+        wff_ff_fail(fn, msg);
+    }
+    const int n_diag = mat.cell->n_diag;
+    out->resize(kOutFixed + n_diag);
+    for (int i = 0; i < 6; i++)
+        (*out)[i] = r.stress[i];
+    (*out)[6] = r.residual[0];
+    (*out)[7] = r.residual[1];
+    (*out)[8] = r.energy;
+    for (int i = 0; i < n_diag; i++)
+        (*out)[kOutFixed + i] = r.diag[i];
+    return 0;
+}
+
+double balance(const char *fn, string *material, KN<double> *Fv, KN<double> *dAv,
+               double gamma_f)
+{
+    double F[6], dA[2];
+    take(fn, "F", Fv, 6, kFLayout, F);
+    take(fn, "dA", dAv, 2, kDALayout, dA);
+    require_finite(fn, "gammaf", gamma_f);
+    wff_material mat;
+    wff_ff_material(fn, material, &mat);
+    wff_error err;
+    if (wff_balance_amplitudes(&mat, F, gamma_f, dA, &err))
+        wff_ff_fail(fn, err);
+    (*dAv)[0] = dA[0];
+    (*dAv)[1] = dA[1];
+    return 0;
+}
+
+double ffBalance(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv)
+{
+    return balance("wovenffBalance", material, Fv, dAv, 0);
+}
+
+double ffBalanceHeld(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv,
+                     const double &gamma_f)
+{
+    return balance("wovenffBalance", material, Fv, dAv, gamma_f);
+}
+
+double ffPreload(string *const &material, const double &tension, KN<double> *const &out)
+{
+    const char *fn = "wovenffPreload";
+    require_finite(fn, "yarnTension", tension);
+    if (!out)
+        wff_ff_fail(fn, "no output array");
+    wff_material mat;
+    wff_ff_material(fn, material, &mat);
+    wff_biaxial_state s = {};
+    s.stretch[0] = s.stretch[1] = 1;
+    wff_error err;
+    if (wff_preload_equal_force(&mat, tension, &s, &err))
+        wff_ff_fail(fn, err);
+    out->resize(4);
+    (*out)[0] = s.stretch[0];
+    (*out)[1] = s.stretch[1];
+    (*out)[2] = s.dA[0];
+    (*out)[3] = s.dA[1];
+    return 0;
+}
+
+double ffUniaxial(string *const &material, const long &family, const double &stretch,
+                  KN<double> *const &out)
+{
+    const char *fn = "wovenffUniaxial";
+    require_finite(fn, "stretch", stretch);
+    if (family != 0 && family != 1) {
+        char msg[120];
+        snprintf(msg, sizeof msg, "family must be 0 (warp) or 1 (weft), got %ld", family);
+        wff_ff_fail(fn, msg);
+    }
+    if (!out)
+        wff_ff_fail(fn, "no output array");
+    wff_material mat;
+    wff_ff_material(fn, material, &mat);
+    wff_biaxial_state s = {};
+    s.stretch[0] = s.stretch[1] = 1;
+    wff_error err;
+    if (wff_uniaxial_static(&mat, (int)family, stretch, &s, &err))
+        wff_ff_fail(fn, err);
+    out->resize(6);
+    (*out)[0] = s.stretch[0];
+    (*out)[1] = s.stretch[1];
+    (*out)[2] = s.dA[0];
+    (*out)[3] = s.dA[1];
+    (*out)[4] = s.resultant[0];
+    (*out)[5] = s.resultant[1];
+    return 0;
+}
+
+string *ffCellInfo(Stack stack, string *const &material)
+{
+    wff_material mat;
+    wff_ff_material("wovenffCellInfo", material, &mat);
+    const wff_cell_type *c = mat.cell;
+    std::string text = std::string("cell ") + c->name + ": " + c->summary + "\n" +
+                       "wovenffPoint out layout (index name unit):\n";
+    char line[120];
+    for (int i = 0; i < kOutFixed + c->n_diag; i++) {
+        bool fixed = i < kOutFixed;
+        snprintf(line, sizeof line, "  %2d %-6s %s\n", i,
+                 fixed ? kOutNames[i] : c->diag_names[i - kOutFixed],
+                 fixed ? kOutUnits[i] : c->diag_units[i - kOutFixed]);
+        text += line;
+    }
+    return Add2StackOfPtr2Free(stack, new string(text));
+}
+
+} // namespace
+
+void wff_ff_register_point()
+{
+    Global.Add("wovenffPoint", "(",
+               new OneOperator5_<double, string *, KN<double> *, KN<double> *, double,
+                                 KN<double> *>(ffPoint));
+    Global.Add("wovenffBalance", "(",
+               new OneOperator3_<double, string *, KN<double> *, KN<double> *>(ffBalance));
+    Global.Add("wovenffBalance", "(",
+               new OneOperator4_<double, string *, KN<double> *, KN<double> *, double>(
+                   ffBalanceHeld));
+    Global.Add("wovenffPreload", "(",
+               new OneOperator3_<double, string *, double, KN<double> *>(ffPreload));
+    Global.Add("wovenffUniaxial", "(",
+               new OneOperator4_<double, string *, long, double, KN<double> *>(ffUniaxial));
+    Global.Add("wovenffCellInfo", "(", new OneOperator1s_<string *, string *>(ffCellInfo));
+}

@@ -1,0 +1,62 @@
+// wovenff FreeFEM load module: entry point and the helpers the binding files
+// share (ff_wovenff.hpp). `load "wovenff"` in a script runs init(), which
+// registers every binding file's functions.
+//
+// To add a binding file: define `void wff_ff_register_NAME()` in it, declare it
+// in ff_wovenff.hpp and add it to kRegister below.
+#include "ff++.hpp"
+#include "AFunction_ext.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "ff_wovenff.hpp"
+
+extern "C" {
+#include "wovenff/material.h"
+}
+
+using namespace Fem2D;
+
+void wff_ff_fail(const char *fn, const char *message)
+{
+    ExecError(std::string(fn) + ": " + message);
+    std::abort(); // not reached: ExecError throws
+}
+
+void wff_ff_fail(const char *fn, const wff_error &err)
+{
+    wff_ff_fail(fn, err.message);
+}
+
+void wff_ff_material(const char *fn, const string *path, wff_material *mat)
+{
+    wff_error err;
+    if (!path || wff_material_load(path->c_str(), mat, &err))
+        wff_ff_fail(fn, path ? err.message : "no material file name given");
+}
+
+void wff_ff_require_size(const char *fn, const char *name, const KN<double> *v, long n,
+                         const char *layout)
+{
+    if (!v || v->N() != n) {
+        char msg[300];
+        snprintf(msg, sizeof msg, "%s must have %ld entries (%s), got %ld", name, n, layout,
+                 v ? (long)v->N() : 0L);
+        wff_ff_fail(fn, msg);
+    }
+}
+
+static void (*const kRegister[])() = {
+    wff_ff_register_point,
+    wff_ff_register_solver,
+};
+
+static void init()
+{
+    for (void (*reg)() : kRegister)
+        reg();
+}
+
+LOADFUNC(init)
