@@ -189,6 +189,8 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
     totals->bad_status = 0;
     double energy = 0, dissipated = 0;
 
+    const int fast = mat->cell->evaluate_shared && !em->reference_path;
+    static const double third[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
     for (int e = 0; e < el->n_tris; e++) {
         const int *node = el->tri + 3 * e;
         const double *grad = el->tri_grad + 6 * e;
@@ -196,7 +198,39 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
         deformation_gradient(X, u, node, 3, grad, F);
         preload_apply(em, F, Fe);
         double w = el->tri_area[e] / 3;
-        for (int q = 0; q < WFF_TRI_POINTS; q++) {
+        if (fast) {
+            /* one F for the three nodal points: the cell's shared-kinematics path */
+            double dA[6], P[6] = {0, 0, 0, 0, 0, 0}, R[6] = {0, 0, 0, 0, 0, 0}, W = 0, Dis = 0;
+            double state = 0;
+            for (int q = 0; q < WFF_TRI_POINTS; q++) {
+                dA[2 * q] = u[D * node[q] + 3];
+                dA[2 * q + 1] = u[D * node[q] + 4];
+                state += dA[2 * q] + dA[2 * q + 1];
+            }
+            for (int i = 0; i < 6; i++)
+                state += Fe[i];
+            int bad = 0, status = isfinite(state)
+                                      ? mat->cell->evaluate_shared(mat->params, Fe, 3, dA,
+                                                                   third, gamma_f + 3 * e, dt, P,
+                                                                   R, &W, &Dis, &bad)
+                                      : 2;
+            double sum = W + R[0] + R[1] + R[2] + R[3] + R[4] + R[5];
+            for (int i = 0; i < 6; i++)
+                sum += P[i];
+            if (status == WFF_POINT_OK && !isfinite(sum))
+                status = 2;
+            if (status != WFF_POINT_OK) {
+                note_bad(totals, e, bad, status);
+                continue;
+            }
+            preload_pull_add(em, P, 1.0, Pm);
+            for (int q = 0; q < WFF_TRI_POINTS; q++)
+                for (int k = 0; k < amplitudes; k++)
+                    f[D * node[q] + 3 + k] += w * R[2 * q + k] / em->J_pre;
+            energy += el->tri_area[e] * W;
+            dissipated += el->tri_area[e] * Dis;
+        }
+        for (int q = 0; q < WFF_TRI_POINTS && !fast; q++) {
             const double *ua = u + D * node[q];
             double dA[2] = {ua[3], ua[4]};
             wff_point_result r;

@@ -272,9 +272,14 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
             return wff_fail(err, "symmetry = %g: must be 1 (full), 2 (half) or 4 (quarter)",
                             value);
         m->symmetry_factor = value;
+    } else if (strcmp(key, "reference_path") == 0) {
+        if (value != 0 && value != 1)
+            return wff_fail(err, "reference_path = %g: must be 0 (cell fast path where there "
+                            "is one) or 1 (plain evaluate)", value);
+        m->em.reference_path = (int)value;
     } else {
         return wff_fail(err, "unknown solver setting '%s' (known: dtfactor, dtinterval, "
-                        "symmetry)", key);
+                        "symmetry, reference_path)", key);
     }
     return 0;
 }
@@ -676,8 +681,12 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         m->time += dt;
         m->step++;
         done++;
-        if (m->step % m->dt_interval == 0 && update_time_step(m, err))
-            return -1;
+        if (m->step % m->dt_interval == 0) {
+            if (update_time_step(m, err))
+                return -1;
+            if (m->projectile.active)
+                refresh_candidates(m);
+        }
         if (compute_forces(m, dt, err))
             return -1;
         for (int i = 0; i < m->n_dofs; i++)

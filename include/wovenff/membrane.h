@@ -46,6 +46,8 @@ typedef struct wff_element_material {
     const wff_material *mat;
     double F_pre[4];      /* row-major 2×2 */
     double J_pre;         /* det F_pre */
+    int reference_path;   /* 1: always the cell's plain evaluate(), even where it offers
+                             evaluate_shared (for checks and benchmarks) */
 } wff_element_material;
 
 /* What one force pass sums (per mesh, J or J/step). */

@@ -142,7 +142,9 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
 
 /* Solver settings by name: dtfactor (0, 2], dtinterval (steps between
  * stable-step updates, >= 1), symmetry (1, 2 or 4: energies and projectile
- * force reported for the whole specimen). */
+ * force reported for the whole specimen), reference_path (1: the cell's plain
+ * evaluate() everywhere, 0: its fast path where it has one; results agree to
+ * round-off). */
 int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err);
 
 /* Energies now (whole specimen: model part × symmetry_factor). */
