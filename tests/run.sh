@@ -16,8 +16,8 @@ run_one() { # name, command...
     else
         failed=$((failed + 1)); status=FAIL; failed_names="$failed_names $name"
     fi
-    secs=$(echo "$(date +%s.%N) - $start" | bc 2>/dev/null || echo "?")
-    printf '%s %-40s %6.2fs\n' "$status" "$name" "$secs" 2>/dev/null || echo "$status $name"
+    secs=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
+    printf '%s %-40s %6ss\n' "$status" "$name" "$secs"
     if [ "$status" = FAIL ]; then sed 's/^/    | /' "$log" | tail -40; fi
 }
 for t in build/tests/test_*; do
