@@ -294,6 +294,51 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
     totals->dissipated = dissipated / em->J_pre;
 }
 
+void wff_elements_energy_split(const wff_elements *el, const wff_element_material *em,
+                               const double *X, const double *u, const double *gamma_f,
+                               double *mech)
+{
+    const wff_cell_type *cell = em->mat->cell;
+    for (int k = 0; k < cell->n_mech; k++)
+        mech[k] = 0;
+    if (!cell->energy_split)
+        return;
+    double point[WFF_MECH_MAX];
+    for (int e = 0; e < el->n_tris; e++) {
+        const int *node = el->tri + 3 * e;
+        double F[6], Fe[6];
+        deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
+        preload_apply(em, F, Fe);
+        double w = el->tri_area[e] / 3 / em->J_pre;
+        for (int q = 0; q < WFF_TRI_POINTS; q++) {
+            double dA[2] = {u[D * node[q] + 3], u[D * node[q] + 4]};
+            cell->energy_split(em->mat->params, Fe, dA, gamma_f[3 * e + q], point);
+            for (int k = 0; k < cell->n_mech; k++)
+                mech[k] += w * point[k];
+        }
+    }
+    for (int e = 0; e < el->n_quads; e++) {
+        const int *node = el->quad + 4 * e;
+        for (int q = 0; q < WFF_QUAD_POINTS; q++) {
+            const double *grad = el->quad_grad + 32 * e + 8 * q;
+            double xi = gauss_1d * quad_gauss[q][0], eta = gauss_1d * quad_gauss[q][1];
+            double dA[2] = {0, 0}, F[6], Fe[6];
+            for (int a = 0; a < 4; a++) {
+                double N = quad_shape(a, xi, eta);
+                dA[0] += N * u[D * node[a] + 3];
+                dA[1] += N * u[D * node[a] + 4];
+            }
+            deformation_gradient(X, u, node, 4, grad, F);
+            preload_apply(em, F, Fe);
+            cell->energy_split(em->mat->params, Fe, dA,
+                               gamma_f[3 * el->n_tris + 4 * e + q], point);
+            double w = el->quad_weight[4 * e + q] / em->J_pre;
+            for (int k = 0; k < cell->n_mech; k++)
+                mech[k] += w * point[k];
+        }
+    }
+}
+
 void wff_elements_masses(const wff_elements *el, const wff_element_material *em, int n_nodes,
                          double *mass)
 {

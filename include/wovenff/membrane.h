@@ -71,6 +71,13 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
                          const double *u, double *gamma_f, double dt, double *f,
                          wff_force_totals *totals);
 
+/* Stored energy per mechanism summed over the mesh, J (model part), in the
+ * order of the cell's mech_names (n_mech values into mech); all zeros if the
+ * cell has no energy_split. Quadrature as in the force pass, γᶠ held. */
+void wff_elements_energy_split(const wff_elements *el, const wff_element_material *em,
+                               const double *X, const double *u, const double *gamma_f,
+                               double *mech);
+
 /* Lumped masses: each element's ρ_A A / J_pre shared equally among its
  * nodes; amplitude DOFs get 1/6 of that (eqs. 10–12). mass has 5 per node,
  * zeroed first. */

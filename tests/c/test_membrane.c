@@ -253,11 +253,74 @@ static void check_degenerate(check_state *st)
     }
 }
 
+/* The mesh-summed energy split adds up to the force pass's stored energy, and
+ * the fast triangle path gives the reference path's forces to round-off. */
+static void split_and_fast_case(check_state *st, int type, const char *what)
+{
+    test_rect r = {0, 0.04, 0, 0.03, 6, 5, type, 1, 0.2, 4242};
+    wff_model m;
+    wff_error err;
+    int rc = test_model_rect(&m, &r, KEVLAR, &err);
+    CHECK(st, rc == 0, "%s: %s", what, err.message);
+    if (rc)
+        return;
+    const double F_pre[4] = {1.00396, 0, 0, 1.0135}, dA0[2] = {-9.3e-6, -23.8e-6};
+    wff_model_set_preload(&m, F_pre, dA0, &err);
+    for (int n = 0; n < m.n_nodes; n++) { /* a bumpy, sheared, compacted state */
+        double x = m.mesh.xy[2 * n], y = m.mesh.xy[2 * n + 1];
+        m.u[D * n] = 0.05 * y + 1e-4 * sin(300 * x);
+        m.u[D * n + 2] = 2e-3 * sin(100 * x) * cos(80 * y);
+        m.u[D * n + 3] += -15e-6 * cos(200 * y);
+        m.u[D * n + 4] += 5e-6 * sin(150 * x);
+    }
+    for (int q = 0; q < 3 * m.el.n_tris + 4 * m.el.n_quads; q++)
+        m.gamma_f[q] = 0.01 * (q % 5);
+    double *f_ref = calloc((size_t)m.n_dofs, sizeof(double));
+    double *f_fast = calloc((size_t)m.n_dofs, sizeof(double));
+    double *gf_copy = malloc(sizeof(double) * (size_t)(3 * m.el.n_tris + 4 * m.el.n_quads));
+    memcpy(gf_copy, m.gamma_f, sizeof(double) * (size_t)(3 * m.el.n_tris + 4 * m.el.n_quads));
+    wff_force_totals t_ref, t_fast;
+    m.em.reference_path = 1;
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, 0, f_ref, &t_ref);
+    m.em.reference_path = 0;
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, gf_copy, 0, f_fast, &t_fast);
+    double scale = 0, diff = 0;
+    for (int i = 0; i < m.n_dofs; i++) {
+        scale = fmax(scale, fabs(f_ref[i]));
+        diff = fmax(diff, fabs(f_fast[i] - f_ref[i]));
+    }
+    CHECK(st, t_ref.bad_element < 0 && t_fast.bad_element < 0, "%s: no bad element", what);
+    CHECK(st, diff <= 1e-12 * scale, "%s: fast path forces differ by %.3g of %.3g", what, diff,
+          scale);
+    CHECK_CLOSE(st, t_fast.internal_energy, t_ref.internal_energy, 1e-12, 0, "fast path energy");
+    double mech[WFF_MECH_MAX], sum = 0;
+    wff_elements_energy_split(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, mech);
+    int active = 0;
+    for (int k = 0; k < m.mat.cell->n_mech; k++) {
+        sum += mech[k];
+        active += mech[k] != 0;
+    }
+    CHECK(st, active == m.mat.cell->n_mech, "%s: %d of %d mechanisms hold energy", what, active,
+          m.mat.cell->n_mech);
+    CHECK_CLOSE(st, sum, t_ref.internal_energy, 1e-12, 0, "energy split sums to the stored energy");
+    free(f_ref);
+    free(f_fast);
+    free(gf_copy);
+    wff_model_free(&m);
+}
+
+static void check_split_and_fast(check_state *st)
+{
+    split_and_fast_case(st, TEST_MESH_TRI, "triangles");
+    split_and_fast_case(st, TEST_MESH_QUAD, "quads");
+}
+
 int main(void)
 {
     check_state st = {0, 0};
     check_patch(&st);
     check_masses(&st);
     check_degenerate(&st);
+    check_split_and_fast(&st);
     return check_summary(&st, "test_membrane");
 }
