@@ -5,6 +5,12 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+static int omp_thread(void) { return omp_get_thread_num(); }
+#else
+static int omp_thread(void) { return 0; }
+#endif
 
 #define D WFF_DOFS_PER_NODE
 
@@ -80,6 +86,27 @@ int wff_elements_init(wff_elements *el, const double *X, int n_tris, const int *
         double longest = fmax(dist(X, n[0], n[1]), fmax(dist(X, n[1], n[2]), dist(X, n[2], n[0])));
         el->size[e] = twice / longest; /* smallest altitude */
     }
+    int max_node = -1;
+    for (int i = 0; i < 3 * n_tris; i++)
+        max_node = tri[i] > max_node ? tri[i] : max_node;
+    for (int i = 0; i < 4 * n_quads; i++)
+        max_node = quad[i] > max_node ? quad[i] : max_node;
+    el->n_dofs = D * (max_node + 1);
+#ifdef _OPENMP
+    el->max_threads = omp_get_max_threads();
+#else
+    el->max_threads = 1;
+#endif
+    if (el->max_threads > WFF_MAX_THREADS)
+        el->max_threads = WFF_MAX_THREADS;
+    el->n_threads = el->max_threads;
+    if (el->max_threads > 1) {
+        el->thread_f = malloc(sizeof(double) * (size_t)(el->max_threads - 1) * (size_t)el->n_dofs);
+        if (!el->thread_f) {
+            wff_elements_free(el);
+            return wff_fail(err, "out of memory for %d threads' force buffers", el->max_threads);
+        }
+    }
     for (int e = 0; e < n_quads; e++) {
         const int *n = quad + 4 * e;
         double area = 0;
@@ -110,11 +137,22 @@ void wff_elements_free(wff_elements *el)
     free(el->quad_grad);
     free(el->quad_weight);
     free(el->size);
+    free(el->thread_f);
     el->tri_grad = el->tri_area = el->quad_grad = el->quad_weight = el->size = NULL;
+    el->thread_f = NULL;
+}
+
+int wff_elements_set_threads(wff_elements *el, int n_threads, wff_error *err)
+{
+    if (n_threads < 1 || n_threads > el->max_threads)
+        return wff_fail(err, "threads = %d: must be 1 to %d (OpenMP's maximum here; set "
+                        "OMP_NUM_THREADS for more)", n_threads, el->max_threads);
+    el->n_threads = n_threads;
+    return 0;
 }
 
 /* F_eff = F F_pre */
-static void preload_apply(const wff_element_material *em, const double F[6], double Fe[6])
+static inline __attribute__((always_inline)) void preload_apply(const wff_element_material *em, const double F[6], double Fe[6])
 {
     const double *Fp = em->F_pre;
     for (int i = 0; i < 3; i++) {
@@ -124,7 +162,7 @@ static void preload_apply(const wff_element_material *em, const double F[6], dou
 }
 
 /* P_mesh = P F_preᵀ / J_pre, added with weight w into acc */
-static void preload_pull_add(const wff_element_material *em, const double P[6], double w,
+static inline __attribute__((always_inline)) void preload_pull_add(const wff_element_material *em, const double P[6], double w,
                              double acc[6])
 {
     const double *Fp = em->F_pre;
@@ -163,7 +201,7 @@ static void note_bad(wff_force_totals *t, int e, int q, int status)
 }
 
 /* F = Σ_a x_a ⊗ ∇N_a with x = X + u */
-static void deformation_gradient(const double *X, const double *u, const int *node, int n,
+static inline __attribute__((always_inline)) void deformation_gradient(const double *X, const double *u, const int *node, int n,
                                  const double *grad, double F[6])
 {
     memset(F, 0, 6 * sizeof(double));
@@ -175,6 +213,152 @@ static void deformation_gradient(const double *X, const double *u, const int *no
             F[2 * i + 1] += x[i] * grad[2 * a + 1];
         }
     }
+}
+
+/* Sums one thread gathers over its triangles. */
+typedef struct tri_sums {
+    double energy, dissipated;
+    wff_force_totals bad; /* only bad_element, bad_point, bad_status are used */
+} tri_sums;
+
+static void note_bad_sums(tri_sums *s, int e, int q, int status)
+{
+    if (s->bad.bad_element < 0 || e < s->bad.bad_element) {
+        s->bad.bad_element = e;
+        s->bad.bad_point = q;
+        s->bad.bad_status = status;
+    }
+}
+
+/* Scatter a triangle's mean stress (cell frame) and nodal residuals. */
+static inline __attribute__((always_inline)) void tri_scatter(const wff_elements *el, const wff_element_material *em, int e,
+                        const double P[6], const double *R, int amplitudes, double *f)
+{
+    const int *node = el->tri + 3 * e;
+    const double *grad = el->tri_grad + 6 * e;
+    double Pm[6] = {0, 0, 0, 0, 0, 0};
+    preload_pull_add(em, P, 1.0, Pm);
+    double area = el->tri_area[e], w = area / 3 / em->J_pre;
+    for (int b = 0; b < 3; b++) {
+        double *fb = f + D * node[b];
+        for (int i = 0; i < 3; i++)
+            fb[i] -= area * (Pm[2 * i] * grad[2 * b] + Pm[2 * i + 1] * grad[2 * b + 1]);
+        for (int k = 0; k < amplitudes; k++)
+            fb[3 + k] += w * R[2 * b + k];
+    }
+}
+
+/* One triangle by the general path: the cell's evaluate_shared if it has one
+ * (and the reference path is not asked for), else evaluate() at each point. */
+static void tri_forces(const wff_elements *el, const wff_element_material *em, const double *X,
+                       const double *u, double *gamma_f, double dt, double *f, int e,
+                       tri_sums *sums)
+{
+    static const double third[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
+    const wff_material *mat = em->mat;
+    const int *node = el->tri + 3 * e;
+    double F[6], Fe[6], dA[6], P[6] = {0, 0, 0, 0, 0, 0}, R[6] = {0, 0, 0, 0, 0, 0};
+    double W = 0, Dis = 0, state = 0;
+    deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
+    preload_apply(em, F, Fe);
+    for (int q = 0; q < WFF_TRI_POINTS; q++) {
+        dA[2 * q] = u[D * node[q] + 3];
+        dA[2 * q + 1] = u[D * node[q] + 4];
+        state += dA[2 * q] + dA[2 * q + 1];
+    }
+    for (int i = 0; i < 6; i++)
+        state += Fe[i];
+    if (!isfinite(state)) {
+        note_bad_sums(sums, e, 0, 2);
+        return;
+    }
+    if (mat->cell->evaluate_shared && !em->reference_path) {
+        int bad = 0;
+        int status = mat->cell->evaluate_shared(mat->params, Fe, 3, dA, third, gamma_f + 3 * e, dt,
+                                                P, R, &W, &Dis, &bad);
+        double sum = W + R[0] + R[1] + R[2] + R[3] + R[4] + R[5];
+        for (int i = 0; i < 6; i++)
+            sum += P[i];
+        if (status == WFF_POINT_OK && !isfinite(sum))
+            status = 2;
+        if (status != WFF_POINT_OK) {
+            note_bad_sums(sums, e, bad, status);
+            return;
+        }
+    } else {
+        for (int q = 0; q < WFF_TRI_POINTS; q++) {
+            wff_point_result r;
+            double *gf = gamma_f + 3 * e + q;
+            int status = point_ok(mat->cell->evaluate(mat->params, Fe, dA + 2 * q, *gf, dt, &r),
+                                  Fe, dA + 2 * q, &r);
+            if (status != WFF_POINT_OK) {
+                note_bad_sums(sums, e, q, status);
+                return;
+            }
+            *gf = r.gamma_f;
+            for (int i = 0; i < 6; i++)
+                P[i] += r.stress[i] / 3;
+            R[2 * q] = r.residual[0];
+            R[2 * q + 1] = r.residual[1];
+            W += r.energy / 3;
+            Dis += r.dissipated / 3;
+        }
+    }
+    tri_scatter(el, em, e, P, R, mat->cell->n_amplitudes, f);
+    sums->energy += el->tri_area[e] * W;
+    sums->dissipated += el->tri_area[e] * Dis;
+}
+
+/* n (≤ WFF_BLOCK) triangles from e0 through the cell's blocked kernel.
+ * Returns -1 if the cell declines these parameters (nothing done). Lanes past
+ * n repeat the last element (a valid state whose results are dropped). */
+static int tri_block_forces(const wff_elements *el, const wff_element_material *em,
+                            const double *X, const double *u, double *gamma_f, double dt,
+                            double *f, int e0, int n, tri_sums *sums)
+{
+    const wff_material *mat = em->mat;
+    wff_tri_block blk;
+    blk.n = n;
+    int finite[WFF_BLOCK];
+    for (int j = 0; j < WFF_BLOCK; j++) {
+        int e = e0 + (j < n ? j : n - 1);
+        const int *node = el->tri + 3 * e;
+        double F[6], Fe[6], state = 0;
+        deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
+        preload_apply(em, F, Fe);
+        for (int i = 0; i < 6; i++) {
+            blk.F[i][j] = Fe[i];
+            state += Fe[i];
+        }
+        for (int q = 0; q < 3; q++) {
+            blk.dA[q][0][j] = u[D * node[q] + 3];
+            blk.dA[q][1][j] = u[D * node[q] + 4];
+            blk.gamma_f[q][j] = gamma_f[3 * e + q];
+            state += blk.dA[q][0][j] + blk.dA[q][1][j];
+        }
+        finite[j] = isfinite(state);
+    }
+    if (mat->cell->evaluate_tri_block(mat->params, dt, &blk) != 0)
+        return -1;
+    for (int j = 0; j < n; j++) {
+        int e = e0 + j;
+        double P[6], R[6], sum = blk.energy[j];
+        for (int i = 0; i < 6; i++)
+            sum += (P[i] = blk.stress[i][j]);
+        for (int q = 0; q < 3; q++)
+            for (int k = 0; k < 2; k++)
+                sum += (R[2 * q + k] = blk.residual[q][k][j]);
+        if (!finite[j] || blk.degenerate[j] || !isfinite(sum)) {
+            note_bad_sums(sums, e, 0, !finite[j] || !blk.degenerate[j] ? 2 : WFF_POINT_DEGENERATE);
+            continue;
+        }
+        for (int q = 0; q < 3; q++)
+            gamma_f[3 * e + q] = blk.gamma_f[q][j];
+        tri_scatter(el, em, e, P, R, mat->cell->n_amplitudes, f);
+        sums->energy += el->tri_area[e] * blk.energy[j];
+        sums->dissipated += el->tri_area[e] * blk.dissipated[j];
+    }
+    return 0;
 }
 
 void wff_elements_forces(const wff_elements *el, const wff_element_material *em, const double *X,
@@ -189,71 +373,49 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
     totals->bad_status = 0;
     double energy = 0, dissipated = 0;
 
-    const int fast = mat->cell->evaluate_shared && !em->reference_path;
-    static const double third[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
-    for (int e = 0; e < el->n_tris; e++) {
-        const int *node = el->tri + 3 * e;
-        const double *grad = el->tri_grad + 6 * e;
-        double F[6], Fe[6], Pm[6] = {0, 0, 0, 0, 0, 0};
-        deformation_gradient(X, u, node, 3, grad, F);
-        preload_apply(em, F, Fe);
-        double w = el->tri_area[e] / 3;
-        if (fast) {
-            /* one F for the three nodal points: the cell's shared-kinematics path */
-            double dA[6], P[6] = {0, 0, 0, 0, 0, 0}, R[6] = {0, 0, 0, 0, 0, 0}, W = 0, Dis = 0;
-            double state = 0;
-            for (int q = 0; q < WFF_TRI_POINTS; q++) {
-                dA[2 * q] = u[D * node[q] + 3];
-                dA[2 * q + 1] = u[D * node[q] + 4];
-                state += dA[2 * q] + dA[2 * q + 1];
-            }
-            for (int i = 0; i < 6; i++)
-                state += Fe[i];
-            int bad = 0, status = isfinite(state)
-                                      ? mat->cell->evaluate_shared(mat->params, Fe, 3, dA,
-                                                                   third, gamma_f + 3 * e, dt, P,
-                                                                   R, &W, &Dis, &bad)
-                                      : 2;
-            double sum = W + R[0] + R[1] + R[2] + R[3] + R[4] + R[5];
-            for (int i = 0; i < 6; i++)
-                sum += P[i];
-            if (status == WFF_POINT_OK && !isfinite(sum))
-                status = 2;
-            if (status != WFF_POINT_OK) {
-                note_bad(totals, e, bad, status);
-                continue;
-            }
-            preload_pull_add(em, P, 1.0, Pm);
-            for (int q = 0; q < WFF_TRI_POINTS; q++)
-                for (int k = 0; k < amplitudes; k++)
-                    f[D * node[q] + 3 + k] += w * R[2 * q + k] / em->J_pre;
-            energy += el->tri_area[e] * W;
-            dissipated += el->tri_area[e] * Dis;
+    /* small meshes are not worth a thread team */
+    int threads = el->n_threads > 1 && el->n_tris >= 64 * WFF_BLOCK ? el->n_threads : 1;
+    double part_energy[WFF_MAX_THREADS] = {0}, part_dissipated[WFF_MAX_THREADS] = {0};
+    wff_force_totals part_bad[WFF_MAX_THREADS];
+    for (int t = 0; t < threads; t++)
+        part_bad[t].bad_element = -1;
+    const int use_block = mat->cell->evaluate_tri_block && !em->reference_path;
+    const int n_blocks = (el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    {
+        int t = omp_thread();
+        double *ft = t == 0 ? f : el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
+        if (t > 0)
+            memset(ft, 0, sizeof(double) * (size_t)el->n_dofs);
+        tri_sums sums = {0, 0, {0, 0, -1, -1, 0}};
+#pragma omp for schedule(static)
+        for (int blk = 0; blk < n_blocks; blk++) {
+            int e0 = blk * WFF_BLOCK;
+            int n = el->n_tris - e0 < WFF_BLOCK ? el->n_tris - e0 : WFF_BLOCK;
+            if (!use_block || tri_block_forces(el, em, X, u, gamma_f, dt, ft, e0, n, &sums) != 0)
+                for (int e = e0; e < e0 + n; e++)
+                    tri_forces(el, em, X, u, gamma_f, dt, ft, e, &sums);
         }
-        for (int q = 0; q < WFF_TRI_POINTS && !fast; q++) {
-            const double *ua = u + D * node[q];
-            double dA[2] = {ua[3], ua[4]};
-            wff_point_result r;
-            double *gf = gamma_f + 3 * e + q;
-            int status = point_ok(mat->cell->evaluate(mat->params, Fe, dA, *gf, dt, &r), Fe, dA, &r);
-            if (status != WFF_POINT_OK) {
-                note_bad(totals, e, q, status);
-                continue;
-            }
-            *gf = r.gamma_f;
-            preload_pull_add(em, r.stress, 1.0 / 3.0, Pm);
-            for (int k = 0; k < amplitudes; k++)
-                f[D * node[q] + 3 + k] += w * r.residual[k] / em->J_pre;
-            energy += w * r.energy;
-            dissipated += w * r.dissipated;
-        }
-        double area = el->tri_area[e];
-        for (int b = 0; b < 3; b++) {
-            double *fb = f + D * node[b];
-            for (int i = 0; i < 3; i++)
-                fb[i] -= area * (Pm[2 * i] * grad[2 * b] + Pm[2 * i + 1] * grad[2 * b + 1]);
+        part_energy[t] = sums.energy;
+        part_dissipated[t] = sums.dissipated;
+        part_bad[t] = sums.bad;
+    }
+    for (int t = 0; t < threads; t++) { /* in thread order: the same sums every run */
+        energy += part_energy[t];
+        dissipated += part_dissipated[t];
+        if (part_bad[t].bad_element >= 0 &&
+            (totals->bad_element < 0 || part_bad[t].bad_element < totals->bad_element)) {
+            totals->bad_element = part_bad[t].bad_element;
+            totals->bad_point = part_bad[t].bad_point;
+            totals->bad_status = part_bad[t].bad_status;
         }
     }
+    if (threads > 1)
+        for (int t = 1; t < threads; t++) {
+            const double *ft = el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
+            for (int i = 0; i < el->n_dofs; i++)
+                f[i] += ft[i];
+        }
 
     for (int e = 0; e < el->n_quads; e++) {
         const int *node = el->quad + 4 * e;

@@ -39,7 +39,14 @@ typedef struct wff_elements {
     double *quad_grad;    /* 32 per quad: point q, node a: dN_a/dX, dN_a/dY */
     double *quad_weight;  /* 4 per quad: Gauss weight × det J, m² */
     double *size;         /* characteristic length per element (tris, then quads), m */
+    int n_dofs;           /* 5 × nodes referenced */
+    int n_threads;        /* threads for the triangle force pass (OpenMP), >= 1 */
+    int max_threads;      /* threads the buffers were sized for */
+    double *thread_f;     /* (max_threads − 1) × n_dofs force buffers, one per extra thread */
 } wff_elements;
+
+/* Most threads a force pass uses. */
+#define WFF_MAX_THREADS 64
 
 /* Preload and material as the element sees them. */
 typedef struct wff_element_material {
@@ -64,6 +71,11 @@ typedef struct wff_force_totals {
 int wff_elements_init(wff_elements *el, const double *X, int n_tris, const int *tri,
                       int n_quads, const int *quad, wff_error *err);
 void wff_elements_free(wff_elements *el);
+
+/* Threads for the force pass (1 .. max_threads, where max_threads is
+ * OpenMP's maximum at init). Results are the same for a given count (sums in
+ * a fixed order) and agree to round-off between counts. */
+int wff_elements_set_threads(wff_elements *el, int n_threads, wff_error *err);
 
 /* Add internal forces of every element at displacement u (5 per node) into f,
  * update gamma_f (3 per tri then 4 per quad) with step dt (0: hold it). */
