@@ -132,7 +132,10 @@ int wff_model_set_projectile(wff_model *m, double radius, double mass, double ve
 
 /* Advance until time >= t_end (or max_steps). Stops with -1 and a message
  * naming what, where and when on NaN, a degenerate element, an unstable
- * step or a projectile that passes through the fabric. */
+ * step or a projectile that passes through the fabric. The instability check
+ * (every dtinterval steps: energy created > 50 % of the reference energy)
+ * names the element that sets the stable step and suggests a step and a
+ * dtfactor. */
 int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err);
 
 /* Sum of the reactions (−f_int, N, model part) on DOF `component` of the
@@ -149,6 +152,43 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
 
 /* Energies now (whole specimen: model part × symmetry_factor). */
 void wff_model_energies(const wff_model *m, wff_energies *out);
+
+/* Stored energy per mechanism of the cell (names: m->mat.cell->mech_names),
+ * whole specimen (× symmetry_factor), J, at the current state with γᶠ held.
+ * Fills out[0 .. n_mech−1] (all zeros if the cell has no energy split) and
+ * returns n_mech (at most WFF_MECH_MAX). */
+int wff_model_energy_split(const wff_model *m, double *out);
+
+/* Move the projectile (set with wff_model_set_projectile) so that its nose
+ * tip is at z = tip (m; < 0: a stand-off in front of the fabric at z = 0).
+ * An error, naming the node, if a fabric node would be inside it. */
+int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
+
+/* Checkpoints. wff_model_save writes the whole evolving state (u, v, f, γᶠ,
+ * reactions, prescribed velocities, time, step, Δt, stable-step estimate,
+ * projectile state and contact candidates, energy accumulators, initial
+ * energies) to `path`, binary, atomically (path.tmp, fsync, rename):
+ *
+ *   header   magic "WFFSTATE", format version, byte-order mark, the model's
+ *            sizes (nodes, triangles, quads, quadrature points, candidates),
+ *            64-bit FNV-1a fingerprints of the mesh (coordinates and
+ *            connectivity), the material (cell and parameters), the lumped
+ *            masses (material and preload) and the boundary conditions
+ *            (DOF kinds, friction clamp), the solver settings (dtfactor,
+ *            dtinterval, symmetry, reference_path), the projectile's radius,
+ *            mass and friction;
+ *   payload  the state;
+ *   trailer  FNV-1a 64 checksum of everything before it.
+ *
+ * wff_model_load_state reads it into a model built the same way (same mesh,
+ * material, preload, boundary conditions, settings and projectile) and fails,
+ * saying which of these differs, otherwise; a truncated or altered file fails
+ * its checksum. Advancing after a load gives the same numbers, bit for bit, as
+ * the run that wrote the checkpoint. Same machine type only (native doubles,
+ * checked by the byte-order mark). */
+#define WFF_CHECKPOINT_VERSION 1
+int wff_model_save(const wff_model *m, const char *path, wff_error *err);
+int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 
 /* Node nearest (x, y) in the reference configuration. */
 int wff_model_nearest_node(const wff_model *m, double x, double y);

@@ -8,6 +8,12 @@
 //   wovenffState(md, st);                 // time, energies, projectile ... (see kStateNames)
 //   wovenffField(md, "uz", values);       // nodal values, P1 DOF order
 //   wovenffFree(md);
+// Failures stop the script with ExecError (exit 8) and "function: message";
+// a script that catches them (try { } catch (...) { }) reads the message with
+// wovenffLastError(md) (that model's last error) or wovenffLastError(-1) (the
+// last error of any function here, e.g. wovenffModel). Checkpoints:
+// wovenffSave(md, file) / wovenffLoadState(md, file) (solver.h: same mesh,
+// material, preload, BCs and settings required; bitwise continuation).
 // Models live in a table owned by this binding (FreeFEM passes no user data
 // to functions); the C core itself keeps no global state.
 #include "ff++.hpp"
@@ -15,6 +21,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <vector>
 
 extern "C" {
@@ -32,20 +39,44 @@ std::vector<wff_model *> &models()
     return table;
 }
 
+// The last error message of each model (same index as models()), and of any
+// function of this file: wovenffLastError reads them after a script's
+// try/catch caught the ExecError.
+std::vector<std::string> &model_errors()
+{
+    static std::vector<std::string> table;
+    return table;
+}
+
+std::string &last_error()
+{
+    static std::string message;
+    return message;
+}
+
+[[noreturn]] void fail_message(const std::string &msg, long id = -1)
+{
+    last_error() = msg;
+    if (id >= 0 && id < (long)model_errors().size())
+        model_errors()[id] = msg;
+    ExecError(msg.c_str());
+    std::abort(); // not reached: ExecError throws
+}
+
 wff_model *model_of(long id, const char *fn)
 {
     if (id < 0 || id >= (long)models().size() || !models()[id]) {
         char msg[200];
         snprintf(msg, sizeof msg, "%s: %ld is not a live wovenff model handle", fn, id);
-        ExecError(msg);
+        fail_message(msg);
     }
     return models()[id];
 }
 
-void fail(const char *fn, const wff_error &err)
+// ExecError("fn: message"), remembered as the last error (of model id if >= 0).
+[[noreturn]] void fail(const char *fn, const wff_error &err, long id = -1)
 {
-    std::string msg = std::string(fn) + ": " + err.message;
-    ExecError(msg.c_str());
+    fail_message(std::string(fn) + ": " + err.message, id);
 }
 
 // state vector layout, also printed by wovenffStateNames
@@ -65,12 +96,13 @@ long ffModel(string *const &meshFile, string *const &materialFile, string *const
         fail("wovenffModel", err);
     wff_model *m = (wff_model *)calloc(1, sizeof(wff_model));
     if (!m)
-        ExecError("wovenffModel: out of memory");
+        fail_message("wovenffModel: out of memory");
     if (wff_model_create(m, meshFile->c_str(), &opt, materialFile->c_str(), &err)) {
         free(m);
         fail("wovenffModel", err);
     }
     models().push_back(m);
+    model_errors().push_back(std::string());
     return (long)models().size() - 1;
 }
 
@@ -117,11 +149,12 @@ long ffSetPreload(const long &id, KN<double> *const &F, KN<double> *const &dA)
 {
     wff_model *m = model_of(id, "wovenffSetPreload");
     if (F->N() != 4 || dA->N() != 2)
-        ExecError("wovenffSetPreload: F_pre must have 4 entries (F11 F12 F21 F22) and dA0 2");
+        fail_message("wovenffSetPreload: F_pre must have 4 entries (F11 F12 F21 F22) and dA0 2",
+                     id);
     double Fp[4] = {(*F)[0], (*F)[1], (*F)[2], (*F)[3]}, d[2] = {(*dA)[0], (*dA)[1]};
     wff_error err;
     if (wff_model_set_preload(m, Fp, d, &err))
-        fail("wovenffSetPreload", err);
+        fail("wovenffSetPreload", err, id);
     return 0;
 }
 
@@ -130,7 +163,7 @@ long ffFix(const long &id, string *const &group, const long &component)
     wff_error err;
     int n = wff_model_fix_group(model_of(id, "wovenffFix"), group->c_str(), (int)component, &err);
     if (n < 0)
-        fail("wovenffFix", err);
+        fail("wovenffFix", err, id);
     return n;
 }
 
@@ -141,7 +174,7 @@ long ffPrescribe(const long &id, string *const &group, const long &component,
     int n = wff_model_prescribe_group(model_of(id, "wovenffPrescribe"), group->c_str(),
                                       (int)component, velocity, &err);
     if (n < 0)
-        fail("wovenffPrescribe", err);
+        fail("wovenffPrescribe", err, id);
     return n;
 }
 
@@ -151,7 +184,7 @@ long ffClampFriction(const long &id, string *const &group, const double &force, 
     int n = wff_model_clamp_friction(model_of(id, "wovenffClampFriction"), group->c_str(), force,
                                      mu, &err);
     if (n < 0)
-        fail("wovenffClampFriction", err);
+        fail("wovenffClampFriction", err, id);
     return n;
 }
 
@@ -161,7 +194,7 @@ long ffProjectile(const long &id, const double &radius, const double &mass,
     wff_error err;
     if (wff_model_set_projectile(model_of(id, "wovenffProjectile"), radius, mass, velocity, mu,
                                  &err))
-        fail("wovenffProjectile", err);
+        fail("wovenffProjectile", err, id);
     return 0;
 }
 
@@ -170,7 +203,7 @@ long ffSet(const long &id, string *const &key, const double &value)
     wff_model *m = model_of(id, "wovenffSet");
     wff_error err;
     if (wff_model_set_option(m, key->c_str(), value, &err))
-        fail("wovenffSet", err);
+        fail("wovenffSet", err, id);
     return 0;
 }
 
@@ -179,7 +212,7 @@ long ffAdvance(const long &id, const double &t_end)
     wff_model *m = model_of(id, "wovenffAdvance");
     wff_error err;
     if (wff_model_advance(m, t_end, 2000000000L, &err))
-        fail("wovenffAdvance", err);
+        fail("wovenffAdvance", err, id);
     return m->step;
 }
 
@@ -218,7 +251,7 @@ long ffField(const long &id, string *const &name, KN<double> *const &out)
     out->resize(m->n_nodes);
     wff_error err;
     if (wff_model_nodal_field(m, name->c_str(), &(*out)[0], &err))
-        fail("wovenffField", err);
+        fail("wovenffField", err, id);
     return m->n_nodes;
 }
 
@@ -234,10 +267,64 @@ long ffReaction(const long &id, string *const &group, const long &component, KN<
     wff_error err;
     int n = wff_model_group_reaction(m, group->c_str(), (int)component, &sum, &err);
     if (n < 0)
-        fail("wovenffReaction", err);
+        fail("wovenffReaction", err, id);
     out->resize(1);
     (*out)[0] = sum;
     return n;
+}
+
+long ffProjectileTip(const long &id, const double &tip)
+{
+    wff_error err;
+    if (wff_model_place_projectile(model_of(id, "wovenffProjectileTip"), tip, &err))
+        fail("wovenffProjectileTip", err, id);
+    return 0;
+}
+
+long ffSave(const long &id, string *const &path)
+{
+    wff_error err;
+    if (wff_model_save(model_of(id, "wovenffSave"), path->c_str(), &err))
+        fail("wovenffSave", err, id);
+    return 0;
+}
+
+long ffLoadState(const long &id, string *const &path)
+{
+    wff_model *m = model_of(id, "wovenffLoadState");
+    wff_error err;
+    if (wff_model_load_state(m, path->c_str(), &err))
+        fail("wovenffLoadState", err, id);
+    return m->step;
+}
+
+long ffEnergySplit(const long &id, KN<double> *const &out)
+{
+    const wff_model *m = model_of(id, "wovenffEnergySplit");
+    double mech[WFF_MECH_MAX];
+    int n = wff_model_energy_split(m, mech);
+    out->resize(n > 0 ? n : 0);
+    for (int k = 0; k < n; k++)
+        (*out)[k] = mech[k];
+    return n;
+}
+
+string *ffMechNames(Stack stack, const long &id)
+{
+    const wff_model *m = model_of(id, "wovenffMechNames");
+    const wff_cell_type *cell = m->mat.cell;
+    std::string names;
+    for (int k = 0; k < cell->n_mech && k < WFF_MECH_MAX; k++)
+        names += std::string(k ? " " : "") + cell->mech_names[k];
+    return Add2StackOfPtr2Free(stack, new string(names));
+}
+
+string *ffLastError(Stack stack, const long &id)
+{
+    std::string msg = last_error();
+    if (id >= 0 && id < (long)model_errors().size())
+        msg = model_errors()[id];
+    return Add2StackOfPtr2Free(stack, new string(msg));
 }
 
 } // namespace
@@ -267,4 +354,12 @@ void wff_ff_register_solver()
                new OneOperator3_<long, long, double, double>(ffNearestNode));
     Global.Add("wovenffReaction", "(",
                new OneOperator4_<long, long, string *, long, KN<double> *>(ffReaction));
+    Global.Add("wovenffProjectileTip", "(",
+               new OneOperator2_<long, long, double>(ffProjectileTip));
+    Global.Add("wovenffSave", "(", new OneOperator2_<long, long, string *>(ffSave));
+    Global.Add("wovenffLoadState", "(", new OneOperator2_<long, long, string *>(ffLoadState));
+    Global.Add("wovenffEnergySplit", "(",
+               new OneOperator2_<long, long, KN<double> *>(ffEnergySplit));
+    Global.Add("wovenffMechNames", "(", new OneOperator1s_<string *, long>(ffMechNames));
+    Global.Add("wovenffLastError", "(", new OneOperator1s_<string *, long>(ffLastError));
 }
