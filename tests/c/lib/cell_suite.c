@@ -235,9 +235,61 @@ void cell_suite_run(check_state *st, const cell_case *c)
         CHECK(st, worst_fast <= 1e-11, "%s: fast path differs from evaluate by %.3g",
               c->material, worst_fast);
     }
+    /* the optional blocked path too, lane by lane (or it declines the parameters) */
+    double worst_block = 0;
+    int block_used = 0;
+    if (cell->evaluate_tri_block) {
+        for (int s = 0; s < N_STATES / WFF_BLOCK; s++) {
+            wff_tri_block blk;
+            double gf0[3][WFF_BLOCK], dt = s % 2 ? 2e-7 : 0;
+            blk.n = WFF_BLOCK;
+            for (int j = 0; j < WFF_BLOCK; j++) {
+                double F[6], dA[2], gf;
+                random_state(&r, c, F, dA, &gf);
+                for (int i = 0; i < 6; i++)
+                    blk.F[i][j] = F[i];
+                for (int q = 0; q < 3; q++) {
+                    random_state(&r, c, (double[6]){0}, dA, &gf);
+                    blk.dA[q][0][j] = dA[0];
+                    blk.dA[q][1][j] = dA[1];
+                    blk.gamma_f[q][j] = gf0[q][j] = gf;
+                }
+            }
+            if (cell->evaluate_tri_block(mat.params, dt, &blk) != 0)
+                break;
+            block_used = 1;
+            for (int j = 0; j < WFF_BLOCK; j++) {
+                double F[6], P[6] = {0}, W = 0, Dis = 0, e = 0;
+                for (int i = 0; i < 6; i++)
+                    F[i] = blk.F[i][j];
+                CHECK(st, !blk.degenerate[j], "block lane %d flagged degenerate", j);
+                for (int q = 0; q < 3; q++) {
+                    double dA[2] = {blk.dA[q][0][j], blk.dA[q][1][j]};
+                    wff_material_evaluate(&mat, F, dA, gf0[q][j], dt, &out);
+                    for (int i = 0; i < 6; i++)
+                        P[i] += out.stress[i] / 3;
+                    W += out.energy / 3;
+                    Dis += out.dissipated / 3;
+                    for (int k = 0; k < cell->n_amplitudes; k++)
+                        e = fmax(e, fabs(blk.residual[q][k][j] - out.residual[k]) /
+                                        fmax(fabs(out.residual[k]), 1e-6 * residual_scale));
+                    e = fmax(e, fabs(blk.gamma_f[q][j] - out.gamma_f) / fmax(fabs(out.gamma_f), 1e-3));
+                }
+                double sP = fmax(max_abs(P, 6), 1e-6 * stress_scale);
+                for (int i = 0; i < 6; i++)
+                    e = fmax(e, fabs(blk.stress[i][j] - P[i]) / sP);
+                e = fmax(e, fabs(blk.energy[j] - W) / fmax(fabs(W), 1e-300));
+                e = fmax(e, fabs(blk.dissipated[j] - Dis) / fmax(fabs(W), 1e-300));
+                worst_block = fmax(worst_block, e);
+            }
+        }
+        CHECK(st, worst_block <= 1e-11, "%s: blocked path differs from evaluate by %.3g",
+              c->material, worst_block);
+    }
     printf("  %-48s FD stress %.1e, FD residual %.1e, objectivity %.1e, swap %.1e, split %.1e, "
-           "fast path %.1e\n", c->material, worst_P, worst_R, worst_obj, worst_swap, worst_split,
-           worst_fast);
+           "fast path %.1e, blocked %s%.1e\n", c->material, worst_P, worst_R, worst_obj,
+           worst_swap, worst_split, worst_fast,
+           !cell->evaluate_tri_block ? "(none) " : block_used ? "" : "(declined) ", worst_block);
     if (c->energy_exact) {
         CHECK(st, worst_P <= 1e-6, "%s: P vs dW/dF relative error %.3g", c->material, worst_P);
         CHECK(st, worst_R <= 1e-6, "%s: R vs -dW/ddA relative error %.3g", c->material, worst_R);
