@@ -24,13 +24,14 @@ typedef struct problem {
     double target[2];
     int n_unknown_stretch;
     int stretch_index[2]; /* which direction each unknown stretch is */
+    int na;               /* amplitude unknowns: 2, or 0 for a cell without amplitudes */
 } problem;
 
 static void unpack(const problem *pb, const gsl_vector *x, double F[6], double dA[2],
                    double stretch[2])
 {
-    dA[0] = gsl_vector_get(x, 0) * AMPLITUDE_SCALE;
-    dA[1] = gsl_vector_get(x, 1) * AMPLITUDE_SCALE;
+    dA[0] = pb->na ? gsl_vector_get(x, 0) * AMPLITUDE_SCALE : 0;
+    dA[1] = pb->na ? gsl_vector_get(x, 1) * AMPLITUDE_SCALE : 0;
     if (!pb->biaxial) {
         memcpy(F, pb->F, sizeof pb->F);
         return;
@@ -38,7 +39,7 @@ static void unpack(const problem *pb, const gsl_vector *x, double F[6], double d
     for (int k = 0; k < 2; k++)
         stretch[k] = pb->hold[k] == WFF_HOLD_STRETCH ? pb->target[k] : 1;
     for (int u = 0; u < pb->n_unknown_stretch; u++)
-        stretch[pb->stretch_index[u]] = 1 + gsl_vector_get(x, 2 + u);
+        stretch[pb->stretch_index[u]] = 1 + gsl_vector_get(x, (size_t)(pb->na + u));
     double f[6] = {stretch[0], 0, 0, stretch[1], 0, 0};
     memcpy(F, f, sizeof f);
 }
@@ -52,8 +53,10 @@ static int equations(const gsl_vector *x, void *data, gsl_vector *out)
     if (wff_material_evaluate(pb->mat, F, dA, pb->gamma_f, 0, &r) != WFF_POINT_OK)
         return GSL_EDOM;
     double cell = pb->mat->yarn_spacing[0] * pb->mat->yarn_spacing[1];
-    gsl_vector_set(out, 0, r.residual[0] * cell);
-    gsl_vector_set(out, 1, r.residual[1] * cell);
+    if (pb->na) {
+        gsl_vector_set(out, 0, r.residual[0] * cell);
+        gsl_vector_set(out, 1, r.residual[1] * cell);
+    }
     for (int u = 0; u < pb->n_unknown_stretch; u++) {
         int k = pb->stretch_index[u];
         double value;
@@ -61,7 +64,7 @@ static int equations(const gsl_vector *x, void *data, gsl_vector *out)
             value = (r.stress[k == 0 ? 0 : 3] - pb->target[k]) * pb->mat->yarn_spacing[k];
         else
             value = r.diag[pb->mat->cell->yarn_tension_diag[k]] - pb->target[k];
-        gsl_vector_set(out, 2 + u, value);
+        gsl_vector_set(out, (size_t)(pb->na + u), value);
     }
     for (size_t i = 0; i < out->size; i++)
         if (!isfinite(gsl_vector_get(out, i)))
@@ -113,7 +116,7 @@ int wff_balance_amplitudes(const wff_material *mat, const double F[6], double ga
         dA[0] = dA[1] = 0;
         return 0;
     }
-    problem pb = {.mat = mat, .gamma_f = gamma_f};
+    problem pb = {.mat = mat, .gamma_f = gamma_f, .na = 2};
     memcpy(pb.F, F, sizeof pb.F);
     gsl_vector *x = gsl_vector_alloc(2);
     gsl_vector_set(x, 0, dA[0] / AMPLITUDE_SCALE);
@@ -140,13 +143,27 @@ int wff_biaxial_static(const wff_material *mat, const wff_hold hold[2], const do
         if (hold[k] != WFF_HOLD_STRETCH)
             pb.stretch_index[pb.n_unknown_stretch++] = k;
     }
-    int amplitudes = mat->cell->n_amplitudes > 0;
-    size_t n = 2 + (size_t)pb.n_unknown_stretch;
+    pb.na = mat->cell->n_amplitudes > 0 ? 2 : 0;
+    size_t n = (size_t)(pb.na + pb.n_unknown_stretch);
+    if (n == 0) { /* everything held: nothing to solve */
+        double F[6] = {target[0], 0, 0, target[1], 0, 0};
+        state->stretch[0] = target[0];
+        state->stretch[1] = target[1];
+        state->dA[0] = state->dA[1] = 0;
+        if (wff_material_evaluate(mat, F, state->dA, gamma_f, 0, &state->point) != WFF_POINT_OK)
+            return wff_fail(err, "biaxial static state: degenerate at stretch (%g, %g)",
+                            target[0], target[1]);
+        state->resultant[0] = state->point.stress[0];
+        state->resultant[1] = state->point.stress[3];
+        return 0;
+    }
     gsl_vector *x = gsl_vector_alloc(n);
-    gsl_vector_set(x, 0, amplitudes ? state->dA[0] / AMPLITUDE_SCALE : 0);
-    gsl_vector_set(x, 1, amplitudes ? state->dA[1] / AMPLITUDE_SCALE : 0);
+    if (pb.na) {
+        gsl_vector_set(x, 0, state->dA[0] / AMPLITUDE_SCALE);
+        gsl_vector_set(x, 1, state->dA[1] / AMPLITUDE_SCALE);
+    }
     for (int u = 0; u < pb.n_unknown_stretch; u++)
-        gsl_vector_set(x, 2 + u, state->stretch[pb.stretch_index[u]] - 1);
+        gsl_vector_set(x, (size_t)(pb.na + u), state->stretch[pb.stretch_index[u]] - 1);
     int rc = solve(&pb, x, err, "biaxial static state");
     if (rc == 0) {
         double F[6];

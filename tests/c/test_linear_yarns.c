@@ -247,6 +247,23 @@ static void check_errors(check_state *st)
     expect_error(st, text, "king_plain key", "bad.txt:8: unknown key 'k_1'", "linear_yarns");
 }
 
+/* Equal-force preload of a cell without amplitudes: only the stretches are
+ * unknown, λ_k = 1 + T/(S_k × spacing_k). */
+static void check_preload(check_state *st)
+{
+    wff_material m;
+    wff_error e;
+    int rc = wff_material_load("freefem_scripts/materials/kevlar_linear.txt", &m, &e);
+    CHECK(st, rc == 0, "%s", e.message);
+    wff_biaxial_state s = {.stretch = {1, 1}};
+    rc = wff_preload_equal_force(&m, 1.0, &s, &e);
+    CHECK(st, rc == 0, "preload without amplitudes: %s", rc ? e.message : "");
+    for (int k = 0; k < 2; k++) {
+        double S = m.yarn_spacing[k] > 0 ? 1.0 / (s.stretch[k] - 1) / m.yarn_spacing[k] : 0;
+        CHECK_CLOSE(st, S, 5.15e6, 1e-9, 0, "S_k recovered from the preload stretch");
+    }
+}
+
 int main(void)
 {
     check_state st = {0, 0};
@@ -258,5 +275,6 @@ int main(void)
     check_ignored_state(&st);
     check_uniaxial_static(&st);
     check_errors(&st);
+    check_preload(&st);
     return check_summary(&st, "test_linear_yarns");
 }
