@@ -138,6 +138,8 @@ void wff_elements_free(wff_elements *el)
     free(el->quad_weight);
     free(el->size);
     free(el->thread_f);
+    free(el->point_dA);
+    el->point_dA = NULL;
     el->tri_grad = el->tri_area = el->quad_grad = el->quad_weight = el->size = NULL;
     el->thread_f = NULL;
 }
@@ -361,6 +363,84 @@ static int tri_block_forces(const wff_elements *el, const wff_element_material *
     return 0;
 }
 
+/* Quasi-static amplitudes at one point: Newton on R(F, ΔA) = 0 with a
+ * finite-difference Jacobian (γᶠ held), from the point's last ΔA; then the
+ * evaluation with the step dt. Falls back to the last ΔA if Newton fails to
+ * reduce the residual (the point is then reported by its result). */
+static int static_point(const wff_material *mat, const double Fe[6], double dA[2], double gf,
+                        double dt, wff_point_result *out)
+{
+    const double h = 1e-9; /* m: amplitudes are ~1e-5 m */
+    for (int it = 0; it < 12; it++) {
+        wff_point_result r0, r1, r2;
+        if (mat->cell->evaluate(mat->params, Fe, dA, gf, 0, &r0) != WFF_POINT_OK)
+            break;
+        double d1[2] = {dA[0] + h, dA[1]}, d2[2] = {dA[0], dA[1] + h};
+        mat->cell->evaluate(mat->params, Fe, d1, gf, 0, &r1);
+        mat->cell->evaluate(mat->params, Fe, d2, gf, 0, &r2);
+        double j11 = (r1.residual[0] - r0.residual[0]) / h, j21 = (r1.residual[1] - r0.residual[1]) / h;
+        double j12 = (r2.residual[0] - r0.residual[0]) / h, j22 = (r2.residual[1] - r0.residual[1]) / h;
+        double det = j11 * j22 - j12 * j21;
+        if (!(fabs(det) > 0) || !isfinite(det))
+            break;
+        double s0 = (-r0.residual[0] * j22 + r0.residual[1] * j12) / det;
+        double s1 = (-r0.residual[1] * j11 + r0.residual[0] * j21) / det;
+        /* limit a step to 10 µm: the compaction exponential is steep */
+        double big = fmax(fabs(s0), fabs(s1)), scale = big > 1e-5 ? 1e-5 / big : 1;
+        dA[0] += scale * s0;
+        dA[1] += scale * s1;
+        if (big < 1e-13)
+            break;
+    }
+    return mat->cell->evaluate(mat->params, Fe, dA, gf, dt, out);
+}
+
+int wff_elements_static_amplitudes(wff_elements *el, wff_element_material *em,
+                                   const double dA0[2], wff_error *err)
+{
+    size_t n = (size_t)(WFF_TRI_POINTS * el->n_tris + WFF_QUAD_POINTS * el->n_quads);
+    if (!el->point_dA) {
+        el->point_dA = malloc(2 * sizeof(double) * (n ? n : 1));
+        if (!el->point_dA)
+            return wff_fail(err, "out of memory for static amplitudes at %zu points", n);
+    }
+    for (size_t i = 0; i < n; i++) {
+        el->point_dA[2 * i] = dA0[0];
+        el->point_dA[2 * i + 1] = dA0[1];
+    }
+    em->static_amplitudes = 1;
+    return 0;
+}
+
+/* One triangle with quasi-static amplitudes at its three points. */
+static void tri_forces_static(const wff_elements *el, const wff_element_material *em,
+                              const double *X, const double *u, double *gamma_f, double dt,
+                              double *f, int e, tri_sums *sums)
+{
+    const wff_material *mat = em->mat;
+    const int *node = el->tri + 3 * e;
+    double F[6], Fe[6], P[6] = {0, 0, 0, 0, 0, 0}, R[6] = {0, 0, 0, 0, 0, 0}, W = 0, Dis = 0;
+    deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
+    preload_apply(em, F, Fe);
+    for (int q = 0; q < WFF_TRI_POINTS; q++) {
+        double *dA = el->point_dA + 6 * e + 2 * q;
+        wff_point_result r;
+        int status = point_ok(static_point(mat, Fe, dA, gamma_f[3 * e + q], dt, &r), Fe, dA, &r);
+        if (status != WFF_POINT_OK) {
+            note_bad_sums(sums, e, q, status);
+            return;
+        }
+        gamma_f[3 * e + q] = r.gamma_f;
+        for (int i = 0; i < 6; i++)
+            P[i] += r.stress[i] / 3;
+        W += r.energy / 3;
+        Dis += r.dissipated / 3;
+    }
+    tri_scatter(el, em, e, P, R, 0, f); /* no amplitude forces: balanced at the points */
+    sums->energy += el->tri_area[e] * W;
+    sums->dissipated += el->tri_area[e] * Dis;
+}
+
 void wff_elements_forces(const wff_elements *el, const wff_element_material *em, const double *X,
                          const double *u, double *gamma_f, double dt, double *f,
                          wff_force_totals *totals)
@@ -392,7 +472,11 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
         for (int blk = 0; blk < n_blocks; blk++) {
             int e0 = blk * WFF_BLOCK;
             int n = el->n_tris - e0 < WFF_BLOCK ? el->n_tris - e0 : WFF_BLOCK;
-            if (!use_block || tri_block_forces(el, em, X, u, gamma_f, dt, ft, e0, n, &sums) != 0)
+            if (em->static_amplitudes)
+                for (int e = e0; e < e0 + n; e++)
+                    tri_forces_static(el, em, X, u, gamma_f, dt, ft, e, &sums);
+            else if (!use_block ||
+                     tri_block_forces(el, em, X, u, gamma_f, dt, ft, e0, n, &sums) != 0)
                 for (int e = e0; e < e0 + n; e++)
                     tri_forces(el, em, X, u, gamma_f, dt, ft, e, &sums);
         }
@@ -433,7 +517,16 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
             preload_apply(em, F, Fe);
             wff_point_result r;
             double *gf = gamma_f + 3 * el->n_tris + 4 * e + q;
-            int status = point_ok(mat->cell->evaluate(mat->params, Fe, dA, *gf, dt, &r), Fe, dA, &r);
+            int point_amplitudes = amplitudes;
+            double *pdA = dA;
+            if (em->static_amplitudes) { /* the point's own balanced amplitudes */
+                pdA = el->point_dA + 6 * el->n_tris + 8 * e + 2 * q;
+                point_amplitudes = 0;
+            }
+            int status = point_ok(em->static_amplitudes
+                                      ? static_point(mat, Fe, pdA, *gf, dt, &r)
+                                      : mat->cell->evaluate(mat->params, Fe, dA, *gf, dt, &r),
+                                  Fe, pdA, &r);
             if (status != WFF_POINT_OK) {
                 note_bad(totals, id, q, status);
                 continue;
@@ -445,7 +538,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
                 double *fb = f + D * node[b];
                 for (int i = 0; i < 3; i++)
                     fb[i] -= w * (Pm[2 * i] * grad[2 * b] + Pm[2 * i + 1] * grad[2 * b + 1]);
-                for (int k = 0; k < amplitudes; k++)
+                for (int k = 0; k < point_amplitudes; k++)
                     fb[3 + k] += w * N[b] * r.residual[k] / em->J_pre;
             }
             energy += w * r.energy;
@@ -504,6 +597,7 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
 void wff_elements_masses(const wff_elements *el, const wff_element_material *em, int n_nodes,
                          double *mass)
 {
+    double amplitude_factor = em->amplitude_mass_factor > 0 ? em->amplitude_mass_factor : 1;
     memset(mass, 0, sizeof(double) * D * (size_t)n_nodes);
     double density = em->mat->areal_density / em->J_pre;
     for (int e = 0; e < el->n_tris; e++)
@@ -519,7 +613,7 @@ void wff_elements_masses(const wff_elements *el, const wff_element_material *em,
     for (int n = 0; n < n_nodes; n++) {
         double m = mass[D * n];
         mass[D * n + 1] = mass[D * n + 2] = m;
-        mass[D * n + 3] = mass[D * n + 4] = m / 6; /* eq. 12 */
+        mass[D * n + 3] = mass[D * n + 4] = m / 6 * amplitude_factor; /* eq. 12 */
     }
 }
 
@@ -566,6 +660,7 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
                                 const double *X, const double *u, int *worst)
 {
     const wff_material *mat = em->mat;
+    double amplitude_factor = em->amplitude_mass_factor > 0 ? em->amplitude_mass_factor : 1;
     double best = INFINITY;
     int n = el->n_tris + el->n_quads;
     *worst = -1;
@@ -575,8 +670,8 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
         preload_apply(em, F, Fe);
         mat->cell->wave_speeds(mat->params, mat->areal_density, Fe, dA, &speed, &omega);
         double dt = el->size[e] / speed;
-        if (omega > 0)
-            dt = fmin(dt, 2 / omega);
+        if (omega > 0 && !em->static_amplitudes)
+            dt = fmin(dt, 2 / omega * sqrt(amplitude_factor));
         if (!(dt >= best)) { /* also catches NaN */
             best = dt;
             *worst = e;

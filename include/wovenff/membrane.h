@@ -43,6 +43,8 @@ typedef struct wff_elements {
     int n_threads;        /* threads for the triangle force pass (OpenMP), >= 1 */
     int max_threads;      /* threads the buffers were sized for */
     double *thread_f;     /* (max_threads − 1) × n_dofs force buffers, one per extra thread */
+    double *point_dA;     /* static amplitudes: 2 per quadrature point (6 per triangle,
+                             then 8 per quad), or NULL while amplitudes are dynamic */
 } wff_elements;
 
 /* Most threads a force pass uses. */
@@ -55,6 +57,12 @@ typedef struct wff_element_material {
     double J_pre;         /* det F_pre */
     int reference_path;   /* 1: always the cell's plain evaluate(), even where it offers
                              evaluate_shared (for checks and benchmarks) */
+    double amplitude_mass_factor; /* scales the amplitude masses (eq. 12's 1/6); 0 means 1.
+                             Larger is cheaper (the amplitude step limit grows as its
+                             square root) and less faithful to the amplitude inertia */
+    int static_amplitudes; /* 1: amplitudes in static balance at every quadrature point
+                             (King 2005) instead of dynamic nodal DOFs; see
+                             wff_elements_static_amplitudes */
 } wff_element_material;
 
 /* What one force pass sums (per mesh, J or J/step). */
@@ -82,6 +90,14 @@ int wff_elements_set_threads(wff_elements *el, int n_threads, wff_error *err);
 void wff_elements_forces(const wff_elements *el, const wff_element_material *em, const double *X,
                          const double *u, double *gamma_f, double dt, double *f,
                          wff_force_totals *totals);
+
+/* Switch to quasi-static amplitudes (King 2005): every quadrature point keeps
+ * its own ΔA, solved for R = 0 (Newton, 2×2) at each force pass, starting from
+ * the last solution; the nodal amplitude DOFs then get no force and the
+ * amplitude oscillator sets no step limit. dA0 is the first guess everywhere.
+ * Allocates once; -1 if out of memory. */
+int wff_elements_static_amplitudes(wff_elements *el, wff_element_material *em,
+                                   const double dA0[2], wff_error *err);
 
 /* Stored energy per mechanism summed over the mesh, J (model part), in the
  * order of the cell's mech_names (n_mech values into mech); all zeros if the

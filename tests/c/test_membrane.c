@@ -315,6 +315,84 @@ static void check_split_and_fast(check_state *st)
     split_and_fast_case(st, TEST_MESH_QUAD, "quads");
 }
 
+/* Amplitude knobs: (a) static amplitudes reproduce the balanced dynamic state
+ * under a uniform F and set no amplitude step limit; (b) the amplitude-mass
+ * factor scales the amplitude masses only, and the amplitude step limit by its
+ * square root. */
+static void check_amplitude_knobs(check_state *st)
+{
+    test_rect r = {0, 0.04, 0, 0.03, 6, 5, TEST_MESH_TRI, 1, 0.2, 99};
+    wff_model m;
+    wff_error err;
+    int rc = test_model_rect(&m, &r, KEVLAR, &err);
+    CHECK(st, rc == 0, "%s", err.message);
+    if (rc)
+        return;
+    const double F[6] = {1.012, 0.03, 0.0, 1.004, 0.0, 0.0};
+    double dA[2] = {0, 0};
+    rc = wff_balance_amplitudes(&m.mat, F, 0, dA, &err);
+    CHECK(st, rc == 0, "%s", err.message);
+    for (int n = 0; n < m.n_nodes; n++) {
+        double X = m.mesh.xy[2 * n], Y = m.mesh.xy[2 * n + 1];
+        m.u[D * n] = (F[0] - 1) * X + F[1] * Y;
+        m.u[D * n + 1] = F[2] * X + (F[3] - 1) * Y;
+        m.u[D * n + 3] = dA[0];
+        m.u[D * n + 4] = dA[1];
+    }
+    size_t nd = (size_t)m.n_dofs;
+    double *f_dyn = calloc(nd, sizeof(double)), *f_sta = calloc(nd, sizeof(double));
+    wff_force_totals t_dyn, t_sta;
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, 0, f_dyn, &t_dyn);
+    int worst_dyn;
+    double dt_dyn = wff_elements_stable_step(&m.el, &m.em, m.mesh.xy, m.u, &worst_dyn);
+    const double guess[2] = {0, 0};
+    rc = wff_elements_static_amplitudes(&m.el, &m.em, guess, &err);
+    CHECK(st, rc == 0, "%s", err.message);
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, 0, f_sta, &t_sta);
+    double scale = 0, diff = 0, amp = 0, point_err = 0;
+    for (size_t i = 0; i < nd; i++) {
+        scale = fmax(scale, fabs(f_dyn[i]));
+        if (i % D < 3)
+            diff = fmax(diff, fabs(f_sta[i] - f_dyn[i]));
+        else
+            amp = fmax(amp, fabs(f_sta[i]));
+    }
+    for (int q = 0; q < 3 * m.el.n_tris; q++)
+        for (int k = 0; k < 2; k++)
+            point_err = fmax(point_err, fabs(m.el.point_dA[2 * q + k] - dA[k]));
+    printf("  static amplitudes: points within %.2e m of the balance, forces differ by %.2e of %.3g\n",
+           point_err, diff / scale, scale);
+    CHECK(st, point_err < 1e-12, "static amplitudes solve the balance: %g m off", point_err);
+    CHECK(st, diff <= 1e-8 * scale, "static = balanced dynamic forces: %g of %g", diff, scale);
+    CHECK(st, amp == 0, "no amplitude forces in static mode: %g", amp);
+    CHECK_CLOSE(st, t_sta.internal_energy, t_dyn.internal_energy, 1e-9, 0, "static energy");
+    int worst_sta;
+    double dt_sta = wff_elements_stable_step(&m.el, &m.em, m.mesh.xy, m.u, &worst_sta);
+    CHECK(st, dt_sta > 1.5 * dt_dyn, "static amplitudes lift the amplitude step limit: %g vs %g",
+          dt_sta, dt_dyn);
+    m.em.static_amplitudes = 0;
+
+    /* mass factor */
+    double *before = malloc(sizeof(double) * nd);
+    memcpy(before, m.mass, sizeof(double) * nd);
+    m.em.amplitude_mass_factor = 4;
+    wff_elements_masses(&m.el, &m.em, m.n_nodes, m.mass);
+    int bad = 0;
+    for (size_t i = 0; i < nd; i++)
+        bad += i % D < 3 ? m.mass[i] != before[i] : fabs(m.mass[i] - 4 * before[i]) > 1e-15 * m.mass[i];
+    CHECK(st, bad == 0, "mass factor 4 scales only the amplitude masses (%d wrong)", bad);
+    int worst4;
+    double dt4 = wff_elements_stable_step(&m.el, &m.em, m.mesh.xy, m.u, &worst4);
+    printf("  stable step: dynamic %.3g s, static %.3g s, mass factor 4 %.3g s\n", dt_dyn, dt_sta,
+           dt4);
+    CHECK(st, dt4 > dt_dyn * 1.2 && dt4 <= 2.0000001 * dt_dyn,
+          "mass factor 4 raises the amplitude-limited step by at most 2: %g vs %g", dt4, dt_dyn);
+    free(before);
+    free(f_dyn);
+    free(f_sta);
+    wff_model_free(&m);
+}
+
 int main(void)
 {
     check_state st = {0, 0};
@@ -322,5 +400,6 @@ int main(void)
     check_masses(&st);
     check_degenerate(&st);
     check_split_and_fast(&st);
+    check_amplitude_knobs(&st);
     return check_summary(&st, "test_membrane");
 }
