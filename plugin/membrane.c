@@ -99,7 +99,8 @@ int wff_elements_init(wff_elements *el, const double *X, int n_tris, const int *
 #endif
     if (el->max_threads > WFF_MAX_THREADS)
         el->max_threads = WFF_MAX_THREADS;
-    el->n_threads = el->max_threads;
+    el->n_threads = 1; /* threads are asked for (wff_elements_set_threads): on a shared
+                          machine a busy second core makes a team slower than one */
     if (el->max_threads > 1) {
         el->thread_f = malloc(sizeof(double) * (size_t)(el->max_threads - 1) * (size_t)el->n_dofs);
         if (!el->thread_f) {

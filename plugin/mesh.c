@@ -17,6 +17,9 @@
 #include <unistd.h>
 
 #include <gmshc.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /* gmsh element types kept (see gmsh's MSH format documentation). */
 #define GMSH_LINE2 1
@@ -747,6 +750,10 @@ int wff_mesh_load(const char *path, const wff_mesh_options *options, wff_mesh *m
     b.err = err;
     wff_mesh m = {0};
     int ierr = 0, rc;
+#ifdef _OPENMP
+    /* gmsh sets OpenMP's thread count to its own General.NumThreads (1): restore it */
+    int saved_threads = omp_get_max_threads();
+#endif
     gmshInitialize(0, NULL, 0, &ierr);
     if (!ierr)
         gmshOptionSetNumber("General.Terminal", 0, &ierr);
@@ -769,6 +776,9 @@ int wff_mesh_load(const char *path, const wff_mesh_options *options, wff_mesh *m
     gmshLoggerStop(&ierr);
     gmshOnelabClear("", &ierr); /* our settings would outlive gmshFinalize */
     gmshFinalize(&ierr);
+#ifdef _OPENMP
+    omp_set_num_threads(saved_threads);
+#endif
     if (saved_locale) {
         setlocale(LC_ALL, saved_locale);
         free(saved_locale);

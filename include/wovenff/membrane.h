@@ -40,7 +40,7 @@ typedef struct wff_elements {
     double *quad_weight;  /* 4 per quad: Gauss weight × det J, m² */
     double *size;         /* characteristic length per element (tris, then quads), m */
     int n_dofs;           /* 5 × nodes referenced */
-    int n_threads;        /* threads for the triangle force pass (OpenMP), >= 1 */
+    int n_threads;        /* threads for the triangle force pass (OpenMP), 1 by default */
     int max_threads;      /* threads the buffers were sized for */
     double *thread_f;     /* (max_threads − 1) × n_dofs force buffers, one per extra thread */
     double *point_dA;     /* static amplitudes: 2 per quadrature point (6 per triangle,
