@@ -1,0 +1,183 @@
+/* Stability at the edges of the explicit scheme (docs/limits.md):
+ *   1. a clamped square struck by a light projectile stays bounded, energy
+ *      balanced, at 0.8, 0.9 and 0.99 of the stable step;
+ *   2. forced past it (dtfactor 1.2, 1.5, 2) the run is stopped by the
+ *      instability detector, before any NaN, with a message naming the time,
+ *      the step, the element that sets the stable step, a suggested step and
+ *      a suggested -dtfactor;
+ *   3. long run: a preloaded, clamped elastic square set vibrating (in-plane,
+ *      transverse and crimp amplitudes) for ~1000 in-plane periods keeps its
+ *      energy: the balance error stays small and does not grow. */
+#include "check.h"
+#include "test_meshes.h"
+#include "wovenff/balance.h"
+#include "wovenff/material.h"
+#include "wovenff/solver.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define ELASTIC "tests/data/king_elastic.txt"
+#define KEVLAR "freefem_scripts/materials/kevlar_s706.txt"
+#define D WFF_DOFS_PER_NODE
+
+static int clamped_square(check_state *st, wff_model *m, const char *material, int n,
+                          double dtfactor)
+{
+    test_rect r = {-0.05, 0.05, -0.05, 0.05, n, n, TEST_MESH_TRI, 1, 0.2, 11};
+    wff_error err;
+    if (test_model_rect(m, &r, material, &err)) {
+        CHECK(st, 0, "%s", err.message);
+        return -1;
+    }
+    static const char *const edges[] = {"left", "right", "bottom", "top"};
+    int rc = 0;
+    for (int g = 0; g < 4 && rc == 0; g++)
+        for (int c = 0; c < 3 && rc == 0; c++)
+            rc = wff_model_fix_group(m, edges[g], c, &err) < 0;
+    if (rc == 0)
+        rc = wff_model_set_option(m, "dtfactor", dtfactor, &err);
+    CHECK(st, rc == 0, "setup: %s", err.message);
+    if (rc)
+        wff_model_free(m);
+    return rc ? -1 : 0;
+}
+
+/* 1. and 2.: returns 0 if the run completed, 1 if it stopped (message in err). */
+static int impact(check_state *st, double dtfactor, double *worst, long *steps, wff_error *err)
+{
+    wff_model m;
+    *worst = 0;
+    *steps = 0;
+    if (clamped_square(st, &m, ELASTIC, 20, dtfactor))
+        return -1;
+    int rc = wff_model_set_projectile(&m, 6.35e-3, 0.0005, 20, 0, err);
+    CHECK(st, rc == 0, "%s", err->message);
+    for (int block = 1; block <= 20 && rc == 0; block++) {
+        rc = wff_model_advance(&m, block * 0.01e-3, 1000000, err);
+        if (rc)
+            break;
+        wff_energies e;
+        wff_model_energies(&m, &e);
+        *worst = fmax(*worst, fabs(e.error));
+    }
+    *steps = m.step;
+    wff_model_free(&m);
+    return rc ? 1 : 0;
+}
+
+static void check_step_ladder(check_state *st)
+{
+    static const double below[] = {0.8, 0.9, 0.99};
+    for (int i = 0; i < 3; i++) {
+        double worst;
+        long steps;
+        wff_error err;
+        int rc = impact(st, below[i], &worst, &steps, &err);
+        printf("  dtfactor %.2f: %ld steps to 0.2 ms, max |energy error| %.2e\n", below[i], steps,
+               worst);
+        CHECK(st, rc == 0, "dtfactor %g: %s", below[i], rc ? err.message : "");
+        CHECK(st, worst < 2e-3, "dtfactor %g: energy error %g", below[i], worst);
+    }
+    static const double above[] = {1.2, 1.5, 2.0};
+    for (int i = 0; i < 3; i++) {
+        double worst;
+        long steps;
+        wff_error err;
+        err.message[0] = 0;
+        int rc = impact(st, above[i], &worst, &steps, &err);
+        printf("  dtfactor %.2f: stopped after %ld steps: %s\n", above[i], steps, err.message);
+        CHECK(st, rc == 1, "dtfactor %g: the run must stop as unstable", above[i]);
+        static const char *const want[] = {"unstable", "t = ", "(step ", "triangle ",
+                                           "suggested step ", "suggested -dtfactor 0.8"};
+        for (int k = 0; k < 6; k++)
+            CHECK(st, strstr(err.message, want[k]) != NULL, "dtfactor %g: message lacks '%s': %s",
+                  above[i], want[k], err.message);
+        CHECK(st, strstr(err.message, "NaN") == NULL, "caught before NaN: %s", err.message);
+    }
+}
+
+/* 3. Long run. Preload 1 N per yarn (the membrane then has transverse
+ * stiffness), a smooth initial velocity in every DOF family, fixed edges. */
+static void check_long_run(check_state *st)
+{
+    wff_material mat;
+    wff_error err;
+    wff_biaxial_state pre = {.stretch = {1, 1}};
+    if (wff_material_load(ELASTIC, &mat, &err) || wff_preload_equal_force(&mat, 1.0, &pre, &err)) {
+        CHECK(st, 0, "%s", err.message);
+        return;
+    }
+    wff_model m;
+    test_rect r = {0, 0.02, 0, 0.02, 6, 6, TEST_MESH_TRI, 1, 0.15, 3};
+    if (test_model_rect(&m, &r, ELASTIC, &err)) {
+        CHECK(st, 0, "%s", err.message);
+        return;
+    }
+    double F[4] = {pre.stretch[0], 0, 0, pre.stretch[1]};
+    static const char *const edges[] = {"left", "right", "bottom", "top"};
+    int rc = wff_model_set_preload(&m, F, pre.dA, &err);
+    for (int g = 0; g < 4 && rc == 0; g++)
+        for (int c = 0; c < 3 && rc == 0; c++)
+            rc = wff_model_fix_group(&m, edges[g], c, &err) < 0;
+    CHECK(st, rc == 0, "%s", err.message);
+    if (rc) {
+        wff_model_free(&m);
+        return;
+    }
+    for (int n = 0; n < m.n_nodes; n++) {
+        double x = m.mesh.xy[2 * n] / 0.02, y = m.mesh.xy[2 * n + 1] / 0.02;
+        double s = sin(M_PI * x) * sin(M_PI * y);
+        double *v = m.v + D * n;
+        v[0] = 0.5 * s * cos(M_PI * y);
+        v[1] = -0.3 * s * cos(M_PI * x);
+        v[2] = 2.0 * s;
+        v[3] = 0.02 * s;
+        v[4] = -0.01 * s;
+        for (int c = 0; c < 3; c++)
+            if (m.dof_kind[D * n + c] != WFF_DOF_FREE)
+                v[c] = 0;
+    }
+    /* in-plane period ~ 2L/c, c ~ 5 km/s: 8 µs; transverse ~ 0.3 ms */
+    const int blocks = 40;
+    const double t_end = 8e-3;
+    double worst = 0, early = 0, late = 0;
+    for (int b = 1; b <= blocks && rc == 0; b++) {
+        rc = wff_model_advance(&m, b * t_end / blocks, 100000000, &err);
+        CHECK(st, rc == 0, "long run: %s", rc ? err.message : "");
+        wff_energies e;
+        wff_model_energies(&m, &e);
+        worst = fmax(worst, fabs(e.error));
+        if (b <= blocks / 4)
+            early = fmax(early, fabs(e.error));
+        if (b > 3 * blocks / 4)
+            late = fmax(late, fabs(e.error));
+    }
+    wff_energies e;
+    wff_model_energies(&m, &e);
+    printf("  long run: %d triangles, %ld steps to %.0f ms (~%.0f in-plane periods, ~%.0f "
+           "transverse), max |energy error| %.2e (first quarter %.2e, last quarter %.2e); "
+           "kinetic %.3e J, internal %.3e J\n", m.el.n_tris, m.step, 1e3 * m.time, m.time / 8e-6,
+           m.time / 0.3e-3, worst, early, late,
+           e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude, e.internal);
+    CHECK(st, worst < 1e-3, "long run energy error %g", worst);
+    CHECK(st, late < 3 * early + 1e-5, "no drift: first quarter %g, last quarter %g", early, late);
+    wff_model_free(&m);
+}
+
+int main(int argc, char **argv)
+{
+    (void)argc;
+    /* meshes of 72-800 elements: a second OpenMP thread costs more than it
+     * saves (5.6 s against 1.0 s here); run single-threaded unless told */
+    if (!getenv("OMP_NUM_THREADS")) {
+        setenv("OMP_NUM_THREADS", "1", 1);
+        execv("/proc/self/exe", argv);
+    }
+    check_state st = {0, 0};
+    check_step_ladder(&st);
+    check_long_run(&st);
+    return check_summary(&st, "test_stability");
+}
