@@ -8,6 +8,9 @@
 //   wovenffPreload(matFile, yarnTension, out);             // out = [l1, l2, dA1, dA2]
 //   wovenffUniaxial(matFile, family, stretch, out);        // [l1, l2, dA1, dA2, P11, P22]
 //   cout << wovenffCellInfo(matFile);                      // cell and out layout
+//   wovenffPointStep(matFile, F, dA, gammaf, dt, out);     // wovenffPoint's out + new gamma_f
+//   wovenffEnergySplit(matFile, F, dA, gammaf, out);       // energy per mechanism, J/m^2
+//   string names = wovenffMechNames(matFile);              // "yarn_stretch yarn_bending ..."
 //
 // F is row-major 3x2 (F11 F12 F21 F22 F31 F32), dA = [dA1, dA2] in m; SI units.
 #include "ff++.hpp"
@@ -62,10 +65,77 @@ void require_finite(const char *fn, const char *name, double x)
     }
 }
 
+// Evaluate one point (dt > 0 advances gamma_f by the cell's flow rule) and fill
+// out with P, R, W and the diagnostics; extra entries are left for the caller.
+void point(const char *fn, string *material, KN<double> *Fv, KN<double> *dAv, double gamma_f,
+           double dt, KN<double> *out, int extra, wff_point_result *r)
+{
+    double F[6], dA[2];
+    take(fn, "F", Fv, 6, kFLayout, F);
+    take(fn, "dA", dAv, 2, kDALayout, dA);
+    require_finite(fn, "gammaf", gamma_f);
+    require_finite(fn, "dt", dt);
+    if (dt < 0) {
+        char msg[120];
+        snprintf(msg, sizeof msg, "dt = %g must be >= 0", dt);
+        wff_ff_fail(fn, msg);
+    }
+    if (!out)
+        wff_ff_fail(fn, "no output array");
+    wff_material mat;
+    wff_ff_material(fn, material, &mat);
+    if (wff_material_evaluate(&mat, F, dA, gamma_f, dt, r) != WFF_POINT_OK) {
+        char msg[200 + sizeof mat.source];
+        snprintf(msg, sizeof msg, "degenerate point (a yarn direction has zero length or the "
+                 "yarns are parallel): F = [%g %g %g %g %g %g], material %s",
+                 F[0], F[1], F[2], F[3], F[4], F[5], mat.source);
+        wff_ff_fail(fn, msg);
+    }
+    const int n_diag = mat.cell->n_diag;
+    out->resize(kOutFixed + n_diag + extra);
+    for (int i = 0; i < 6; i++)
+        (*out)[i] = r->stress[i];
+    (*out)[6] = r->residual[0];
+    (*out)[7] = r->residual[1];
+    (*out)[8] = r->energy;
+    for (int i = 0; i < n_diag; i++)
+        (*out)[kOutFixed + i] = r->diag[i];
+}
+
 double ffPoint(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv,
                const double &gamma_f, KN<double> *const &out)
 {
-    const char *fn = "wovenffPoint";
+    wff_point_result r;
+    point("wovenffPoint", material, Fv, dAv, gamma_f, 0, out, 0, &r);
+    return 0;
+}
+
+// wovenffPoint's out with gamma_f advanced over dt, and the new gamma_f last.
+double ffPointStep(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv,
+                   const double &gamma_f, const double &dt, KN<double> *const &out)
+{
+    wff_point_result r;
+    point("wovenffPointStep", material, Fv, dAv, gamma_f, dt, out, 1, &r);
+    (*out)[out->N() - 1] = r.gamma_f;
+    return 0;
+}
+
+// The cell's energy_split, or ExecError naming the cell if it has none.
+const wff_cell_type *split_cell(const char *fn, const wff_material &mat)
+{
+    const wff_cell_type *c = mat.cell;
+    if (!c->energy_split || c->n_mech <= 0) {
+        std::string msg = std::string("cell '") + c->name + "' (material " + mat.source +
+                          ") has no energy split per mechanism";
+        wff_ff_fail(fn, msg.c_str());
+    }
+    return c;
+}
+
+double ffEnergySplit(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv,
+                     const double &gamma_f, KN<double> *const &out)
+{
+    const char *fn = "wovenffEnergySplit";
     double F[6], dA[2];
     take(fn, "F", Fv, 6, kFLayout, F);
     take(fn, "dA", dAv, 2, kDALayout, dA);
@@ -74,24 +144,33 @@ double ffPoint(string *const &material, KN<double> *const &Fv, KN<double> *const
         wff_ff_fail(fn, "no output array");
     wff_material mat;
     wff_ff_material(fn, material, &mat);
-    wff_point_result r;
-    if (wff_material_evaluate(&mat, F, dA, gamma_f, 0, &r) != WFF_POINT_OK) {
-        char msg[200 + sizeof mat.source];
-        snprintf(msg, sizeof msg, "degenerate point (a yarn direction has zero length or the "
-                 "yarns are parallel): F = [%g %g %g %g %g %g], material %s",
-                 F[0], F[1], F[2], F[3], F[4], F[5], mat.source);
-        wff_ff_fail(fn, msg);
-    }
-    const int n_diag = mat.cell->n_diag;
-    out->resize(kOutFixed + n_diag);
-    for (int i = 0; i < 6; i++)
-        (*out)[i] = r.stress[i];
-    (*out)[6] = r.residual[0];
-    (*out)[7] = r.residual[1];
-    (*out)[8] = r.energy;
-    for (int i = 0; i < n_diag; i++)
-        (*out)[kOutFixed + i] = r.diag[i];
+    const wff_cell_type *c = split_cell(fn, mat);
+    double mech[WFF_MECH_MAX];
+    c->energy_split(mat.params, F, dA, gamma_f, mech);
+    for (int i = 0; i < c->n_mech; i++)
+        if (!std::isfinite(mech[i])) {
+            char msg[200 + sizeof mat.source];
+            snprintf(msg, sizeof msg, "degenerate point (a yarn direction has zero length or "
+                     "the yarns are parallel): F = [%g %g %g %g %g %g], material %s",
+                     F[0], F[1], F[2], F[3], F[4], F[5], mat.source);
+            wff_ff_fail(fn, msg);
+        }
+    out->resize(c->n_mech);
+    for (int i = 0; i < c->n_mech; i++)
+        (*out)[i] = mech[i];
     return 0;
+}
+
+string *ffMechNames(Stack stack, string *const &material)
+{
+    const char *fn = "wovenffMechNames";
+    wff_material mat;
+    wff_ff_material(fn, material, &mat);
+    const wff_cell_type *c = split_cell(fn, mat);
+    std::string text;
+    for (int i = 0; i < c->n_mech; i++)
+        text += (i ? " " : "") + std::string(c->mech_names[i]);
+    return Add2StackOfPtr2Free(stack, new string(text));
 }
 
 double balance(const char *fn, string *material, KN<double> *Fv, KN<double> *dAv,
@@ -187,6 +266,12 @@ string *ffCellInfo(Stack stack, string *const &material)
                  fixed ? kOutUnits[i] : c->diag_units[i - kOutFixed]);
         text += line;
     }
+    if (c->energy_split && c->n_mech > 0) {
+        text += "wovenffEnergySplit out (J/m^2):";
+        for (int i = 0; i < c->n_mech; i++)
+            text += std::string(" ") + c->mech_names[i];
+        text += "\n";
+    }
     return Add2StackOfPtr2Free(stack, new string(text));
 }
 
@@ -207,4 +292,11 @@ void wff_ff_register_point()
     Global.Add("wovenffUniaxial", "(",
                new OneOperator4_<double, string *, long, double, KN<double> *>(ffUniaxial));
     Global.Add("wovenffCellInfo", "(", new OneOperator1s_<string *, string *>(ffCellInfo));
+    Global.Add("wovenffPointStep", "(",
+               new OneOperator6_<double, string *, KN<double> *, KN<double> *, double, double,
+                                 KN<double> *>(ffPointStep));
+    Global.Add("wovenffEnergySplit", "(",
+               new OneOperator5_<double, string *, KN<double> *, KN<double> *, double,
+                                 KN<double> *>(ffEnergySplit));
+    Global.Add("wovenffMechNames", "(", new OneOperator1s_<string *, string *>(ffMechNames));
 }
