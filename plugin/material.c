@@ -206,3 +206,99 @@ int wff_material_load(const char *path, wff_material *mat, wff_error *err)
     free(text);
     return rc;
 }
+
+/* Replace the value on the line of `key` (keeping its comment); -1 if absent. */
+static int replace_value(char *text, size_t size, const char *key, const char *value)
+{
+    size_t klen = strlen(key);
+    for (char *line = text; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
+        char *p = line;
+        while (*p == ' ' || *p == '\t')
+            p++;
+        if (strncmp(p, key, klen) != 0)
+            continue;
+        char *q = p + klen;
+        while (*q == ' ' || *q == '\t')
+            q++;
+        if (*q != '=')
+            continue;
+        char *v = q + 1;
+        char *end = v + strcspn(v, "#\n");
+        char *rest = end; /* the comment and the line end stay */
+        char replacement[WFF_KV_VALUE_MAX + 4];
+        snprintf(replacement, sizeof replacement, " %s ", value);
+        size_t old_len = (size_t)(rest - v), new_len = strlen(replacement);
+        size_t tail = strlen(rest) + 1;
+        if (strlen(text) + new_len - old_len + 1 > size)
+            return -2;
+        memmove(v + new_len, rest, tail);
+        memcpy(v, replacement, new_len);
+        return 0;
+    }
+    return -1;
+}
+
+int wff_material_override(const char *path, const char *overrides, const char *out_path,
+                          wff_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return wff_fail(err, "%s: cannot open material file: %s", path, strerror(errno));
+    size_t size = WFF_MATERIAL_FILE_MAX + 4096;
+    char *text = calloc(1, size);
+    if (!text) {
+        fclose(f);
+        return wff_fail(err, "%s: out of memory", path);
+    }
+    size_t n = fread(text, 1, WFF_MATERIAL_FILE_MAX, f);
+    fclose(f);
+    text[n] = '\0';
+    int rc = 0;
+    const char *p = overrides;
+    while (rc == 0 && *p) {
+        while (*p == ',' || *p == ' ' || *p == ';')
+            p++;
+        if (!*p)
+            break;
+        size_t len = strcspn(p, ",; ");
+        char item[WFF_KV_KEY_MAX + WFF_KV_VALUE_MAX + 2];
+        if (len >= sizeof item) {
+            rc = wff_fail(err, "override '%.*s' is too long", (int)len, p);
+            break;
+        }
+        memcpy(item, p, len);
+        item[len] = '\0';
+        p += len;
+        char *eq = strchr(item, '=');
+        if (!eq || eq == item || !eq[1]) {
+            rc = wff_fail(err, "override '%s': expected key=value", item);
+            break;
+        }
+        *eq = '\0';
+        int r = replace_value(text, size, item, eq + 1);
+        if (r == -1)
+            rc = wff_fail(err, "override '%s=%s': %s has no key '%s'", item, eq + 1, path, item);
+        else if (r == -2)
+            rc = wff_fail(err, "override '%s': material text too long", item);
+    }
+    wff_material check;
+    if (rc == 0) {
+        char source[600];
+        snprintf(source, sizeof source, "%s with %s", path, overrides);
+        rc = wff_material_parse_text(text, source, &check, err);
+    }
+    if (rc == 0) {
+        char tmp[1100];
+        snprintf(tmp, sizeof tmp, "%s.tmp", out_path);
+        FILE *o = fopen(tmp, "wb");
+        if (!o)
+            rc = wff_fail(err, "%s: cannot write: %s", tmp, strerror(errno));
+        else {
+            fprintf(o, "# %s with %s\n%s", path, overrides, text);
+            if (fclose(o) != 0 || rename(tmp, out_path) != 0)
+                rc = wff_fail(err, "%s: cannot write: %s", out_path, strerror(errno));
+        }
+    }
+    free(text);
+    return rc;
+}

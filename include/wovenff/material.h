@@ -42,6 +42,14 @@ int wff_material_load(const char *path, wff_material *mat, wff_error *err);
 int wff_material_parse_text(const char *text, const char *source_name,
                             wff_material *mat, wff_error *err);
 
+/* Write a copy of the material file `path` to `out_path` with some values
+ * replaced: overrides is "key=value,key=value" (a key must already be in the
+ * file). The copy is validated by loading it, then written atomically (a
+ * temporary file, then rename). For switching mechanisms off in a scene
+ * ("K_d=0" removes locking) and for fitting. */
+int wff_material_override(const char *path, const char *overrides, const char *out_path,
+                          wff_error *err);
+
 /* For cells' parse(): take a required number. Missing or non-numeric is an error. */
 int wff_kv_number(wff_kv *kv, const char *key, double *value, wff_error *err);
 /* Take an optional number; absent means fallback. */

@@ -222,6 +222,17 @@ double ffPreload(string *const &material, const double &tension, KN<double> *con
     return 0;
 }
 
+// A copy of a material with values replaced ("K_d=0,kb_1=0"), validated and
+// written atomically to outFile; returns 0.
+double ffMaterialOverride(string *const &material, string *const &overrides,
+                          string *const &outFile)
+{
+    wff_error err;
+    if (wff_material_override(material->c_str(), overrides->c_str(), outFile->c_str(), &err))
+        wff_ff_fail("wovenffMaterialOverride", err);
+    return 0;
+}
+
 double ffUniaxial(string *const &material, const long &family, const double &stretch,
                   KN<double> *const &out)
 {
@@ -299,4 +310,6 @@ void wff_ff_register_point()
                new OneOperator5_<double, string *, KN<double> *, KN<double> *, double,
                                  KN<double> *>(ffEnergySplit));
     Global.Add("wovenffMechNames", "(", new OneOperator1s_<string *, string *>(ffMechNames));
+    Global.Add("wovenffMaterialOverride", "(",
+               new OneOperator3_<double, string *, string *, string *>(ffMaterialOverride));
 }

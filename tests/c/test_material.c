@@ -175,6 +175,35 @@ int main(void)
     strcpy(text + 300, " = 1\n");
     expect_error(&st, text, "long line", "line too long", "case.txt:1", NULL);
 
+    /* overrides: a copy with values replaced, validated, written whole */
+    {
+        char out[512];
+        const char *dir = getenv("WFF_TEST_TMP");
+        snprintf(out, sizeof out, "%s/override_material.txt", dir ? dir : "/tmp");
+        int rc = wff_material_override(KEVLAR, "K_d=0,kb_1=0, kb_2=0", out, &e);
+        CHECK(&st, rc == 0, "override: %s", rc ? e.message : "");
+        wff_material mo;
+        CHECK(&st, wff_material_load(out, &mo, &e) == 0, "overridden file loads: %s", e.message);
+        double g = 0.5, F[6] = {1, sin(g), 0, cos(g), 0, 0}, dA[2] = {-20e-6, -20e-6};
+        wff_point_result a, b;
+        wff_material_evaluate(&m, F, dA, 0, 0, &a);
+        wff_material_evaluate(&mo, F, dA, 0, 0, &b);
+        CHECK(&st, a.diag[5] > 0 && b.diag[5] == 0 && b.diag[6] == 0,
+              "K_d = 0 removes the spar forces (%g -> %g)", a.diag[5], b.diag[5]);
+        double mech_a[WFF_MECH_MAX], mech_b[WFF_MECH_MAX];
+        m.cell->energy_split(m.params, F, dA, 0, mech_a);
+        mo.cell->energy_split(mo.params, F, dA, 0, mech_b);
+        CHECK(&st, mech_a[1] > 0 && mech_b[1] == 0, "kb = 0 removes bending energy");
+        CHECK(&st, mech_b[0] == mech_a[0] && mech_b[2] == mech_a[2] && mech_b[4] == mech_a[4],
+              "other mechanisms unchanged");
+        CHECK(&st, wff_material_override(KEVLAR, "K_x=1", out, &e) == -1 &&
+                       strstr(e.message, "no key 'K_x'"), "unknown override key: %s", e.message);
+        CHECK(&st, wff_material_override(KEVLAR, "k_1=-5", out, &e) == -1 &&
+                       strstr(e.message, "'k_1'") && strstr(e.message, "> 0"),
+              "impossible override value: %s", e.message);
+        CHECK(&st, wff_material_override(KEVLAR, "K_d", out, &e) == -1 &&
+                       strstr(e.message, "key=value"), "malformed override: %s", e.message);
+    }
     free(base);
     return check_summary(&st, "test_material");
 }
