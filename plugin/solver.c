@@ -58,6 +58,20 @@ int wff_model_create(wff_model *m, const char *mesh_path, const wff_mesh_options
     return 0;
 }
 
+/* Before the first step: the stored energy of the state as set up (e.g. the
+ * preload), so that energies read before any step are complete. A force pass
+ * with γᶠ held; its forces are recomputed when the run starts, and a bad
+ * element is reported then. */
+static void stored_energy_now(wff_model *m)
+{
+    if (m->v_half_valid || m->step > 0)
+        return;
+    wff_force_totals t;
+    memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
+    wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, 0, m->f, &t);
+    m->internal_energy = t.bad_element >= 0 ? 0 : t.internal_energy;
+}
+
 int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *material_path,
                                wff_error *err)
 {
@@ -101,6 +115,7 @@ int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *materia
     m->dt_factor = 0.8;
     m->dt_interval = 20;
     m->symmetry_factor = 1;
+    stored_energy_now(m);
     return 0;
 }
 
@@ -119,6 +134,7 @@ int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[
             m->u[D * n + 3] = dA0[0];
             m->u[D * n + 4] = dA0[1];
         }
+    stored_energy_now(m);
     return 0;
 }
 
