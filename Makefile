@@ -70,7 +70,12 @@ run: all
 test: all
 	@sh tests/run.sh
 
-bench: all
+BENCH_BIN := $(BUILD)/bench/kernel_speed $(BUILD)/bench/compare
+$(BUILD)/bench/%: bench/%.c $(CORE_OBJ)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $< $(CORE_OBJ) $(LDLIBS) -o $@
+
+bench: all $(BENCH_BIN)
 	@sh bench/run.sh
 
 clean:

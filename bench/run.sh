@@ -1,0 +1,120 @@
+#!/bin/sh
+# make bench: what wovenff's knobs cost and what they buy. Not part of make test.
+#   1. kernel speed: ns per element-step of the King step on tri3 and quad4 at
+#      ~5k, ~50k and ~500k elements, 1 and 2 threads, peak memory per element,
+#      beside a bare linear CST membrane kernel of our own (the floor);
+#   2. the pure-.edp alternative: a linear membrane whose forces come from a
+#      varf re-assembled every step;
+#   3. the ballistic scene with every knob against a reference run (finest
+#      mesh, small step factor, full physics): accuracy and cost.
+# Writes results/bench/: speed.json, kernel.jsonl, tradeoff.csv, tradeoff.md,
+# pareto.png, runs/*/ (each run's own results). Run from the repository root.
+# BENCH_QUICK=1 runs a reduced set (small meshes, short runs) to check the
+# pipeline in a minute.
+set -u
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root" || exit 1
+out=results/bench
+mkdir -p "$out/runs"
+quick=${BENCH_QUICK:-0}
+ff() { sh tools/ff.sh "$@"; }
+now() { date +%s.%N; }
+elapsed() { awk -v a="$1" -v b="$(now)" 'BEGIN { printf "%.2f", b - a }'; }
+
+echo "== 1. kernel speed (build/bench/kernel_speed)"
+: > "$out/kernel.jsonl"
+if [ "$quick" = 1 ]; then sizes="0.67:200"; else sizes="0.67:400 0.21:60 0.067:8"; fi
+for et in tri quad; do
+    for sz in $sizes; do
+        f=${sz%%:*}; steps=${sz##*:}
+        for th in 1 2; do
+            [ "$et" = quad ] && [ "$th" = 2 ] && continue
+            line=$(OMP_WAIT_POLICY=passive build/bench/kernel_speed "$et" "$f" "$th" "$steps") || {
+                echo "kernel_speed $et $f $th failed"; continue; }
+            echo "$line" | tee -a "$out/kernel.jsonl"
+        done
+    done
+done
+
+echo "== 2. pure .edp varf step"
+edp=$(ff bench/edp_varf.edp -steps 20 | grep '^{') || edp='{}'
+echo "$edp"
+
+echo "== 3. speed vs accuracy on the ballistic scene"
+tend=2.5e-3
+[ "$quick" = 1 ] && tend=0.5e-3
+scene() { # name, then scene options
+    name=$1; shift
+    dir="$out/runs/$name"
+    rm -rf "$dir"
+    t0=$(now)
+    if ff freefem_scripts/ballistic_impact.edp -out "$dir" -tend "$tend" -plots 0 -vtkdt 1 "$@" \
+        > "$dir.log" 2>&1; then
+        echo "$name $(elapsed "$t0") s"
+    else
+        echo "$name FAILED (see $dir.log)"; tail -3 "$dir.log"
+    fi
+    echo "$(elapsed "$t0")" > "$dir.wall"
+}
+if [ "$quick" = 1 ]; then
+    scene reference -mesh default -dtfactor 0.5
+else
+    scene reference -mesh finest -dtfactor 0.5 -threads 2
+fi
+scene mesh_coarse -mesh coarse
+scene mesh_default -mesh default
+[ "$quick" = 1 ] || scene mesh_fine -mesh fine
+[ "$quick" = 1 ] || scene mesh_finer -mesh finer -threads 2
+scene quads_default -mesh default -elements quad
+scene dtfactor_0.5 -dtfactor 0.5
+scene dtfactor_0.95 -dtfactor 0.95
+scene amplitude_mass_x10 -massfactor 10
+scene amplitudes_static -amplitudes static
+scene no_locking -set K_d=0
+scene no_bending -set kb_1=0,kb_2=0
+scene no_shear_flow -set gammadot_0=0
+scene clamp_friction -clamp friction
+scene linear_yarns -material freefem_scripts/materials/kevlar_linear.txt -preload 0
+scene contact_all_nodes -contact all
+[ "$quick" = 1 ] || scene threads_2 -threads 2
+
+echo "== 4. tables and plots"
+cc -std=gnu11 -O2 -o build/bench/compare bench/compare.c -lm || exit 1
+echo "run,elements,steps,wall_seconds,element_steps,apex_l2_error,peak_error,peak_time_error_s,profile_l2_error" \
+    > "$out/tradeoff.csv"
+for dir in "$out"/runs/*/; do
+    name=$(basename "$dir")
+    [ -f "$dir/summary.json" ] || continue
+    get() { sed -n "s/.*\"$1\": \([^,]*\),.*/\1/p" "$dir/summary.json" | head -1; }
+    els=$(get elements); steps=$(get steps); wall=$(cat "$out/runs/$name.wall")
+    errs=$(build/bench/compare "$out/runs/reference" "$dir" 2>/dev/null || echo "nan,nan,nan,nan")
+    echo "$name,$els,$steps,$wall,$(awk -v a="$els" -v b="$steps" 'BEGIN{printf "%.0f", a*b}'),$errs" \
+        >> "$out/tradeoff.csv"
+done
+awk -F, 'NR == 1 { print "| run | elements | steps | wall s | apex L2 error | peak error | peak time error (ms) | profile error at 2 ms |";
+                   print "|---|---|---|---|---|---|---|---|"; next }
+         { printf "| %s | %s | %s | %s | %.2g %% | %+.2g %% | %+.3f | %.2g %% |\n", $1, $2, $3, $4, 100*$6, 100*$7, 1e3*$8, 100*$9 }' \
+    "$out/tradeoff.csv" > "$out/tradeoff.md"
+cat "$out/tradeoff.md"
+cat > "$out/pareto.gp" <<EOF
+set datafile separator ','
+set terminal pngcairo size 900,600
+set output '$out/pareto.png'
+set title 'Ballistic scene: accuracy against cost (error of the apex history vs the reference)'
+set xlabel 'wall time (s)'; set ylabel 'relative L2 error of the apex history, 0-2.5 ms'
+set logscale xy; set grid; set key off
+plot '$out/tradeoff.csv' every ::1 using 4:(\$6 > 0 ? \$6 : 1/0) with points pt 7 ps 1.5, \
+     '' every ::1 using 4:(\$6 > 0 ? \$6 : 1/0):1 with labels offset 1,0.6 left font ',8'
+EOF
+gnuplot "$out/pareto.gp" || echo "gnuplot failed"
+
+# speed.json: the figures of 1 and 2 in one place
+{
+    echo "{"
+    echo "  \"kernel\": ["
+    sed 's/^/    /; $!s/$/,/' "$out/kernel.jsonl"
+    echo "  ],"
+    echo "  \"edp_varf\": $edp"
+    echo "}"
+} > "$out/speed.json.tmp" && mv "$out/speed.json.tmp" "$out/speed.json"
+echo "results in $out"
