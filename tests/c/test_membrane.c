@@ -393,6 +393,62 @@ static void check_amplitude_knobs(check_state *st)
     wff_model_free(&m);
 }
 
+/* Threads: the force pass with 2 threads gives the 1-thread forces to
+ * round-off, and the same bits on every run with 2. */
+static void check_threads(check_state *st)
+{
+    test_rect r = {0, 0.2, 0, 0.1, 40, 20, TEST_MESH_TRI, 1, 0.2, 5}; /* 1600 triangles */
+    wff_model m;
+    wff_error err;
+    int rc = test_model_rect(&m, &r, KEVLAR, &err);
+    CHECK(st, rc == 0, "%s", err.message);
+    if (rc)
+        return;
+    if (m.el.max_threads < 2) {
+        printf("  threads: OpenMP offers 1 thread here; the 2-thread check is skipped\n");
+        wff_model_free(&m);
+        return;
+    }
+    for (int n = 0; n < m.n_nodes; n++) {
+        double x = m.mesh.xy[2 * n], y = m.mesh.xy[2 * n + 1];
+        m.u[D * n] = 0.01 * x + 1e-4 * sin(200 * y);
+        m.u[D * n + 2] = 1e-3 * sin(60 * x) * sin(90 * y);
+        m.u[D * n + 3] = -10e-6 * (1 + sin(50 * x));
+        m.u[D * n + 4] = -20e-6;
+    }
+    size_t nd = (size_t)m.n_dofs, nq = (size_t)(3 * m.el.n_tris);
+    double *f1 = calloc(nd, sizeof(double)), *f2 = calloc(nd, sizeof(double)), *f3 = calloc(nd, sizeof(double));
+    double *g1 = malloc(nq * sizeof(double)), *g2 = malloc(nq * sizeof(double)), *g3 = malloc(nq * sizeof(double));
+    for (size_t q = 0; q < nq; q++)
+        g1[q] = g2[q] = g3[q] = 0.001 * (double)(q % 7);
+    wff_force_totals t1, t2, t3;
+    wff_elements_set_threads(&m.el, 1, &err);
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, g1, 1e-7, f1, &t1);
+    wff_elements_set_threads(&m.el, 2, &err);
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, g2, 1e-7, f2, &t2);
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, g3, 1e-7, f3, &t3);
+    double scale = 0, diff = 0;
+    for (size_t i = 0; i < nd; i++) {
+        scale = fmax(scale, fabs(f1[i]));
+        diff = fmax(diff, fabs(f2[i] - f1[i]));
+    }
+    printf("  threads: 2 vs 1 thread forces differ by %.2e of %.3g\n", diff / scale, scale);
+    CHECK(st, diff <= 1e-12 * scale, "2 threads = 1 thread to round-off: %g of %g", diff, scale);
+    CHECK_CLOSE(st, t2.internal_energy, t1.internal_energy, 1e-12, 0, "energy with 2 threads");
+    CHECK(st, memcmp(g1, g2, nq * sizeof(double)) == 0, "gamma_f updated identically");
+    CHECK(st, memcmp(f2, f3, nd * sizeof(double)) == 0 && t2.internal_energy == t3.internal_energy,
+          "2 threads give the same bits twice");
+    CHECK(st, wff_elements_set_threads(&m.el, m.el.max_threads + 1, &err) == -1 &&
+                  strstr(err.message, "threads"), "too many threads refused: %s", err.message);
+    free(f1);
+    free(f2);
+    free(f3);
+    free(g1);
+    free(g2);
+    free(g3);
+    wff_model_free(&m);
+}
+
 int main(void)
 {
     check_state st = {0, 0};
@@ -401,5 +457,6 @@ int main(void)
     check_degenerate(&st);
     check_split_and_fast(&st);
     check_amplitude_knobs(&st);
+    check_threads(&st);
     return check_summary(&st, "test_membrane");
 }
