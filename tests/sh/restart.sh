@@ -1,0 +1,79 @@
+#!/bin/sh
+# Checkpoint and restart of the ballistic scene (coarse mesh, to 0.45 ms):
+#   ref   the run uninterrupted;
+#   A     the same with -checkpoint 4, stopped abruptly after frame 15 (0.15 ms,
+#         -stopafter: exit 9, no summary) -> checkpoint at frame 12; restarted
+#         in place, stopped again after frame 43 (past the 0.4 ms profile) ->
+#         checkpoint at frame 40;
+#   B     restarted from A into another folder (-restart A -out B), to the end.
+# B's history.csv and profiles.csv must equal ref's row for row (bitwise here:
+# the explicit scheme is deterministic and the checkpoint holds all of its
+# state; numbers are also compared to 1e-12 relative), and A keeps its files.
+# Then what a restart refuses: another -velocity (exit 2), a folder without a
+# checkpoint (exit 2), a damaged checkpoint (exit 4, summary "failed").
+set -u
+tmp="${WFF_TEST_TMP:-/tmp}/restart"
+rm -rf "$tmp"
+mkdir -p "$tmp"
+scene=freefem_scripts/ballistic_impact.edp
+common="-mesh coarse -tend 0.45e-3 -plots 0 -vtkdt 1e-4"
+fail=0
+
+run() { # name expected-exit args...
+    name=$1; want=$2; shift 2
+    sh tools/ff.sh "$scene" "$@" > "$tmp/$name.log" 2>&1
+    rc=$?
+    if [ "$rc" -ne "$want" ]; then
+        echo "$name: exit $rc, want $want"; tail -5 "$tmp/$name.log" | sed 's/^/    /'; fail=1
+    fi
+}
+
+run ref 0 $common -out "$tmp/ref"
+run A_first 9 $common -out "$tmp/A" -checkpoint 4 -stopafter 15
+[ -f "$tmp/A/summary.json" ] && { echo "a stopped run must leave no summary.json"; fail=1; }
+[ "$(cat "$tmp/A/checkpoint/latest" 2>/dev/null)" = 12 ] || { echo "latest checkpoint is not frame 12"; fail=1; }
+[ "$(wc -l < "$tmp/A/history.csv")" -eq 17 ] || { echo "A history: $(wc -l < "$tmp/A/history.csv") lines, want 17 (frames 0..15)"; fail=1; }
+run A_second 9 $common -restart "$tmp/A" -checkpoint 4 -stopafter 43
+grep -q "restarting from the checkpoint at frame 12" "$tmp/A_second.log" || { echo "A_second did not restart at frame 12"; fail=1; }
+[ "$(cat "$tmp/A/checkpoint/latest" 2>/dev/null)" = 40 ] || { echo "latest checkpoint is not frame 40"; fail=1; }
+ls "$tmp/A/checkpoint" | grep -q '_12\.' && { echo "the frame-12 checkpoint was not removed"; fail=1; }
+cp "$tmp/A/history.csv" "$tmp/A_history_before.csv"
+run B 0 $common -restart "$tmp/A" -out "$tmp/B"
+grep -q '"restarted_from_frame": 40' "$tmp/B/summary.json" || { echo "B summary lacks restarted_from_frame 40"; fail=1; }
+grep -q '"status": "ok"' "$tmp/B/summary.json" || { echo "B summary not ok"; fail=1; }
+cmp -s "$tmp/A/history.csv" "$tmp/A_history_before.csv" || { echo "restarting into B changed A"; fail=1; }
+
+for f in history.csv profiles.csv ballistic.pvd; do
+    if cmp -s "$tmp/ref/$f" "$tmp/B/$f"; then
+        echo "$f: restarted run equals the uninterrupted one byte for byte"
+    else
+        echo "$f differs from the uninterrupted run:"; diff "$tmp/ref/$f" "$tmp/B/$f" | head -5; fail=1
+    fi
+done
+# the same numerically (rows, and every number to 1e-12 relative)
+awk -F, 'NR == FNR { row[FNR] = $0; n = FNR; next }
+    { m = FNR; split(row[FNR], a, ","); if (NF != length(a)) { print "row " FNR ": column count"; bad = 1; next }
+      for (i = 1; i <= NF; i++) if ($i != a[i]) { d = $i - a[i]; s = (a[i] < 0 ? -a[i] : a[i]);
+          if (d < 0) d = -d; if (d > 1e-12 * s + 1e-300) { print "row " FNR " col " i ": " a[i] " vs " $i; bad = 1 } } }
+    END { if (n != m) { print "rows: " n " vs " m; bad = 1 } exit bad }' \
+    "$tmp/ref/history.csv" "$tmp/B/history.csv" || fail=1
+for key in peak_displacement peak_time max_energy_error max_penetration steps final_projectile_velocity; do
+    a=$(grep "\"$key\"" "$tmp/ref/summary.json"); b=$(grep "\"$key\"" "$tmp/B/summary.json")
+    [ "$a" = "$b" ] || { echo "summary $key: '$a' vs '$b'"; fail=1; }
+done
+
+# refusals
+run other_velocity 2 $common -restart "$tmp/A" -out "$tmp/C" -velocity 30
+grep -qF -- "-velocity is 30 here but 22 in the checkpointed run" "$tmp/other_velocity.log" \
+    || { echo "other_velocity: message missing"; cat "$tmp/other_velocity.log"; fail=1; }
+run no_checkpoint 2 $common -restart "$tmp/ref" -out "$tmp/D"
+grep -qF "no checkpoint there" "$tmp/no_checkpoint.log" || { echo "no_checkpoint: message missing"; fail=1; }
+cp -R "$tmp/A" "$tmp/E"
+ck="$tmp/E/checkpoint/model_40.bin"
+size=$(wc -c < "$ck")
+printf '\377' | dd of="$ck" bs=1 seek=$((size / 2)) conv=notrunc 2>/dev/null
+run damaged 4 $common -restart "$tmp/E"
+grep -qF "is corrupt (checksum mismatch)" "$tmp/damaged.log" || { echo "damaged: message missing"; fail=1; }
+grep -q '"status": "failed"' "$tmp/E/summary.json" && grep -q 'checksum mismatch' "$tmp/E/summary.json" \
+    || { echo "damaged: summary.json does not say failed and why"; fail=1; }
+exit $fail
