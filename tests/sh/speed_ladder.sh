@@ -9,6 +9,7 @@
 #   - the apex never ahead of the projectile nose (z <= tip + penetration + 1 nm:
 #     the inelastic contact leaves round-off gaps of ~1e-11 m),
 #   - the projectile slowed, never sped up;
+# the history's energy_<mechanism> columns add up to internal_energy;
 # and 300 m/s at the default step is stopped by the instability detector,
 # before any NaN, with "suggested -dtfactor 0.4" (exit 4, summary failed).
 set -u
@@ -40,6 +41,17 @@ for case in "1 0.8" "22 0.8" "100 0.8" "300 0.4"; do
           if (pen > 1e-9) { print "  penetration too large"; bad = 1 }
           exit bad }' "$out/history.csv" || fail=1
 done
+# per-mechanism stored energy (King cell): columns energy_<mechanism> that add
+# up to internal_energy
+h="$tmp/v22/history.csv"
+for col in energy_yarn_stretch energy_yarn_bending energy_compaction energy_locking energy_shear; do
+    head -1 "$h" | tr ',' '\n' | grep -qx "$col" || { echo "history.csv lacks $col"; fail=1; }
+done
+awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^energy_/ && $i != "energy_error") m[++n] = i; next }
+    { s = 0; for (k = 1; k <= n; k++) s += $m[k]; d = s - $6; if (d < 0) d = -d
+      if (d > worst) worst = d; if ($6 > big) big = $6 }
+    END { printf "  energy split: %d mechanisms sum to internal_energy within %.2e J (of %.4g J)\n", n, worst, big
+          exit !(n == 5 && worst <= 1e-6 * big) }' "$h" || { echo "energy split does not add up"; fail=1; }
 out="$tmp/v300_default"
 sh tools/ff.sh "$scene" -mesh coarse -tend 0.2e-3 -plots 0 -vtkdt 1 -velocity 300 -out "$out" \
     > "$out.log" 2>&1
