@@ -58,6 +58,13 @@ int wff_model_create(wff_model *m, const char *mesh_path, const wff_mesh_options
     return 0;
 }
 
+static void sum_fabric_mass(wff_model *m)
+{
+    m->fabric_mass = 0;
+    for (int n = 0; n < m->n_nodes; n++)
+        m->fabric_mass += m->mass[D * n];
+}
+
 /* Before the first step: the stored energy of the state as set up (e.g. the
  * preload), so that energies read before any step are complete. A force pass
  * with γᶠ held; its forces are recomputed when the run starts, and a bad
@@ -108,6 +115,7 @@ int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *materia
     m->em.F_pre[0] = m->em.F_pre[3] = 1;
     m->em.J_pre = 1;
     wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
+    sum_fabric_mass(m);
     /* amplitude DOFs of a cell without amplitudes stay put */
     if (m->mat.cell->n_amplitudes == 0)
         for (int n = 0; n < m->n_nodes; n++)
@@ -129,6 +137,7 @@ int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[
     memcpy(m->em.F_pre, F_pre, 4 * sizeof(double));
     m->em.J_pre = det;
     wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
+    sum_fabric_mass(m);
     if (m->mat.cell->n_amplitudes)
         for (int n = 0; n < m->n_nodes; n++) {
             m->u[D * n + 3] = dA0[0];
@@ -656,14 +665,25 @@ static int update_time_step(wff_model *m, wff_error *err)
  * allocation: the advance loop calls it every step. */
 static void kinetic_now(const wff_model *m, double k[4])
 {
-    static const int part[D] = {0, 0, 1, 2, 2};
-    k[0] = k[1] = k[2] = k[3] = 0;
     const double half = m->v_half_valid ? 0.5 * m->dt : 0;
-    for (int i = 0; i < m->n_dofs; i++)
-        if (m->dof_kind[i] == WFF_DOF_FREE) {
-            double vn = m->v[i] - half * m->f[i] / m->mass[i];
-            k[part[i % D]] += 0.5 * m->mass[i] * vn * vn;
+    const double *v = m->v, *f = m->f, *mass = m->mass;
+    const unsigned char *kind = m->dof_kind;
+    double inplane = 0, transverse = 0, amplitude = 0;
+    for (int n = 0; n < m->n_nodes; n++) { /* branch-free over the 5 DOFs of a node */
+        const int i = D * n;
+        double e[D];
+        for (int j = 0; j < D; j++) {
+            double vn = v[i + j] - half * f[i + j] / mass[i + j];
+            e[j] = kind[i + j] == WFF_DOF_FREE ? mass[i + j] * vn * vn : 0;
         }
+        inplane += e[0] + e[1];
+        transverse += e[2];
+        amplitude += e[3] + e[4];
+    }
+    k[0] = 0.5 * inplane;
+    k[1] = 0.5 * transverse;
+    k[2] = 0.5 * amplitude;
+    k[3] = 0;
     if (m->projectile.active) {
         double vp = m->projectile.velocity + half * m->projectile.force / m->projectile.mass;
         k[3] = 0.5 * m->projectile.mass * vp * vp;
@@ -692,10 +712,7 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     ref = fmax(ref, fmax(k[0] + k[1] + k[2] + k[3], fabs(stored)));
     /* below the kinetic energy of the fabric moving at ~3e-5 m/s, energies are
      * round-off: floor the normaliser there */
-    double fabric_mass = 0;
-    for (int n = 0; n < m->n_nodes; n++)
-        fabric_mass += m->mass[D * n];
-    ref = fmax(ref, 1e-9 * fabric_mass * 1.0 /* (m/s)^2 */);
+    ref = fmax(ref, 1e-9 * m->fabric_mass * 1.0 /* (m/s)^2 */);
     out->reference = s * ref;
     out->error = m->v_half_valid ? (total - m->initial_total) / ref : 0; /* not started: exact */
 }

@@ -77,6 +77,7 @@ typedef struct wff_model {
     double *v_prescribed;     /* per DOF, used where dof_kind is PRESCRIBED */
     double *gamma_f;
     double *reaction;         /* per DOF: −f_int on fixed and prescribed DOFs, last step */
+    double fabric_mass;       /* Σ nodal (displacement) masses, kg (model part) */
 
     double time, dt, dt_stable, dt_factor;
     long step;

@@ -8,12 +8,22 @@
 //   wovenffState(md, st);                 // time, energies, projectile ... (see kStateNames)
 //   wovenffField(md, "uz", values);       // nodal values, P1 DOF order
 //   wovenffFree(md);
-// Failures stop the script with ExecError (exit 8) and "function: message";
-// a script that catches them (try { } catch (...) { }) reads the message with
-// wovenffLastError(md) (that model's last error) or wovenffLastError(-1) (the
-// last error of any function here, e.g. wovenffModel). Checkpoints:
-// wovenffSave(md, file) / wovenffLoadState(md, file) (solver.h: same mesh,
-// material, preload, BCs and settings required; bitwise continuation).
+//
+// Added for runs that must survive (docs/limits.md):
+//   wovenffProjectileTip(md, z)        // nose tip at z (m, <= 0: a stand-off); refused,
+//                                      // naming the node, if the fabric would be inside
+//   int n = wovenffEnergySplit(md, e)  // stored energy per mechanism, J, whole specimen
+//   string names = wovenffMechNames(md) // their names, space-separated ("yarn_stretch ...")
+//   wovenffSave(md, file)              // checkpoint (binary, versioned, checksummed, atomic)
+//   int step = wovenffLoadState(md, file) // continue it in a model built the same way
+//                                      // (mesh, material, preload, BCs, settings, projectile;
+//                                      // refused, saying what differs); bitwise continuation
+//   string msg = wovenffLastError(md)  // after try { } catch (...) { }: that model's last
+//                                      // error; md = -1: the last error of any function here
+//                                      // (e.g. wovenffModel, which has no handle yet)
+// Failures stop the script with ExecError (exit 8) and "function: message"
+// unless the script catches them (FreeFEM's try/catch takes ExecError, and
+// also exit(): never exit inside a try block).
 // Models live in a table owned by this binding (FreeFEM passes no user data
 // to functions); the C core itself keeps no global state.
 #include "ff++.hpp"
