@@ -323,41 +323,83 @@ static int tri_block_forces(const wff_elements *el, const wff_element_material *
     wff_tri_block blk;
     blk.n = n;
     int finite[WFF_BLOCK];
+    const double *Fp = em->F_pre;
+    /* gather across the lanes (gcc turns the indexed loads into vector gathers) */
+#pragma omp simd
     for (int j = 0; j < WFF_BLOCK; j++) {
         int e = e0 + (j < n ? j : n - 1);
         const int *node = el->tri + 3 * e;
-        double F[6], Fe[6], state = 0;
-        deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
-        preload_apply(em, F, Fe);
-        for (int i = 0; i < 6; i++) {
-            blk.F[i][j] = Fe[i];
-            state += Fe[i];
+        const double *g = el->tri_grad + 6 * e;
+        double F0 = 0, F1 = 0, F2 = 0, F3 = 0, F4 = 0, F5 = 0, state = 0;
+        for (int a = 0; a < 3; a++) {
+            const double *ua = u + D * node[a];
+            double x = X[2 * node[a]] + ua[0], y = X[2 * node[a] + 1] + ua[1], z = ua[2];
+            F0 += x * g[2 * a];
+            F1 += x * g[2 * a + 1];
+            F2 += y * g[2 * a];
+            F3 += y * g[2 * a + 1];
+            F4 += z * g[2 * a];
+            F5 += z * g[2 * a + 1];
+            blk.dA[a][0][j] = ua[3];
+            blk.dA[a][1][j] = ua[4];
+            blk.gamma_f[a][j] = gamma_f[3 * e + a];
+            state += ua[3] + ua[4];
         }
-        for (int q = 0; q < 3; q++) {
-            blk.dA[q][0][j] = u[D * node[q] + 3];
-            blk.dA[q][1][j] = u[D * node[q] + 4];
-            blk.gamma_f[q][j] = gamma_f[3 * e + q];
-            state += blk.dA[q][0][j] + blk.dA[q][1][j];
-        }
-        finite[j] = isfinite(state);
+        /* F_eff = F F_pre */
+        blk.F[0][j] = F0 * Fp[0] + F1 * Fp[2];
+        blk.F[1][j] = F0 * Fp[1] + F1 * Fp[3];
+        blk.F[2][j] = F2 * Fp[0] + F3 * Fp[2];
+        blk.F[3][j] = F2 * Fp[1] + F3 * Fp[3];
+        blk.F[4][j] = F4 * Fp[0] + F5 * Fp[2];
+        blk.F[5][j] = F4 * Fp[1] + F5 * Fp[3];
+        state += F0 + F1 + F2 + F3 + F4 + F5;
+        finite[j] = state - state == 0; /* false for NaN and ±inf (isfinite does not vectorise) */
     }
     if (mat->cell->evaluate_tri_block(mat->params, dt, &blk) != 0)
         return -1;
+    /* per lane, vectorised: nodal force coefficients −A P_mesh (P_mesh = P F_preᵀ/J_pre),
+     * amplitude force weights, and whether the lane is sound */
+    double fx[6][WFF_BLOCK], wa[WFF_BLOCK];
+    int ok[WFF_BLOCK];
+    const double inv_J = 1 / em->J_pre;
+#pragma omp simd
+    for (int j = 0; j < WFF_BLOCK; j++) {
+        int e = e0 + (j < n ? j : n - 1);
+        double s = -el->tri_area[e] * inv_J;
+        for (int i = 0; i < 3; i++) {
+            double p0 = blk.stress[2 * i][j], p1 = blk.stress[2 * i + 1][j];
+            fx[2 * i][j] = s * (p0 * Fp[0] + p1 * Fp[1]);
+            fx[2 * i + 1][j] = s * (p0 * Fp[2] + p1 * Fp[3]);
+        }
+        wa[j] = el->tri_area[e] / 3 * inv_J;
+        double sum = blk.energy[j] + blk.dissipated[j];
+        for (int i = 0; i < 6; i++)
+            sum += blk.stress[i][j];
+        for (int q = 0; q < 3; q++)
+            sum += blk.residual[q][0][j] + blk.residual[q][1][j];
+        ok[j] = finite[j] & !blk.degenerate[j] & (sum - sum == 0);
+    }
+    const int amplitudes = mat->cell->n_amplitudes;
     for (int j = 0; j < n; j++) {
         int e = e0 + j;
-        double P[6], R[6], sum = blk.energy[j];
-        for (int i = 0; i < 6; i++)
-            sum += (P[i] = blk.stress[i][j]);
-        for (int q = 0; q < 3; q++)
-            for (int k = 0; k < 2; k++)
-                sum += (R[2 * q + k] = blk.residual[q][k][j]);
-        if (!finite[j] || blk.degenerate[j] || !isfinite(sum)) {
+        if (!ok[j]) {
             note_bad_sums(sums, e, 0, !finite[j] || !blk.degenerate[j] ? 2 : WFF_POINT_DEGENERATE);
             continue;
         }
-        for (int q = 0; q < 3; q++)
-            gamma_f[3 * e + q] = blk.gamma_f[q][j];
-        tri_scatter(el, em, e, P, R, mat->cell->n_amplitudes, f);
+        const int *node = el->tri + 3 * e;
+        const double *g = el->tri_grad + 6 * e;
+        for (int b = 0; b < 3; b++) {
+            double *fb = f + D * node[b];
+            double gx = g[2 * b], gy = g[2 * b + 1];
+            fb[0] += fx[0][j] * gx + fx[1][j] * gy;
+            fb[1] += fx[2][j] * gx + fx[3][j] * gy;
+            fb[2] += fx[4][j] * gx + fx[5][j] * gy;
+            if (amplitudes) {
+                fb[3] += wa[j] * blk.residual[b][0][j];
+                fb[4] += wa[j] * blk.residual[b][1][j];
+            }
+            gamma_f[3 * e + b] = blk.gamma_f[b][j];
+        }
         sums->energy += el->tri_area[e] * blk.energy[j];
         sums->dissipated += el->tri_area[e] * blk.dissipated[j];
     }
