@@ -705,20 +705,35 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
     const wff_material *mat = em->mat;
     double amplitude_factor = em->amplitude_mass_factor > 0 ? em->amplitude_mass_factor : 1;
     double best = INFINITY;
-    int n = el->n_tris + el->n_quads;
-    *worst = -1;
-    for (int e = 0; e < n; e++) {
-        double F[6], Fe[6], dA[2], speed, omega;
-        wff_element_center_state(el, X, u, e, F, dA);
-        preload_apply(em, F, Fe);
-        mat->cell->wave_speeds(mat->params, mat->areal_density, Fe, dA, &speed, &omega);
-        double dt = el->size[e] / speed;
-        if (omega > 0 && !em->static_amplitudes)
-            dt = fmin(dt, 2 / omega * sqrt(amplitude_factor));
-        if (!(dt >= best)) { /* also catches NaN */
-            best = dt;
-            *worst = e;
+    int n = el->n_tris + el->n_quads, best_e = -1;
+    int threads = el->n_threads > 1 && n >= 64 * WFF_BLOCK ? el->n_threads : 1;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    {
+        double mine = INFINITY;
+        int mine_e = -1;
+#pragma omp for schedule(static)
+        for (int e = 0; e < n; e++) {
+            double F[6], Fe[6], dA[2], speed, omega;
+            wff_element_center_state(el, X, u, e, F, dA);
+            preload_apply(em, F, Fe);
+            mat->cell->wave_speeds(mat->params, mat->areal_density, Fe, dA, &speed, &omega);
+            double dt = el->size[e] / speed;
+            if (omega > 0 && !em->static_amplitudes)
+                dt = fmin(dt, 2 / omega * sqrt(amplitude_factor));
+            if (!(dt >= mine)) { /* also catches NaN */
+                mine = dt;
+                mine_e = e;
+            }
+        }
+#pragma omp critical(wff_stable_step)
+        { /* the smallest step; on a tie the lowest element, whatever the thread order */
+            if (mine_e >= 0 && (best_e < 0 || !(mine >= best) ||
+                                (mine == best && mine_e < best_e))) {
+                best = mine;
+                best_e = mine_e;
+            }
         }
     }
+    *worst = best_e;
     return best;
 }
