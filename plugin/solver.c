@@ -300,6 +300,35 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
             return wff_fail(err, "symmetry = %g: must be 1 (full), 2 (half) or 4 (quarter)",
                             value);
         m->symmetry_factor = value;
+    } else if (strcmp(key, "threads") == 0) {
+        if (value != floor(value) || wff_elements_set_threads(&m->el, (int)value, err))
+            return value != floor(value) ? wff_fail(err, "threads = %g: a whole number", value)
+                                         : -1;
+    } else if (strcmp(key, "amplitude_mass_factor") == 0) {
+        if (!(value >= 1 && value <= 1e6))
+            return wff_fail(err, "amplitude_mass_factor = %g: must be >= 1 (1 is the paper's "
+                            "1/6 of the displacement mass)", value);
+        m->em.amplitude_mass_factor = value;
+        wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
+    } else if (strcmp(key, "static_amplitudes") == 0) {
+        if (value != 0 && value != 1)
+            return wff_fail(err, "static_amplitudes = %g: must be 0 (dynamic nodal amplitudes, "
+                            "the paper) or 1 (balanced at every point, King 2005)", value);
+        if (value == 1 && m->mat.cell->n_amplitudes == 0)
+            return wff_fail(err, "static_amplitudes: cell '%s' has no amplitudes",
+                            m->mat.cell->name);
+        if (value == 1) { /* first guess: the amplitudes of node 0 (the preload's) */
+            const double guess[2] = {m->u[3], m->u[4]};
+            if (wff_elements_static_amplitudes(&m->el, &m->em, guess, err))
+                return -1;
+        } else {
+            m->em.static_amplitudes = 0;
+        }
+    } else if (strcmp(key, "contact_search") == 0) {
+        if (value != 0 && value != 1)
+            return wff_fail(err, "contact_search = %g: must be 1 (only nodes the projectile "
+                            "can reach) or 0 (every node, every step)", value);
+        m->projectile.search_all = value == 0;
     } else if (strcmp(key, "reference_path") == 0) {
         if (value != 0 && value != 1)
             return wff_fail(err, "reference_path = %g: must be 0 (cell fast path where there "
@@ -307,7 +336,8 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
         m->em.reference_path = (int)value;
     } else {
         return wff_fail(err, "unknown solver setting '%s' (known: dtfactor, dtinterval, "
-                        "symmetry, reference_path)", key);
+                        "symmetry, reference_path, threads, amplitude_mass_factor, static_amplitudes, "
+                        "contact_search)", key);
     }
     return 0;
 }
@@ -400,7 +430,7 @@ int wff_model_nearest_node(const wff_model *m, double x, double y)
 static void refresh_candidates(wff_model *m)
 {
     wff_projectile *p = &m->projectile;
-    double reach = 1.2 * p->radius + 2e-3;
+    double reach = p->search_all ? INFINITY : 1.2 * p->radius + 2e-3;
     p->n_candidates = 0;
     for (int n = 0; n < m->n_nodes; n++) {
         double dx = m->mesh.xy[2 * n] + m->u[D * n] - p->axis[0];
@@ -930,6 +960,7 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     h->clamp_nodes = m->clamp.n;
     h->dt_interval = m->dt_interval;
     h->reference_path = m->em.reference_path;
+    h->pad = m->em.static_amplitudes; /* changes the payload too */
     uint64_t g = FNV_START;
     g = fnv1a(g, m->mesh.xy, sizeof(double) * 2 * (size_t)m->n_nodes);
     g = fnv1a(g, m->el.tri, sizeof(int) * 3 * (size_t)m->el.n_tris);
@@ -989,6 +1020,8 @@ static int state_fields(wff_model *m, int n_candidates, state_field *f)
     FIELD(m->reaction, m->n_dofs);
     FIELD(m->v_prescribed, m->n_dofs);
     FIELD(m->gamma_f, n_gamma(m));
+    if (m->em.static_amplitudes) /* the points' own amplitudes */
+        FIELD(m->el.point_dA, 2 * n_gamma(m));
 #undef FIELD
     return k;
 }

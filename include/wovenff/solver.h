@@ -39,6 +39,7 @@ typedef struct wff_projectile {
     double axis[2];       /* x, y of the projectile axis, m */
     int n_candidates;     /* nodes that may touch it, refreshed as it moves */
     int *candidates;
+    int search_all;       /* 1: every node is a candidate (the contact_search knob off) */
     int *contact_node;    /* nodes corrected in the last step (workspace, n_nodes) */
     double *impulse;      /* their contact impulses, 3 each, N·s (workspace) */
     double max_penetration;  /* largest penetration left after a contact correction, m */
@@ -148,7 +149,10 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
  * stable-step updates, >= 1), symmetry (1, 2 or 4: energies and projectile
  * force reported for the whole specimen), reference_path (1: the cell's plain
  * evaluate() everywhere, 0: its fast path where it has one; results agree to
- * round-off). */
+ * round-off), threads (force pass and stable-step scan), amplitude_mass_factor
+ * (>= 1: heavier amplitudes, longer steps), static_amplitudes (1: balanced at
+ * every point instead of dynamic DOFs), contact_search (1: only nodes the
+ * projectile can reach; 0: every node). */
 int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err);
 
 /* Energies now (whole specimen: model part × symmetry_factor). */
