@@ -17,6 +17,7 @@ extern "C" {
 // Registration, one per binding file (wovenff.cpp lists them).
 void wff_ff_register_point();  // ff_point.cpp: pointwise material API
 void wff_ff_register_solver(); // ff_solver.cpp: models, meshes, explicit solver
+void wff_ff_register_fit();    // ff_fit.cpp: parameter identification
 
 // ExecError("fn: message"). Never returns.
 [[noreturn]] void wff_ff_fail(const char *fn, const char *message);

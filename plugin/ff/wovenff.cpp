@@ -51,6 +51,7 @@ void wff_ff_require_size(const char *fn, const char *name, const KN<double> *v, 
 static void (*const kRegister[])() = {
     wff_ff_register_point,
     wff_ff_register_solver,
+    wff_ff_register_fit,
 };
 
 static void init()
