@@ -72,18 +72,47 @@ static int equations(const gsl_vector *x, void *data, gsl_vector *out)
     return GSL_SUCCESS;
 }
 
+/* Forward-difference Jacobian with an absolute floor on the step: GSL's own
+ * steps relative to each unknown, and a tiny non-zero guess (ΔA ~ 1e-13 m)
+ * then gives a singular Jacobian. Unknowns are O(1) here. */
+static int jacobian(const gsl_vector *x, void *data, gsl_matrix *J)
+{
+    size_t n = x->size;
+    gsl_vector *f0 = gsl_vector_alloc(n), *f1 = gsl_vector_alloc(n), *xh = gsl_vector_alloc(n);
+    int rc = equations(x, data, f0);
+    for (size_t j = 0; j < n && rc == GSL_SUCCESS; j++) {
+        gsl_vector_memcpy(xh, x);
+        double h = 1e-7 * fmax(1.0, fabs(gsl_vector_get(x, j)));
+        gsl_vector_set(xh, j, gsl_vector_get(x, j) + h);
+        rc = equations(xh, data, f1);
+        for (size_t i = 0; i < n && rc == GSL_SUCCESS; i++)
+            gsl_matrix_set(J, i, j, (gsl_vector_get(f1, i) - gsl_vector_get(f0, i)) / h);
+    }
+    gsl_vector_free(f0);
+    gsl_vector_free(f1);
+    gsl_vector_free(xh);
+    return rc;
+}
+
+static int equations_and_jacobian(const gsl_vector *x, void *data, gsl_vector *f, gsl_matrix *J)
+{
+    int rc = equations(x, data, f);
+    return rc == GSL_SUCCESS ? jacobian(x, data, J) : rc;
+}
+
 static int solve(problem *pb, gsl_vector *x, wff_error *err, const char *what)
 {
     size_t n = x->size;
-    gsl_multiroot_function fn = {equations, n, pb};
-    gsl_multiroot_fsolver *s = gsl_multiroot_fsolver_alloc(gsl_multiroot_fsolver_hybrids, n);
+    gsl_multiroot_function_fdf fn = {equations, jacobian, equations_and_jacobian, n, pb};
+    gsl_multiroot_fdfsolver *s =
+        gsl_multiroot_fdfsolver_alloc(gsl_multiroot_fdfsolver_hybridsj, n);
     if (!s)
         return wff_fail(err, "%s: out of memory", what);
     gsl_error_handler_t *old = gsl_set_error_handler_off();
-    int status = gsl_multiroot_fsolver_set(s, &fn, x);
+    int status = gsl_multiroot_fdfsolver_set(s, &fn, x);
     int iter = 0;
     while (status == GSL_SUCCESS && iter++ < MAX_ITERATIONS) {
-        status = gsl_multiroot_fsolver_iterate(s);
+        status = gsl_multiroot_fdfsolver_iterate(s);
         if (status != GSL_SUCCESS)
             break;
         if (gsl_multiroot_test_residual(s->f, 1e-13) == GSL_SUCCESS)
@@ -100,7 +129,7 @@ static int solve(problem *pb, gsl_vector *x, wff_error *err, const char *what)
     int ok = isfinite(worst) && worst <= 1e-9;
     if (ok)
         gsl_vector_memcpy(x, s->x);
-    gsl_multiroot_fsolver_free(s);
+    gsl_multiroot_fdfsolver_free(s);
     gsl_set_error_handler(old);
     if (!ok)
         return wff_fail(err, "%s: static balance did not converge (GSL: %s, largest residual "

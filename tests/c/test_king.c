@@ -52,6 +52,11 @@ static void check_preload(check_state *st)
     CHECK(st, rc == 0, "%s", e.message);
     CHECK_CLOSE(st, dA[0], s.dA[0], 1e-8, 0, "balance dA_1");
     CHECK_CLOSE(st, dA[1], s.dA[1], 1e-8, 0, "balance dA_2");
+    /* a tiny non-zero first guess converges too (a relative FD step would not) */
+    double tiny[2] = {1e-13, -1e-13};
+    rc = wff_balance_amplitudes(&m, F, 0, tiny, &e);
+    CHECK(st, rc == 0, "balance from a 1e-13 m guess: %s", rc ? e.message : "");
+    CHECK_CLOSE(st, tiny[0], s.dA[0], 1e-8, 0, "balance dA_1 from a tiny guess");
 }
 
 /* Pure extension along warp with no shear and idle spars (MODEL.md §6 hand check,
