@@ -21,6 +21,11 @@
 /* Energy created, relative to the reference energy, beyond which the run is
  * taken as unstable. */
 #define ENERGY_BLOWUP 0.5
+/* ... on this many steps in a row (an instability keeps growing; a spike of a
+ * step or two, e.g. a prescribed velocity jumped by the script, does not) ... */
+#define BLOWUP_STEPS 3
+/* ... or at once beyond this (50 times the reference energy created). */
+#define ENERGY_BLOWUP_NOW 50.0
 
 static const char *const dof_names[D] = {"ux", "uy", "uz", "dA1", "dA2"};
 
@@ -493,6 +498,21 @@ static void element_name(const wff_model *m, int e, char *out, size_t size)
                  node[0] + 1, node[1] + 1, node[2] + 1, node[3] + 1);
 }
 
+/* The run is unstable: say what showed it (`what`), when, the element that
+ * sets the stable step, and a step and a dtfactor to try. */
+static int fail_unstable(const wff_model *m, const char *what, wff_error *err)
+{
+    char name[96];
+    element_name(m, m->dt_worst_element, name, sizeof name);
+    /* above the default: back to 0.8; at or below it the estimate was not
+     * safe here: halve the factor */
+    double suggested = m->dt_factor > 0.8 ? 0.8 : 0.5 * m->dt_factor;
+    return wff_fail(err, "t = %.6g s (step %ld): %s: unstable (time step %.3g s = %.3g x the "
+                    "stable estimate %.3g s at %s); suggested step %.3g s: suggested "
+                    "-dtfactor %.2g", m->time, m->step, what, m->dt, m->dt_factor,
+                    m->dt_stable, name, suggested * m->dt_stable, suggested);
+}
+
 /* Internal and contact forces at the current u; returns 0 or -1 (err set). */
 static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
 {
@@ -503,17 +523,23 @@ static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
     if (t.bad_element >= 0) {
         char name[96];
         element_name(m, t.bad_element, name, sizeof name);
+        const char *quantity = t.bad_status == WFF_POINT_DEGENERATE
+                                   ? "degenerate deformation (yarns collapsed or parallel: "
+                                     "inverted element)"
+                                   : "NaN or infinite displacement, amplitude, stress or energy";
+        if (m->blowup_steps > 0) { /* the detector was already counting */
+            char what[WFF_ERROR_MAX - 200];
+            snprintf(what, sizeof what, "%s, quadrature point %d: %s, with the energy balance "
+                     "off by %.3g%% of the reference energy the step before", name,
+                     t.bad_point + 1, quantity, 100 * m->last_error);
+            return fail_unstable(m, what, err);
+        }
         char hint[160] = "";
         if (m->dt_factor > 1)
             snprintf(hint, sizeof hint, " (the step is %.3g x the stable estimate: likely "
                      "unstable; suggested -dtfactor 0.8)", m->dt_factor);
         return wff_fail(err, "t = %.6g s (step %ld): %s, quadrature point %d: %s%s", m->time,
-                        m->step, name, t.bad_point + 1,
-                        t.bad_status == WFF_POINT_DEGENERATE
-                            ? "degenerate deformation (yarns collapsed or parallel: "
-                              "inverted element)"
-                            : "NaN or infinite displacement, amplitude, stress or energy",
-                        hint);
+                        m->step, name, t.bad_point + 1, quantity, hint);
     }
     m->internal_energy = t.internal_energy;
     m->dissipated_shear += t.dissipated;
@@ -799,24 +825,22 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         update_velocities(m, 0.5 * (dt + m->dt));
         if (contact_correct(m, m->dt, 0.5 * (dt + m->dt), err))
             return -1;
-        {   /* every step (a pass over the DOFs, ~1 % of a force pass): an
-             * unstable step grows the energy by a large factor per step */
+        {   /* every step (a pass over the DOFs, ~4 % of a step): an unstable
+             * step grows the energy by a large factor per step */
             wff_energies e;
             wff_model_energies(m, &e);
-            /* an unstable step creates energy: a deficit is not instability */
-            if (!isfinite(e.error) || e.error > ENERGY_BLOWUP) {
-                char name[96];
-                element_name(m, m->dt_worst_element, name, sizeof name);
-                /* above the limit: back to the default 0.8; at or below it the
-                 * estimate was not safe here: halve the factor */
-                double suggested = m->dt_factor > 0.8 ? 0.8 : 0.5 * m->dt_factor;
-                return wff_fail(err, "t = %.6g s (step %ld): energy balance off by %.3g%% of "
-                                "the reference energy: unstable (time step %.3g s = %.3g x "
-                                "the stable estimate %.3g s at %s); suggested step %.3g s: "
-                                "suggested -dtfactor %.2g",
-                                m->time, m->step, 100 * e.error, m->dt, m->dt_factor,
-                                m->dt_stable, name, suggested * m->dt_stable, suggested);
+            /* an unstable step creates energy (a deficit is not instability) and
+             * keeps creating it: a one- or two-step spike, as when a script jumps
+             * a prescribed velocity while the work done is still tiny, is not */
+            m->blowup_steps = e.error > ENERGY_BLOWUP ? m->blowup_steps + 1 : 0;
+            if (!isfinite(e.error) || m->blowup_steps >= BLOWUP_STEPS ||
+                e.error > ENERGY_BLOWUP_NOW) {
+                char what[160];
+                snprintf(what, sizeof what, "energy balance off by %.3g%% of the reference "
+                         "energy", 100 * e.error);
+                return fail_unstable(m, what, err);
             }
+            m->last_error = e.error;
         }
     }
     return 0;
@@ -1007,6 +1031,8 @@ static int state_fields(wff_model *m, int n_candidates, state_field *f)
     FIELD(&m->initial_kinetic, 1);
     FIELD(&m->v_half_valid, 1);
     FIELD(&m->element_steps, 1);
+    FIELD(&m->blowup_steps, 1);
+    FIELD(&m->last_error, 1);
     FIELD(&p->tip, 1);
     FIELD(&p->velocity, 1);
     FIELD(p->axis, 2);

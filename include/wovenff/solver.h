@@ -96,6 +96,9 @@ typedef struct wff_model {
     double initial_kinetic;
     int v_half_valid;         /* 1 once v holds a half-step velocity */
     long element_steps;       /* elements × steps done, for cost figures */
+    int blowup_steps;         /* consecutive steps with more than half the reference
+                                 energy created (instability detector) */
+    double last_error;        /* energy balance error at the last step */
 } wff_model;
 
 /* Create a model from a mesh file (.geo or .msh, see mesh.h) and a material
@@ -135,7 +138,9 @@ int wff_model_set_projectile(wff_model *m, double radius, double mass, double ve
 /* Advance until time >= t_end (or max_steps). Stops with -1 and a message
  * naming what, where and when on NaN, a degenerate element, an unstable
  * step or a projectile that passes through the fabric. The instability check
- * (every dtinterval steps: energy created > 50 % of the reference energy)
+ * (every step: energy created > 50 % of the reference energy on 3 steps in a
+ * row, or > 5000 % at once; a force failure while it counts is reported as
+ * the instability)
  * names the element that sets the stable step and suggests a step and a
  * dtfactor. */
 int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err);
