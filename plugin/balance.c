@@ -72,9 +72,8 @@ static int equations(const gsl_vector *x, void *data, gsl_vector *out)
     return GSL_SUCCESS;
 }
 
-/* Forward-difference Jacobian with an absolute floor on the step: GSL's own
- * steps relative to each unknown, and a tiny non-zero guess (ΔA ~ 1e-13 m)
- * then gives a singular Jacobian. Unknowns are O(1) here. */
+/* Forward-difference Jacobian with an absolute floor on the step (GSL's own
+ * steps relative to each unknown). Unknowns are O(1) here. */
 static int jacobian(const gsl_vector *x, void *data, gsl_matrix *J)
 {
     size_t n = x->size;
@@ -108,6 +107,12 @@ static int solve(problem *pb, gsl_vector *x, wff_error *err, const char *what)
         gsl_multiroot_fdfsolver_alloc(gsl_multiroot_fdfsolver_hybridsj, n);
     if (!s)
         return wff_fail(err, "%s: out of memory", what);
+    /* GSL's hybrid method sizes its first trust region from |x|: a guess of a
+     * few picometres would start it tiny and stall ("not making progress").
+     * Such a guess carries no information: start from zero instead. */
+    for (size_t i = 0; i < n; i++)
+        if (fabs(gsl_vector_get(x, i)) < 1e-6)
+            gsl_vector_set(x, i, 0);
     gsl_error_handler_t *old = gsl_set_error_handler_off();
     int status = gsl_multiroot_fdfsolver_set(s, &fn, x);
     int iter = 0;
