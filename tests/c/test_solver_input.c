@@ -1,8 +1,10 @@
 /* Bad input to the solver's C API is refused with a message naming the
  * value (docs/limits.md, "Errors"): a projectile placed inside the fabric
  * (naming the node and the depth), a negative mass, speed or radius, solver
- * settings out of range, an unknown setting, a group the mesh lacks; and the
- * energy split per mechanism adds up to the stored energy. */
+ * settings out of range, an unknown setting, a group the mesh lacks; the
+ * energy split per mechanism adds up to the stored energy; and a state gone
+ * bad (NaN, a collapsed element, a projectile through the fabric) stops the
+ * run with the time, the step, the element and the quantity. */
 #include "check.h"
 #include "test_meshes.h"
 #include "wovenff/solver.h"
@@ -83,5 +85,44 @@ int main(void)
     CHECK(&st, fabs(sum - e.internal) <= 1e-9 * fabs(e.internal) && e.internal > 0,
           "split sums to the stored energy (x symmetry): %.12g vs %.12g", sum, e.internal);
     wff_model_free(&m);
+
+    /* a state gone bad stops the run naming time, step, element and quantity */
+    static const struct { const char *what, *want; } bad[] = {
+        {"NaN displacement", "NaN or infinite displacement, amplitude, stress or energy"},
+        {"fabric crushed", "degenerate deformation (yarns collapsed or parallel: inverted "
+                               "element)"},
+        {"through the fabric", "the projectile has passed through the fabric"},
+    };
+    for (int k = 0; k < 3; k++) {
+        if (test_model_rect(&m, &r, KEVLAR, &err)) {
+            CHECK(&st, 0, "%s", err.message);
+            break;
+        }
+        rc = wff_model_set_projectile(&m, 6.35e-3, 0.01, 20, 0, &err) ||
+             wff_model_advance(&m, 1, 10, &err);
+        CHECK(&st, rc == 0, "%s", err.message);
+        int centre = wff_model_nearest_node(&m, 0, 0);
+        double *u = m.u + WFF_DOFS_PER_NODE * centre;
+        if (k == 0)
+            u[2] = NAN;
+        else if (k == 1) /* the fabric crushed onto the line y = z = 0, at rest: the
+                          * weft yarns have zero length */
+            for (int n = 0; n < m.n_nodes; n++) {
+                m.u[WFF_DOFS_PER_NODE * n + 1] = -m.mesh.xy[2 * n + 1];
+                m.u[WFF_DOFS_PER_NODE * n + 2] = 0;
+                for (int c = 0; c < 3; c++)
+                    m.v[WFF_DOFS_PER_NODE * n + c] = 0;
+            }
+        else /* 4 mm behind the nose tip, under its axis */
+            u[2] = m.projectile.tip - 4e-3;
+        rc = wff_model_advance(&m, 1, 10, &err);
+        expect(&st, rc, &err, bad[k].want, bad[k].what);
+        CHECK(&st, strstr(err.message, "t = ") && strstr(err.message, "(step 1"),
+              "%s: names the time and step: %s", bad[k].what, err.message);
+        if (k < 2)
+            CHECK(&st, strstr(err.message, "triangle ") && strstr(err.message, "(nodes "),
+                  "%s: names the element: %s", bad[k].what, err.message);
+        wff_model_free(&m);
+    }
     return check_summary(&st, "test_solver_input");
 }
