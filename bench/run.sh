@@ -36,9 +36,16 @@ for et in tri quad; do
     done
 done
 
-echo "== 2. pure .edp varf step"
+echo "== 2. pure .edp varf step, and the King step on the same mesh"
 edp=$(ff bench/edp_varf.edp -steps 20 | grep '^{') || edp='{}'
 echo "$edp"
+king_default=$(build/bench/kernel_speed tri 1 1 400) || king_default='{}'
+echo "$king_default"
+echo "== 2b. the paper's scene at its defaults, start to plots"
+t0=$(now)
+ff freefem_scripts/ballistic_impact.edp -out "$out/runs/scene_default" > "$out/runs/scene_default.log" 2>&1
+scene_wall=$(elapsed "$t0")
+echo "scene_default $scene_wall s"
 
 echo "== 3. speed vs accuracy on the ballistic scene"
 tend=2.5e-3
@@ -108,13 +115,27 @@ plot '$out/tradeoff.csv' every ::1 using 4:(\$6 > 0 ? \$6 : 1/0) with points pt 
 EOF
 gnuplot "$out/pareto.gp" || echo "gnuplot failed"
 
-# speed.json: the figures of 1 and 2 in one place
+# speed.json: the figures of 1 and 2 in one place, with the ratios the targets name
+num() { echo "$1" | sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p"; }
+pick() { grep "\"element_type\": \"$1\"" "$out/kernel.jsonl" | grep "\"threads\": $2," | \
+         awk -v n="$3" -F'"elements": ' '{ split($2, a, ","); if (a[1] + 0 >= n) { print; exit } }'; }
+k50_1=$(pick tri3 1 40000); k50_2=$(pick tri3 2 40000)
+king_ns=$(num "$king_default" ns_per_element_step); edp_ns=$(num "$edp" ns_per_element_step)
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (a > 0 && b > 0) printf "%.2f", a / b; else print "null" }'; }
 {
     echo "{"
     echo "  \"kernel\": ["
     sed 's/^/    /; $!s/$/,/' "$out/kernel.jsonl"
     echo "  ],"
-    echo "  \"edp_varf\": $edp"
+    echo "  \"edp_varf\": $edp,"
+    echo "  \"king_default_mesh\": $king_default,"
+    echo "  \"scene_default_wall_seconds\": $scene_wall,"
+    echo "  \"ratios\": {"
+    echo "    \"king_over_linear_membrane_50k_1thread\": $(ratio "$(num "$k50_1" ns_per_element_step)" "$(num "$k50_1" linear_membrane_ns)"),"
+    echo "    \"edp_varf_over_king_default_mesh\": $(ratio "$edp_ns" "$king_ns"),"
+    echo "    \"one_over_two_threads_50k\": $(ratio "$(num "$k50_1" ns_per_element_step)" "$(num "$k50_2" ns_per_element_step)")"
+    echo "  }"
     echo "}"
 } > "$out/speed.json.tmp" && mv "$out/speed.json.tmp" "$out/speed.json"
+cat "$out/speed.json"
 echo "results in $out"
