@@ -112,8 +112,10 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
 void wff_elements_masses(const wff_elements *el, const wff_element_material *em, int n_nodes,
                          double *mass);
 
-/* Stable explicit step over all elements: min(size/c, 2/ω) at the current
- * state. *worst gets the element that sets it. */
+/* Stable explicit step over all elements at the current state: per element
+ * 1/sqrt(1/dt_m² + 1/dt_A²) with dt_m = size/c (membrane waves) and
+ * dt_A = 2/ω (amplitude oscillator), the bound for the two coupled.
+ * *worst gets the element that sets it. */
 double wff_elements_stable_step(const wff_elements *el, const wff_element_material *em,
                                 const double *X, const double *u, int *worst);
 

@@ -115,8 +115,8 @@ static void momentum_projectile(check_state *st)
     printf("  momentum, projectile mu 0.3 on free fabric, %ld steps: |dPz| / MV = %.2e; "
            "projectile %.3f m/s, friction dissipated %.3e J, energy error %.2e\n", m.step,
            worst / (M * V), m.projectile.velocity, e.dissipated_friction, e.error);
-    CHECK(st, m.projectile.max_penetration > 0 && m.projectile.velocity < V,
-          "the projectile touched the fabric");
+    CHECK(st, m.projectile.velocity < V, "the projectile touched the fabric (slowed to %g m/s)",
+          m.projectile.velocity);
     CHECK(st, e.dissipated_friction > 0, "friction acted: %g J", e.dissipated_friction);
     CHECK(st, worst <= 1e-13 * M * V, "z momentum drift %g of %g", worst, M * V);
     wff_model_free(&m);
