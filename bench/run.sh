@@ -66,7 +66,7 @@ scene() { # name, then scene options
 if [ "$quick" = 1 ]; then
     scene reference -mesh default -dtfactor 0.5
 else
-    scene reference -mesh finest -dtfactor 0.5 -threads 2
+    scene reference -mesh finest -dtfactor 0.6 -threads 2
 fi
 scene mesh_coarse -mesh coarse
 scene mesh_default -mesh default
