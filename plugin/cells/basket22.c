@@ -60,17 +60,13 @@
  */
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
+#include "cell_laws.h"
 
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
 
 #define FAMILIES 2
-
-/* Exponent a·I past which the compaction exponential is continued by its
- * third-order Taylor polynomial: exp(30) ≈ 1e13, far beyond any physical
- * compaction force, and far below overflow. */
-#define COMPACTION_EXPONENT_MAX 30.0
 
 /* sinθ below which the stable-step bound stops growing: the shear term goes
  * as 1/sin²θ and would be infinite at parallel yarns. */
@@ -142,33 +138,6 @@ static const char *const basket_mech_names[] = {"yarn_stretch", "yarn_bending", 
                                                 "locking", "shear"};
 enum { MECH_YARN, MECH_BENDING, MECH_COMPACTION, MECH_LOCKING, MECH_SHEAR, MECH_COUNT };
 
-/* exp(x) continued past COMPACTION_EXPONENT_MAX; *primitive gets ∫exp, *slope exp'. */
-static double compaction_exp(double x, double *primitive, double *slope)
-{
-    if (x <= COMPACTION_EXPONENT_MAX) {
-        double e = exp(x);
-        *primitive = e;
-        *slope = e;
-        return e;
-    }
-    double e = exp(COMPACTION_EXPONENT_MAX), u = x - COMPACTION_EXPONENT_MAX;
-    *primitive = e * (1 + u + u * u / 2 + u * u * u / 6);
-    *slope = e * (1 + u);
-    return e * (1 + u + u * u / 2);
-}
-
-/* gap^c for the locking law; integer exponents by multiplication. */
-static double locking_power(double gap, double c)
-{
-    if (c == 1.0)
-        return gap;
-    if (c == 2.0)
-        return gap * gap;
-    if (c == 3.0)
-        return gap * gap * gap;
-    return pow(gap, c);
-}
-
 /* One spar of reference length length0 at length `length`: force (K_d gap^c
  * when shorter than length0, else 0), its stiffness −∂F/∂length, and the
  * energy K_d gap^(c+1)/(c+1) of one spar. */
@@ -181,44 +150,10 @@ static double spar_law(const basket_params *k, double length0, double length, do
         return 0;
     }
     double c = k->locking_exponent;
-    double power = locking_power(gap, c);
+    double power = wff_locking_power(gap, c);
     *energy = k->locking_stiffness * power * gap / (c + 1);
-    *slope = k->locking_stiffness * c * locking_power(gap, c - 1);
+    *slope = k->locking_stiffness * c * wff_locking_power(gap, c - 1);
     return k->locking_stiffness * power;
-}
-
-/* Backward-Euler update of γᶠ (MODEL.md §7), the same flow rule as king_plain:
- * solve x = γᶠ + Δt γ̇₀ sign(m)|m/M₀|^n, m = K_s (γ − x); the root lies
- * between γᶠ and γ; n = 1 has a closed form. */
-static double shear_flow_update(const basket_params *k, double gamma, double gamma_f, double dt)
-{
-    if (!(dt > 0) || k->flow_rate == 0 || k->shear_stiffness == 0)
-        return gamma_f;
-    double rate = dt * k->flow_rate; /* Δt γ̇₀ */
-    if (k->flow_exponent == 1.0) {
-        double r = rate * k->shear_stiffness / k->flow_moment;
-        return (gamma_f + r * gamma) / (1 + r);
-    }
-    double lo = fmin(gamma_f, gamma), hi = fmax(gamma_f, gamma), x = gamma_f;
-    for (int it = 0; it < 100; it++) {
-        double m = k->shear_stiffness * (gamma - x);
-        double ratio = fabs(m) / k->flow_moment;
-        double flow = rate * pow(ratio, k->flow_exponent);
-        double f = x - gamma_f - (m >= 0 ? flow : -flow);
-        if (f > 0)
-            hi = x;
-        else
-            lo = x;
-        double df = 1 + rate * k->flow_exponent * k->shear_stiffness / k->flow_moment *
-                            pow(ratio, k->flow_exponent - 1);
-        double next = x - f / df;
-        if (!(next > lo && next < hi))
-            next = 0.5 * (lo + hi);
-        if (fabs(next - x) <= 1e-15 * (fabs(x) + fabs(gamma) + 1e-300))
-            return next;
-        x = next;
-    }
-    return x;
 }
 
 /* Kinematics, laws and energies (all but shear, which needs the flow update). */
@@ -248,7 +183,7 @@ static int basket_point_eval(const basket_params *k, const double F[6], const do
 
     pt->interference = -dA[0] - dA[1];
     double x = k->compaction_rate * pt->interference, primitive, slope;
-    double e = compaction_exp(x, &primitive, &slope);
+    double e = wff_compaction_exp(x, &primitive, &slope);
     pt->compaction = k->compaction_force * (e - 1);
     pt->compaction_slope = k->compaction_force * k->compaction_rate * slope;
     pt->energy_compaction = CROSSOVERS * (k->compaction_force / k->compaction_rate *
@@ -308,7 +243,8 @@ static int basket_evaluate(const void *params, const double F[6], const double d
         fill_nan(out);
         return WFF_POINT_DEGENERATE;
     }
-    double gamma_f_new = shear_flow_update(k, pt.gamma, gamma_f, dt);
+    double gamma_f_new = wff_shear_flow_update(k->shear_stiffness, k->flow_moment, k->flow_rate,
+                         k->flow_exponent, pt.gamma, gamma_f, dt);
     double shear_elastic = pt.gamma - gamma_f_new;            /* γᵉ */
     double shear_moment = k->shear_stiffness * shear_elastic; /* M_s, one crossover */
 

@@ -39,6 +39,7 @@
  */
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
+#include "cell_laws.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -51,11 +52,6 @@ extern double atan(double) __attribute__((__simd__("notinbranch")));
 extern double exp(double) __attribute__((__simd__("notinbranch")));
 
 #define FAMILIES 2
-
-/* Exponent a·I past which the compaction exponential is continued by its
- * third-order Taylor polynomial: exp(30) ≈ 1e13, far beyond any physical
- * compaction force, and far below overflow. */
-#define COMPACTION_EXPONENT_MAX 30.0
 
 typedef struct king_params {
     double pitch0[FAMILIES];             /* p_k⁰, quarter wavelength, m */
@@ -110,68 +106,6 @@ static const char *const king_mech_names[] = {"yarn_stretch", "yarn_bending", "c
                                               "locking", "shear"};
 enum { MECH_YARN, MECH_BENDING, MECH_COMPACTION, MECH_LOCKING, MECH_SHEAR, MECH_COUNT };
 
-/* exp(x) continued past COMPACTION_EXPONENT_MAX; *primitive gets ∫exp, *slope exp'. */
-static double compaction_exp(double x, double *primitive, double *slope)
-{
-    if (x <= COMPACTION_EXPONENT_MAX) {
-        double e = exp(x);
-        *primitive = e;
-        *slope = e;
-        return e;
-    }
-    double e = exp(COMPACTION_EXPONENT_MAX), u = x - COMPACTION_EXPONENT_MAX;
-    *primitive = e * (1 + u + u * u / 2 + u * u * u / 6);
-    *slope = e * (1 + u);
-    return e * (1 + u + u * u / 2);
-}
-
-/* gap^c for the locking law; integer exponents by multiplication. */
-static double locking_power(double gap, double c)
-{
-    if (c == 1.0)
-        return gap;
-    if (c == 2.0)
-        return gap * gap;
-    if (c == 3.0)
-        return gap * gap * gap;
-    return pow(gap, c);
-}
-
-/* Backward-Euler update of γᶠ (MODEL.md §7): solve
- *   x = γᶠ + Δt γ̇₀ sign(m)|m/M₀|^n,  m = K_s (γ − x).
- * The root lies between γᶠ and γ; n = 1 has a closed form. */
-static double shear_flow_update(const king_params *k, double gamma, double gamma_f, double dt)
-{
-    if (!(dt > 0) || k->flow_rate == 0 || k->shear_stiffness == 0)
-        return gamma_f;
-    double rate = dt * k->flow_rate; /* Δt γ̇₀ */
-    if (k->flow_exponent == 1.0) {
-        double r = rate * k->shear_stiffness / k->flow_moment;
-        return (gamma_f + r * gamma) / (1 + r);
-    }
-    double lo = fmin(gamma_f, gamma), hi = fmax(gamma_f, gamma), x = gamma_f;
-    for (int it = 0; it < 100; it++) {
-        double m = k->shear_stiffness * (gamma - x);
-        double ratio = fabs(m) / k->flow_moment;
-        double flow = rate * pow(ratio, k->flow_exponent);
-        double f = x - gamma_f - (m >= 0 ? flow : -flow);
-        if (f > 0)
-            hi = x;
-        else
-            lo = x;
-        /* d/dx of sign(m)|m/M₀|^n is −n K_s |m/M₀|^(n−1)/M₀ */
-        double df = 1 + rate * k->flow_exponent * k->shear_stiffness / k->flow_moment *
-                            pow(ratio, k->flow_exponent - 1);
-        double next = x - f / df;
-        if (!(next > lo && next < hi))
-            next = 0.5 * (lo + hi);
-        if (fabs(next - x) <= 1e-15 * (fabs(x) + fabs(gamma) + 1e-300))
-            return next;
-        x = next;
-    }
-    return x;
-}
-
 /* Kinematics, laws and energies (all but shear, which needs the flow update). */
 static int king_point_eval(const king_params *k, const double F[6], const double dA[2],
                            king_point *pt)
@@ -199,7 +133,7 @@ static int king_point_eval(const king_params *k, const double F[6], const double
 
     pt->interference = -dA[0] - dA[1];
     double x = k->compaction_rate * pt->interference, primitive, slope;
-    double e = compaction_exp(x, &primitive, &slope);
+    double e = wff_compaction_exp(x, &primitive, &slope);
     pt->compaction = k->compaction_force * (e - 1);
     pt->energy_compaction = k->compaction_force / k->compaction_rate * (primitive - 1) -
                             k->compaction_force * pt->interference;
@@ -223,7 +157,7 @@ static int king_point_eval(const king_params *k, const double F[6], const double
         pt->spar_length[f] = sqrt(pt->spar[f] * pt->spar[f] + A * A);
         double gap = k->spar_length0[f] - pt->spar_length[f];
         if (gap > 0) {
-            double power = locking_power(gap, k->locking_exponent);
+            double power = wff_locking_power(gap, k->locking_exponent);
             pt->locking[f] = k->locking_stiffness * power;
             pt->energy_locking +=
                 2 * k->locking_stiffness * power * gap / (k->locking_exponent + 1);
@@ -254,7 +188,8 @@ static int king_evaluate(const void *params, const double F[6], const double dA[
         fill_nan(out);
         return WFF_POINT_DEGENERATE;
     }
-    double gamma_f_new = shear_flow_update(k, pt.gamma, gamma_f, dt);
+    double gamma_f_new = wff_shear_flow_update(k->shear_stiffness, k->flow_moment, k->flow_rate,
+                         k->flow_exponent, pt.gamma, gamma_f, dt);
     double shear_moment = k->shear_stiffness * (pt.gamma - gamma_f_new); /* M_s */
     double shear_elastic = pt.gamma - gamma_f_new;                        /* γᵉ */
 
@@ -339,7 +274,7 @@ static void king_wave_speeds(const void *params, double areal_density, const dou
         return;
     }
     double primitive, slope;
-    compaction_exp(k->compaction_rate * pt.interference, &primitive, &slope);
+    wff_compaction_exp(k->compaction_rate * pt.interference, &primitive, &slope);
     double compaction_stiffness = k->compaction_force * k->compaction_rate * slope; /* ∂F_I/∂I */
     double sn = fmax(pt.sin_t, 0.05);
     double shear = k->shear_stiffness / (sn * sn); /* torsional, per rad², N·m */
@@ -353,7 +288,7 @@ static void king_wave_speeds(const void *params, double areal_density, const dou
         double gap = k->spar_length0[f] - pt.spar_length[f];
         if (gap > 0)
             lock_stiff = k->locking_stiffness * k->locking_exponent *
-                         locking_power(gap, k->locking_exponent - 1);
+                         wff_locking_power(gap, k->locking_exponent - 1);
         double axial = stretch_active * k->yarn_stiffness[f] + fabs(pt.tension[f]) / L +
                        k->bending_stiffness[f] / (L * L);
         /* stiffness per unit width when family f is stretched: two trusses per
@@ -415,7 +350,7 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
         const double *a = dA + 2 * pt;
         const double w = weight[pt];
         double x = k->compaction_rate * (-a[0] - a[1]), primitive, slope;
-        double e = compaction_exp(x, &primitive, &slope);
+        double e = wff_compaction_exp(x, &primitive, &slope);
         double compaction = k->compaction_force * (e - 1);
         double W = k->compaction_force / k->compaction_rate * (primitive - 1) +
                    k->compaction_force * (a[0] + a[1]);
@@ -437,7 +372,7 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
             double gap = k->spar_length0[f] - d;
             locking[f] = 0;
             if (gap > 0) {
-                double power = locking_power(gap, k->locking_exponent);
+                double power = wff_locking_power(gap, k->locking_exponent);
                 locking[f] = k->locking_stiffness * power;
                 W += 2 * k->locking_stiffness * power * gap / (k->locking_exponent + 1);
             }
@@ -448,7 +383,8 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
             residual[2 * pt + f] = (compaction - normal) * inv_cell;
             yarn_q[f] = 2 * (tension * cos_b - moment * sin_b * inv_L);
         }
-        double gf_new = shear_flow_update(k, gamma, gamma_f[pt], dt);
+        double gf_new = wff_shear_flow_update(k->shear_stiffness, k->flow_moment, k->flow_rate,
+                        k->flow_exponent, gamma, gamma_f[pt], dt);
         double shear_moment = k->shear_stiffness * (gamma - gf_new);
         W += 0.5 * k->shear_stiffness * (gamma - gf_new) * (gamma - gf_new);
         dissipated_sum += w * shear_moment * (gf_new - gamma_f[pt]);
@@ -496,7 +432,7 @@ static int king_evaluate_tri_block(const void *params, double dt, wff_tri_block 
                          ? dt * k->flow_rate * Ks / k->flow_moment : 0; /* n = 1 */
     const double inv_r1 = 1 / (1 + r);
     const double inv_cell = 1 / k->cell_area, third = 1.0 / 3.0;
-    const double xmax = COMPACTION_EXPONENT_MAX;
+    const double xmax = WFF_COMPACTION_EXPONENT_MAX;
 
 #pragma omp simd
     for (int b = 0; b < WFF_BLOCK; b++) {
@@ -519,7 +455,7 @@ static int king_evaluate_tri_block(const void *params, double dt, wff_tri_block 
 #pragma GCC unroll 3
         for (int q = 0; q < 3; q++) {
             double a1 = blk->dA[q][0][b], a2 = blk->dA[q][1][b];
-            /* compaction, continued past exp(xmax) as in compaction_exp */
+            /* compaction, continued past exp(xmax) as in wff_compaction_exp */
             double x = a * (-a1 - a2);
             double u = x > xmax ? x - xmax : 0.0; /* (fmax would not vectorise) */
             double ex = exp(x - u);
