@@ -354,8 +354,9 @@ static void basket_wave_speeds(const void *params, double areal_density, const d
         int l = 1 - f;
         double L = pt.length[f];
         double sin_b = pt.amplitude[f] / L, cos_b = pt.p[f] / L;
-        double active = (k->tension_only != 0 && pt.tension[f] <= 0) ? 0 : 1;
-        double EAl = active * k->yarn_stiffness[f]; /* EA/ℓ⁰ when the yarn is loaded */
+        /* a slack yarn (tension_only) keeps its stiffness in the bound: it can pull
+         * tight within one step */
+        double EAl = k->yarn_stiffness[f]; /* EA/ℓ⁰ */
         double bend = 4 * (k->bending_stiffness[f] + fabs(pt.moment[f])) / (L * L);
         double axial = YARNS_PER_FAMILY * (4 * EAl * (1 + cos_b) * (1 + cos_b) +
                                            2 * fabs(pt.tension[f]) / L) + bend;

@@ -283,20 +283,21 @@ static void king_wave_speeds(const void *params, double areal_density, const dou
         int l = 1 - f;
         double L = pt.length[f];
         double sin_b = pt.amplitude[f] / L, cos_b = pt.p[f] / L;
-        double stretch_active = (k->tension_only != 0 && pt.tension[f] <= 0) ? 0 : 1;
+        /* a slack yarn (tension_only) keeps its stiffness in the bound: it can pull
+         * tight within one step, and a step sized for slack yarns is ~20x too long */
         double lock_stiff = 0; /* ∂F_L/∂d */
         double gap = k->spar_length0[f] - pt.spar_length[f];
         if (gap > 0)
             lock_stiff = k->locking_stiffness * k->locking_exponent *
                          wff_locking_power(gap, k->locking_exponent - 1);
-        double axial = stretch_active * k->yarn_stiffness[f] + fabs(pt.tension[f]) / L +
+        double axial = k->yarn_stiffness[f] + fabs(pt.tension[f]) / L +
                        k->bending_stiffness[f] / (L * L);
         /* stiffness per unit width when family f is stretched: two trusses per
          * cell (2 k p_f⁰² / 4p1⁰p2⁰ = k p_f⁰/2p_l⁰), the spars across, shear */
         double s_f = (2 * axial * k->pitch0[f] * k->pitch0[f] +
                       4 * lock_stiff * k->pitch0[l] * k->pitch0[l] + shear) / k->cell_area;
         membrane = fmax(membrane, s_f);
-        double a_diag = 2 * (stretch_active * k->yarn_stiffness[f] * sin_b * sin_b +
+        double a_diag = 2 * (k->yarn_stiffness[f] * sin_b * sin_b +
                              fabs(pt.tension[f]) * cos_b * cos_b / L) +
                         2 * k->bending_stiffness[f] * cos_b * cos_b / (L * L) +
                         4 * fabs(pt.moment[f]) / (L * L) + compaction_stiffness +

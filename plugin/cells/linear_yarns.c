@@ -219,8 +219,9 @@ static void linear_wave_speeds(const void *params, double areal_density, const d
                    (stretch_min * stretch_min);
     double membrane = 0;
     for (int f = 0; f < FAMILIES; f++) {
-        int active = !(c->tension_only != 0 && pt.stretch[f] < 1);
-        double s_f = active * c->stiffness[f] + fabs(pt.force[f]) / pt.stretch[f] + shear;
+        /* a slack yarn (tension_only) keeps its stiffness in the bound: it can pull
+         * tight within one step */
+        double s_f = c->stiffness[f] + fabs(pt.force[f]) / pt.stretch[f] + shear;
         membrane = fmax(membrane, s_f);
     }
     *membrane_speed = sqrt(membrane / areal_density);
