@@ -160,24 +160,9 @@ static double spar_law(const basket_params *k, double length0, double length, do
 static int basket_point_eval(const basket_params *k, const double F[6], const double dA[2],
                              basket_point *pt)
 {
-    double g[FAMILIES][3];
-    for (int f = 0; f < FAMILIES; f++) {
-        for (int i = 0; i < 3; i++)
-            g[f][i] = k->pitch0[f] * F[2 * i + f];
-        pt->p[f] = sqrt(g[f][0] * g[f][0] + g[f][1] * g[f][1] + g[f][2] * g[f][2]);
-        if (!(pt->p[f] > 0))
-            return WFF_POINT_DEGENERATE;
-        for (int i = 0; i < 3; i++)
-            pt->gh[f][i] = g[f][i] / pt->p[f];
-    }
-    double n0 = g[0][1] * g[1][2] - g[0][2] * g[1][1];
-    double n1 = g[0][2] * g[1][0] - g[0][0] * g[1][2];
-    double n2 = g[0][0] * g[1][1] - g[0][1] * g[1][0];
-    double area = sqrt(n0 * n0 + n1 * n1 + n2 * n2); /* J */
-    pt->cos_t = pt->gh[0][0] * pt->gh[1][0] + pt->gh[0][1] * pt->gh[1][1] +
-                pt->gh[0][2] * pt->gh[1][2];
-    pt->sin_t = area / (pt->p[0] * pt->p[1]);
-    if (!(pt->sin_t > 0))
+    double area; /* J */
+    if (wff_yarn_kinematics(k->pitch0, F, pt->gh, pt->p, &area, &pt->cos_t, &pt->sin_t) !=
+        WFF_POINT_OK)
         return WFF_POINT_DEGENERATE;
     pt->gamma = M_PI_2 - atan2(pt->sin_t, pt->cos_t);
 

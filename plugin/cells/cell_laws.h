@@ -1,11 +1,39 @@
-/* wovenff — constitutive pieces the truss-and-spring weave cells share
- * (King et al. 2005 laws, MODEL.md §3 and §7): the compaction exponential
- * with its overflow guard, the locking power law, and the backward-Euler
- * update of the visco-elastic shear angle. Pure functions, no state. */
+/* wovenff — pieces the truss-and-spring weave cells share (King et al. 2005,
+ * MODEL.md §1, §3 and §7): the yarn kinematics of eq. (1), the compaction
+ * exponential with its overflow guard, the locking power law, and the
+ * backward-Euler update of the visco-elastic shear angle. Pure functions, no
+ * state. */
 #ifndef WOVENFF_CELL_LAWS_H
 #define WOVENFF_CELL_LAWS_H
 
 #include <math.h>
+
+#include "wovenff/cell.h"
+
+/* Eq. (1): g_k = F G_k with G_k = p_k⁰ E_k; p_k = |g_k|, ĝ_k = g_k/p_k,
+ * J = |g_1 × g_2|, cosθ = ĝ_1·ĝ_2, sinθ = J/(p_1 p_2). Returns
+ * WFF_POINT_DEGENERATE if a yarn has zero length or the yarns are parallel. */
+static inline int wff_yarn_kinematics(const double pitch0[2], const double F[6], double gh[2][3],
+                                      double p[2], double *J, double *cos_t, double *sin_t)
+{
+    double g[2][3];
+    for (int f = 0; f < 2; f++) {
+        for (int i = 0; i < 3; i++)
+            g[f][i] = pitch0[f] * F[2 * i + f];
+        p[f] = sqrt(g[f][0] * g[f][0] + g[f][1] * g[f][1] + g[f][2] * g[f][2]);
+        if (!(p[f] > 0))
+            return WFF_POINT_DEGENERATE;
+        for (int i = 0; i < 3; i++)
+            gh[f][i] = g[f][i] / p[f];
+    }
+    double n0 = g[0][1] * g[1][2] - g[0][2] * g[1][1];
+    double n1 = g[0][2] * g[1][0] - g[0][0] * g[1][2];
+    double n2 = g[0][0] * g[1][1] - g[0][1] * g[1][0];
+    *J = sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+    *cos_t = gh[0][0] * gh[1][0] + gh[0][1] * gh[1][1] + gh[0][2] * gh[1][2];
+    *sin_t = *J / (p[0] * p[1]);
+    return *sin_t > 0 ? WFF_POINT_OK : WFF_POINT_DEGENERATE;
+}
 
 /* Exponent a·I past which the compaction exponential is continued by its
  * third-order Taylor polynomial: exp(30) ≈ 1e13, far beyond any physical
