@@ -8,8 +8,10 @@
 #ifdef _OPENMP
 #include <omp.h>
 static int omp_thread(void) { return omp_get_thread_num(); }
+static int omp_team(void) { return omp_get_num_threads(); }
 #else
 static int omp_thread(void) { return 0; }
+static int omp_team(void) { return 1; }
 #endif
 
 #define D WFF_DOFS_PER_NODE
@@ -504,9 +506,12 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
         part_bad[t].bad_element = -1;
     const int use_block = mat->cell->evaluate_tri_block && !em->reference_path;
     const int n_blocks = (el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK;
+    int team = 1; /* OpenMP may start fewer threads than asked (thread limit, dynamic) */
 #pragma omp parallel num_threads(threads) if (threads > 1)
     {
         int t = omp_thread();
+#pragma omp single
+        team = omp_team();
         double *ft = t == 0 ? f : el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
         if (t > 0)
             memset(ft, 0, sizeof(double) * (size_t)el->n_dofs);
@@ -527,7 +532,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
         part_dissipated[t] = sums.dissipated;
         part_bad[t] = sums.bad;
     }
-    for (int t = 0; t < threads; t++) { /* in thread order: the same sums every run */
+    for (int t = 0; t < team; t++) { /* in thread order: the same sums every run */
         energy += part_energy[t];
         dissipated += part_dissipated[t];
         if (part_bad[t].bad_element >= 0 &&
@@ -537,12 +542,11 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
             totals->bad_status = part_bad[t].bad_status;
         }
     }
-    if (threads > 1)
-        for (int t = 1; t < threads; t++) {
-            const double *ft = el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
-            for (int i = 0; i < el->n_dofs; i++)
-                f[i] += ft[i];
-        }
+    for (int t = 1; t < team; t++) { /* only the buffers of threads that ran */
+        const double *ft = el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
+        for (int i = 0; i < el->n_dofs; i++)
+            f[i] += ft[i];
+    }
 
     for (int e = 0; e < el->n_quads; e++) {
         const int *node = el->quad + 4 * e;
@@ -610,6 +614,8 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
         double w = el->tri_area[e] / 3 / em->J_pre;
         for (int q = 0; q < WFF_TRI_POINTS; q++) {
             double dA[2] = {u[D * node[q] + 3], u[D * node[q] + 4]};
+            if (em->static_amplitudes) /* the point's own balanced amplitudes */
+                memcpy(dA, el->point_dA + 6 * e + 2 * q, sizeof dA);
             cell->energy_split(em->mat->params, Fe, dA, gamma_f[3 * e + q], point);
             for (int k = 0; k < cell->n_mech; k++)
                 mech[k] += w * point[k];
@@ -628,6 +634,8 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
             }
             deformation_gradient(X, u, node, 4, grad, F);
             preload_apply(em, F, Fe);
+            if (em->static_amplitudes)
+                memcpy(dA, el->point_dA + 6 * el->n_tris + 8 * e + 2 * q, sizeof dA);
             cell->energy_split(em->mat->params, Fe, dA,
                                gamma_f[3 * el->n_tris + 4 * e + q], point);
             double w = el->quad_weight[4 * e + q] / em->J_pre;
@@ -685,15 +693,31 @@ void wff_element_center_state(const wff_elements *el, const double *X, const dou
     }
 }
 
+/* Element mean of the points' own amplitudes (static amplitudes). */
+static void static_mean_dA(const wff_elements *el, int e, double dA[2])
+{
+    int n = e < el->n_tris ? 3 : 4;
+    const double *p = e < el->n_tris ? el->point_dA + 6 * e
+                                     : el->point_dA + 6 * el->n_tris + 8 * (e - el->n_tris);
+    dA[0] = dA[1] = 0;
+    for (int q = 0; q < n; q++) {
+        dA[0] += p[2 * q] / n;
+        dA[1] += p[2 * q + 1] / n;
+    }
+}
+
 int wff_element_center_eval(const wff_elements *el, const wff_element_material *em,
                             const double *X, const double *u, const double *gamma_f, int e,
                             wff_point_result *out)
 {
     double F[6], Fe[6], dA[2], gf = 0;
     wff_element_center_state(el, X, u, e, F, dA);
+    if (em->static_amplitudes)
+        static_mean_dA(el, e, dA);
     preload_apply(em, F, Fe);
     int n = e < el->n_tris ? 3 : 4;
-    const double *g = e < el->n_tris ? gamma_f + 3 * e : gamma_f + 3 * el->n_tris + 4 * (e - el->n_tris);
+    const double *g =
+        e < el->n_tris ? gamma_f + 3 * e : gamma_f + 3 * el->n_tris + 4 * (e - el->n_tris);
     for (int q = 0; q < n; q++)
         gf += g[q] / n;
     return em->mat->cell->evaluate(em->mat->params, Fe, dA, gf, 0, out);
@@ -715,6 +739,8 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
         for (int e = 0; e < n; e++) {
             double F[6], Fe[6], dA[2], speed, omega;
             wff_element_center_state(el, X, u, e, F, dA);
+            if (em->static_amplitudes)
+                static_mean_dA(el, e, dA);
             preload_apply(em, F, Fe);
             mat->cell->wave_speeds(mat->params, mat->areal_density, Fe, dA, &speed, &omega);
             /* membrane waves alone: dt_m = h/c; amplitude oscillator alone: dt_A = 2/ω.

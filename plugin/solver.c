@@ -466,20 +466,6 @@ static double penetration(const wff_projectile *p, const double x[3], double nor
     return p->radius - r;
 }
 
-/* Kinetic energies of the model part at v (per DOF) and projectile velocity:
- * in-plane, transverse, amplitude, projectile. Driven DOFs are left out: the
- * driver supplies their motion, and only their reaction's work is counted. */
-static void kinetic(const wff_model *m, const double *v, double vp, double out[4])
-{
-    out[0] = out[1] = out[2] = out[3] = 0;
-    static const int part[D] = {0, 0, 1, 2, 2};
-    for (int i = 0; i < m->n_dofs; i++)
-        if (m->dof_kind[i] == WFF_DOF_FREE)
-            out[part[i % D]] += 0.5 * m->mass[i] * v[i] * v[i];
-    if (m->projectile.active)
-        out[3] = 0.5 * m->projectile.mass * vp * vp;
-}
-
 /* "triangle 3 (nodes 4 5 9)" or "quadrilateral 2 (nodes ...)" for element e
  * (triangles first, then quads), numbered from 1 within its type. */
 static void element_name(const wff_model *m, int e, char *out, size_t size)
@@ -784,7 +770,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         if (compute_forces(m, 0, err))
             return -1;
         double k[4];
-        kinetic(m, m->v, m->projectile.velocity, k);
+        kinetic_now(m, k); /* v_half_valid is 0: the velocities as given */
         m->initial_kinetic = k[0] + k[1] + k[2] + k[3];
         m->initial_total = m->initial_kinetic + m->internal_energy;
         m->v_half_valid = 1;
@@ -963,7 +949,7 @@ typedef struct checkpoint_header {
     uint64_t byte_order;
     int32_t n_nodes, n_tris, n_quads, n_gamma, n_candidates, projectile_active, clamp_nodes,
         dt_interval, reference_path, pad;
-    uint64_t mesh_hash, material_hash, mass_hash, bc_hash;
+    uint64_t mesh_hash, material_hash, mass_hash, bc_hash, settings_hash;
     double dt_factor, symmetry_factor, projectile_radius, projectile_mass, projectile_mu;
     uint64_t payload_size;
 } checkpoint_header;
@@ -984,7 +970,7 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     h->clamp_nodes = m->clamp.n;
     h->dt_interval = m->dt_interval;
     h->reference_path = m->em.reference_path;
-    h->pad = m->em.static_amplitudes; /* changes the payload too */
+    h->pad = 0;
     uint64_t g = FNV_START;
     g = fnv1a(g, m->mesh.xy, sizeof(double) * 2 * (size_t)m->n_nodes);
     g = fnv1a(g, m->el.tri, sizeof(int) * 3 * (size_t)m->el.n_tris);
@@ -1001,6 +987,14 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     g = fnv1a(g, m->clamp.normal_force, sizeof(double) * (size_t)m->clamp.n);
     g = fnv1a(g, &m->clamp.mu, sizeof(double));
     h->bc_hash = g;
+    /* settings that change the numbers: preload, amplitude treatment, contact search,
+     * threads (the force sums' order) */
+    g = fnv1a(FNV_START, m->em.F_pre, sizeof m->em.F_pre);
+    g = fnv1a(g, &m->em.amplitude_mass_factor, sizeof(double));
+    g = fnv1a(g, &m->em.static_amplitudes, sizeof(int));
+    g = fnv1a(g, &m->projectile.search_all, sizeof(int));
+    g = fnv1a(g, &m->el.n_threads, sizeof(int));
+    h->settings_hash = g;
     h->dt_factor = m->dt_factor;
     h->symmetry_factor = m->symmetry_factor;
     if (m->projectile.active) {
@@ -1110,6 +1104,9 @@ static const char *hash_mismatch(const checkpoint_header *a, const checkpoint_he
         return "the lumped masses differ (another preload or areal density)";
     if (a->bc_hash != b->bc_hash)
         return "the boundary conditions differ (fixed or prescribed DOFs, friction clamp)";
+    if (a->settings_hash != b->settings_hash)
+        return "the solver settings differ (preload F_pre, amplitude mass factor, static "
+               "amplitudes, contact search or threads)";
     return NULL;
 }
 
