@@ -506,7 +506,8 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
         part_bad[t].bad_element = -1;
     const int use_block = mat->cell->evaluate_tri_block && !em->reference_path;
     const int n_blocks = (el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK;
-    int team = 1; /* OpenMP may start fewer threads than asked (thread limit, dynamic) */
+    int team = 1; /* OpenMP may start fewer threads than asked (thread limit, dynamic):
+                     only the buffers of threads that ran are summed */
 #pragma omp parallel num_threads(threads) if (threads > 1)
     {
         int t = omp_thread();
@@ -531,6 +532,18 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
         part_energy[t] = sums.energy;
         part_dissipated[t] = sums.dissipated;
         part_bad[t] = sums.bad;
+        /* (the element loop's barrier is behind us) the other threads' buffers into f, each
+         * thread a slice of the DOFs, buffers added in thread order */
+        if (team > 1) {
+            const size_t n_dofs = (size_t)el->n_dofs;
+#pragma omp for schedule(static)
+            for (size_t i = 0; i < n_dofs; i++) {
+                double extra = 0;
+                for (int k = 1; k < team; k++)
+                    extra += el->thread_f[(size_t)(k - 1) * n_dofs + i];
+                f[i] += extra;
+            }
+        }
     }
     for (int t = 0; t < team; t++) { /* in thread order: the same sums every run */
         energy += part_energy[t];
@@ -541,11 +554,6 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
             totals->bad_point = part_bad[t].bad_point;
             totals->bad_status = part_bad[t].bad_status;
         }
-    }
-    for (int t = 1; t < team; t++) { /* only the buffers of threads that ran */
-        const double *ft = el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
-        for (int i = 0; i < el->n_dofs; i++)
-            f[i] += ft[i];
     }
 
     for (int e = 0; e < el->n_quads; e++) {
