@@ -517,6 +517,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
         if (t > 0)
             memset(ft, 0, sizeof(double) * (size_t)el->n_dofs);
         tri_sums sums = {0, 0, {0, 0, -1, -1, 0}};
+        int blocked = use_block; /* a cell declines by its parameters: ask once per thread */
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
             int e0 = blk * WFF_BLOCK;
@@ -524,10 +525,13 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
             if (em->static_amplitudes)
                 for (int e = e0; e < e0 + n; e++)
                     tri_forces_static(el, em, X, u, gamma_f, dt, ft, e, &sums);
-            else if (!use_block ||
-                     tri_block_forces(el, em, X, u, gamma_f, dt, ft, e0, n, &sums) != 0)
-                for (int e = e0; e < e0 + n; e++)
-                    tri_forces(el, em, X, u, gamma_f, dt, ft, e, &sums);
+            else {
+                if (blocked && tri_block_forces(el, em, X, u, gamma_f, dt, ft, e0, n, &sums) != 0)
+                    blocked = 0;
+                if (!blocked)
+                    for (int e = e0; e < e0 + n; e++)
+                        tri_forces(el, em, X, u, gamma_f, dt, ft, e, &sums);
+            }
         }
         part_energy[t] = sums.energy;
         part_dissipated[t] = sums.dissipated;

@@ -647,7 +647,10 @@ static int contact_correct(wff_model *m, double dt, double dt_mid, wff_error *er
     return 0;
 }
 
-static void update_velocities(wff_model *m, double dt_mid)
+/* v^{n+½} from f^n; dt_done is the step just taken (0 on the first half step):
+ * the second half of its trapezoidal external work, ½ Rⁿ⁺¹·Δu, is added here
+ * on the prescribed DOFs (the first half was added with the position update). */
+static void update_velocities(wff_model *m, double dt_mid, double dt_done)
 {
     for (int i = 0; i < m->n_dofs; i++) {
         switch (m->dof_kind[i]) {
@@ -660,6 +663,7 @@ static void update_velocities(wff_model *m, double dt_mid)
             m->reaction[i] = -m->f[i];
             break;
         default:
+            m->external_work += 0.5 * (-m->f[i]) * dt_done * m->v[i];
             m->v[i] = m->v_prescribed[i];
             m->reaction[i] = -m->f[i];
             break;
@@ -775,7 +779,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         m->initial_total = m->initial_kinetic + m->internal_energy;
         m->v_half_valid = 1;
         /* first half step */
-        update_velocities(m, 0.5 * m->dt);
+        update_velocities(m, 0.5 * m->dt, 0);
         if (contact_correct(m, m->dt, 0.5 * m->dt, err))
             return -1;
     }
@@ -805,10 +809,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         }
         if (compute_forces(m, dt, err))
             return -1;
-        for (int i = 0; i < m->n_dofs; i++)
-            if (m->dof_kind[i] == WFF_DOF_PRESCRIBED)
-                m->external_work += 0.5 * (-m->f[i]) * dt * m->v[i];
-        update_velocities(m, 0.5 * (dt + m->dt));
+        update_velocities(m, 0.5 * (dt + m->dt), dt);
         if (contact_correct(m, m->dt, 0.5 * (dt + m->dt), err))
             return -1;
         {   /* every step (a pass over the DOFs, ~4 % of a step): an unstable
