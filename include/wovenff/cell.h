@@ -157,6 +157,12 @@ struct wff_cell_type {
      * uses evaluate_shared or evaluate). Must agree with evaluate() to
      * round-off (tested). */
     int (*evaluate_tri_block)(const void *params, double dt, wff_tri_block *block);
+
+    /* Optional. The reference geometry of the crimped-yarn picture, for
+     * drawing the cell: quarter wavelengths p_k⁰ and crimp amplitudes A_k⁰
+     * (m) of the two families; a point's amplitudes are A_k⁰ + ΔA_k. NULL when
+     * the cell has no such geometry (nothing is drawn). */
+    void (*reference_geometry)(const void *params, double pitch0[2], double amplitude0[2]);
 };
 
 /* Registry. Cells register with WFF_REGISTER_CELL in their own file; the

@@ -427,6 +427,15 @@ static int basket_parse(wff_kv *kv, wff_material *mat, wff_error *err)
     return 0;
 }
 
+static void basket_reference_geometry(const void *params, double pitch0[2], double amplitude0[2])
+{
+    const basket_params *k = params;
+    for (int f = 0; f < FAMILIES; f++) {
+        pitch0[f] = k->pitch0[f];
+        amplitude0[f] = k->amplitude0[f];
+    }
+}
+
 static const wff_cell_type basket_2x2 = {
     .name = "basket_2x2",
     .summary = "2/2 basket weave: paired yarns with floats, one-truss yarn path, crossover "
@@ -443,5 +452,6 @@ static const wff_cell_type basket_2x2 = {
     .wave_speeds = basket_wave_speeds,
     .energy_split = basket_energy_split,
     .evaluate_shared = NULL,
+    .reference_geometry = basket_reference_geometry,
 };
 WFF_REGISTER_CELL(basket_2x2);

@@ -577,6 +577,15 @@ static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
     return 0;
 }
 
+static void king_reference_geometry(const void *params, double pitch0[2], double amplitude0[2])
+{
+    const king_params *k = params;
+    for (int f = 0; f < FAMILIES; f++) {
+        pitch0[f] = k->pitch0[f];
+        amplitude0[f] = k->amplitude0[f];
+    }
+}
+
 static const wff_cell_type king_plain = {
     .name = "king_plain",
     .summary = "King et al. (2005) plain weave: crimped yarn trusses, bending, compaction, "
@@ -594,5 +603,6 @@ static const wff_cell_type king_plain = {
     .energy_split = king_energy_split,
     .evaluate_shared = king_evaluate_shared,
     .evaluate_tri_block = king_evaluate_tri_block,
+    .reference_geometry = king_reference_geometry,
 };
 WFF_REGISTER_CELL(king_plain);
