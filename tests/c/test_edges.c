@@ -638,15 +638,15 @@ static double fd_energy(const wff_material *m, double F[6], double dA[2], double
 static void fd_states(check_state *st, const wff_material *mat, double range, int states,
                       double *worst_P, double *worst_R, int *finite)
 {
-    rng r = {0xC0FFEE};
+    wff_rng r = {0xC0FFEE};
     *worst_P = *worst_R = 0;
     *finite = 1;
     for (int s = 0; s < states; s++) {
-        double l1 = rng_uniform(&r, 0.985, 1.04), l2 = rng_uniform(&r, 0.985, 1.04);
-        double sh = rng_uniform(&r, -0.6, 0.6);
-        double tx = rng_uniform(&r, -0.1, 0.1), ty = rng_uniform(&r, -0.1, 0.1);
+        double l1 = wff_rng_uniform(&r, 0.985, 1.04), l2 = wff_rng_uniform(&r, 0.985, 1.04);
+        double sh = wff_rng_uniform(&r, -0.6, 0.6);
+        double tx = wff_rng_uniform(&r, -0.1, 0.1), ty = wff_rng_uniform(&r, -0.1, 0.1);
         double F[6] = {l1, l2 * sin(sh), 0, l2 * cos(sh), tx, ty};
-        double dA[2] = {rng_uniform(&r, -range, range / 3), rng_uniform(&r, -range, range / 3)};
+        double dA[2] = {wff_rng_uniform(&r, -range, range / 3), wff_rng_uniform(&r, -range, range / 3)};
         wff_point_result out;
         int rc = wff_material_evaluate(mat, F, dA, 0, 0, &out);
         int ok = rc == WFF_POINT_OK && isfinite(out.energy);

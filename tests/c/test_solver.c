@@ -66,18 +66,18 @@ static void momentum_free(check_state *st, int type, const char *what)
     wff_model m;
     if (make(st, &m, &r, KEVLAR))
         return;
-    rng g = {2024};
+    wff_rng g = {2024};
     for (int n = 0; n < m.n_nodes; n++) {
         double *u = m.u + D * n, *v = m.v + D * n;
-        u[0] = rng_uniform(&g, -1, 1) * 2e-5;
-        u[1] = rng_uniform(&g, -1, 1) * 2e-5;
-        u[2] = rng_uniform(&g, -1, 1) * 2e-4;
-        u[3] = rng_uniform(&g, -3, 1) * 1e-6;
-        u[4] = rng_uniform(&g, -3, 1) * 1e-6;
+        u[0] = wff_rng_uniform(&g, -1, 1) * 2e-5;
+        u[1] = wff_rng_uniform(&g, -1, 1) * 2e-5;
+        u[2] = wff_rng_uniform(&g, -1, 1) * 2e-4;
+        u[3] = wff_rng_uniform(&g, -3, 1) * 1e-6;
+        u[4] = wff_rng_uniform(&g, -3, 1) * 1e-6;
         for (int i = 0; i < 3; i++)
-            v[i] = rng_uniform(&g, -1, 1);
-        v[3] = rng_uniform(&g, -1, 1) * 0.01;
-        v[4] = rng_uniform(&g, -1, 1) * 0.01;
+            v[i] = wff_rng_uniform(&g, -1, 1);
+        v[3] = wff_rng_uniform(&g, -1, 1) * 0.01;
+        v[4] = wff_rng_uniform(&g, -1, 1) * 0.01;
     }
     double p0[3], p1[3], s0, s1;
     momentum(&m, p0, &s0);
