@@ -4,6 +4,7 @@
 #include "check.h"
 #include "rng.h"
 #include "test_meshes.h"
+#include "test_ramp.h"
 #include "wovenff/balance.h"
 #include "wovenff/material.h"
 #include "wovenff/solver.h"
@@ -282,13 +283,7 @@ static int strip_run(check_state *st, int type, int family, double strain, strip
     double load_min = INFINITY, load_max = -INFINITY;
     memset(out, 0, sizeof *out);
     while (rc == 0 && m.time < t_move + t_hold) {
-        double t = m.time + 0.5 * block, v = V;
-        if (t < t_ramp)
-            v = 0.5 * V * (1 - cos(M_PI * t / t_ramp));
-        else if (t > t_move)
-            v = 0;
-        else if (t > t_ramp + t_cruise)
-            v = 0.5 * V * (1 + cos(M_PI * (t - t_ramp - t_cruise) / t_ramp));
+        double t = m.time + 0.5 * block, v = test_ramp_velocity(t, V, t_ramp, t_cruise);
         if (wff_model_prescribe_group(&m, moved, along, v, &err) < 0) {
             CHECK(st, 0, "%s", err.message);
             rc = -1;
