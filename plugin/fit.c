@@ -181,7 +181,8 @@ int wff_fit_params_parse(const char *names, const char *bounds, const char *star
             if (i >= *n)
                 return wff_fail(err, "fit: starting values '%s': more items than the %d "
                                 "parameters", starts, *n);
-            if (e > b && (wff_parse_number_span(b, e, &params[i].start) || !isfinite(params[i].start)))
+            double *start = &params[i].start;
+            if (e > b && (wff_parse_number_span(b, e, start) || !isfinite(*start)))
                 return wff_fail(err, "fit: starting value of '%s': '%.*s' is not a number",
                                 params[i].name, (int)(e - b), b);
             i++;

@@ -188,7 +188,7 @@ int wff_fit_data_write(const wff_fit_data *data, const char *path, wff_error *er
     wff_text_printf(&b, "test,x,y\n");
     for (int i = 0; i < data->n; i++)
         wff_text_printf(&b, "%s,%.17g,%.17g\n", test_names[data->point[i].test], data->point[i].x,
-                  data->point[i].y);
+                        data->point[i].y);
     int rc = wff_text_write(&b, path, "data file", err);
     free(b.s);
     return rc;

@@ -19,63 +19,50 @@ int wff_fit_write_json(const wff_fit_result *res, const char *material_path,
 {
     wff_text b = {0};
     int p = res->n_params;
+    const char *weighting = wff_fit_weighting_name(res->weighting);
     wff_text_printf(&b, "{\n  \"status\": \"ok\",\n  \"material\": ");
     wff_text_json_string(&b, material_path);
     wff_text_printf(&b, ",\n  \"data\": ");
     wff_text_json_string(&b, data_path);
     wff_text_printf(&b, ",\n  \"points\": %d,\n  \"weighting\": \"%s\",\n  \"parameters\": {\n",
-              res->n_points, wff_fit_weighting_name(res->weighting) ? wff_fit_weighting_name(res->weighting) : "?");
+                    res->n_points, weighting ? weighting : "?");
     for (int j = 0; j < p; j++) {
+        double relative = res->value[j] != 0 ? res->std_error[j] / fabs(res->value[j]) : NAN;
         wff_text_printf(&b, "    ");
         wff_text_json_string(&b, res->name[j]);
-        wff_text_printf(&b, ": {\"value\": ");
-        wff_text_json_number(&b, res->value[j]);
-        wff_text_printf(&b, ", \"std_error\": ");
-        wff_text_json_number(&b, res->std_error[j]);
-        wff_text_printf(&b, ", \"relative_std_error\": ");
-        wff_text_json_number(&b, res->value[j] != 0 ? res->std_error[j] / fabs(res->value[j]) : NAN);
-        wff_text_printf(&b, ", \"start\": ");
-        wff_text_json_number(&b, res->start[j]);
-        wff_text_printf(&b, ", \"lower\": ");
-        wff_text_json_number(&b, res->lo[j]);
-        wff_text_printf(&b, ", \"upper\": ");
-        wff_text_json_number(&b, res->hi[j]);
+        wff_text_json_member(&b, ": {\"value\": ", res->value[j]);
+        wff_text_json_member(&b, ", \"std_error\": ", res->std_error[j]);
+        wff_text_json_member(&b, ", \"relative_std_error\": ", relative);
+        wff_text_json_member(&b, ", \"start\": ", res->start[j]);
+        wff_text_json_member(&b, ", \"lower\": ", res->lo[j]);
+        wff_text_json_member(&b, ", \"upper\": ", res->hi[j]);
         wff_text_printf(&b, ", \"at_bound\": %s}%s\n", res->at_bound[j] ? "true" : "false",
-                  j + 1 < p ? "," : "");
+                        j + 1 < p ? "," : "");
     }
     wff_text_printf(&b, "  },\n  \"correlation\": [");
     for (int a = 0; a < p; a++) {
         wff_text_printf(&b, "%s[", a ? ", " : "");
-        for (int c = 0; c < p; c++) {
-            wff_text_printf(&b, "%s", c ? ", " : "");
-            wff_text_json_number(&b, res->correlation[a][c]);
-        }
+        for (int c = 0; c < p; c++)
+            wff_text_json_member(&b, c ? ", " : "", res->correlation[a][c]);
         wff_text_printf(&b, "]");
     }
-    wff_text_printf(&b, "],\n  \"residual_norm\": ");
-    wff_text_json_number(&b, res->residual_norm);
-    wff_text_printf(&b, ",\n  \"start_residual_norm\": ");
-    wff_text_json_number(&b, res->start_residual_norm);
-    wff_text_printf(&b, ",\n  \"ssr\": ");
-    wff_text_json_number(&b, res->ssr);
-    wff_text_printf(&b, ",\n  \"residual_variance\": ");
-    wff_text_json_number(&b, res->s2);
-    wff_text_printf(&b, ",\n  \"reciprocal_condition\": ");
-    wff_text_json_number(&b, res->condition);
+    wff_text_json_member(&b, "],\n  \"residual_norm\": ", res->residual_norm);
+    wff_text_json_member(&b, ",\n  \"start_residual_norm\": ", res->start_residual_norm);
+    wff_text_json_member(&b, ",\n  \"ssr\": ", res->ssr);
+    wff_text_json_member(&b, ",\n  \"residual_variance\": ", res->s2);
+    wff_text_json_member(&b, ",\n  \"reciprocal_condition\": ", res->condition);
     wff_text_printf(&b, ",\n  \"iterations\": %d,\n  \"function_evaluations\": %d,\n"
-              "  \"converged\": %d,\n  \"wall_seconds\": ", res->iterations, res->f_evals,
-              res->converged);
-    wff_text_json_number(&b, res->wall_seconds);
+                    "  \"converged\": %d", res->iterations, res->f_evals, res->converged);
+    wff_text_json_member(&b, ",\n  \"wall_seconds\": ", res->wall_seconds);
     wff_text_printf(&b, ",\n  \"tests\": {");
     int first = 1;
     for (int t = 0; t < WFF_FIT_TESTS; t++) {
         if (!res->test_points[t])
             continue;
-        wff_text_printf(&b, "%s\n    \"%s\": {\"points\": %d, \"scale_N_per_m\": ", first ? "" : ",",
-                  wff_fit_test_name(t), res->test_points[t]);
-        wff_text_json_number(&b, res->test_scale[t]);
-        wff_text_printf(&b, ", \"rms_residual_N_per_m\": ");
-        wff_text_json_number(&b, res->test_rms[t]);
+        wff_text_printf(&b, "%s\n    \"%s\": {\"points\": %d", first ? "" : ",",
+                        wff_fit_test_name(t), res->test_points[t]);
+        wff_text_json_member(&b, ", \"scale_N_per_m\": ", res->test_scale[t]);
+        wff_text_json_member(&b, ", \"rms_residual_N_per_m\": ", res->test_rms[t]);
         wff_text_printf(&b, "}");
         first = 0;
     }
@@ -112,13 +99,13 @@ int wff_fit_write_material(const char *material_text, const char *source_name,
         return -1;
     wff_text b = {0};
     wff_text_printf(&b, "# Fitted by wovenff (wff_fit_run) from %s to %s:\n", source_name,
-              data_path ? data_path : "(data)");
+                    data_path ? data_path : "(data)");
     for (int j = 0; j < res->n_params; j++)
-        wff_text_printf(&b, "#   %s = %.10g +- %.3g (1 standard error; start %.6g)%s\n", res->name[j],
-                  res->value[j], res->std_error[j], res->start[j],
-                  res->at_bound[j] ? " AT A BOUND" : "");
+        wff_text_printf(&b, "#   %s = %.10g +- %.3g (1 standard error; start %.6g)%s\n",
+                        res->name[j], res->value[j], res->std_error[j], res->start[j],
+                        res->at_bound[j] ? " AT A BOUND" : "");
     wff_text_printf(&b, "#   residual norm %.6g (start %.6g), %d points, %d iterations\n",
-              res->residual_norm, res->start_residual_norm, res->n_points, res->iterations);
+                    res->residual_norm, res->start_residual_norm, res->n_points, res->iterations);
     wff_text_printf(&b, "%s", text);
     free(text);
     int rc = wff_text_write(&b, path, "fit report", err);
@@ -170,7 +157,8 @@ int wff_fit_write_curves(const char *material_text, const char *source_name,
             rc = wff_fit_predict(&m1, t, n_curve, x, y1, err);
         if (rc)
             break;
-        wff_text_printf(&cb, "%s# test %s: x,y_start,y_fit\n", block ? "\n\n" : "", wff_fit_test_name(t));
+        wff_text_printf(&cb, "%s# test %s: x,y_start,y_fit\n", block ? "\n\n" : "",
+                        wff_fit_test_name(t));
         for (int k = 0; k < n_curve; k++)
             wff_text_printf(&cb, "%.10g,%.10g,%.10g\n", x[k], y0[k], y1[k]);
         m = 0;

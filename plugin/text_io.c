@@ -187,6 +187,12 @@ void wff_text_json_number(wff_text *b, double v)
         wff_text_printf(b, "null");
 }
 
+void wff_text_json_member(wff_text *b, const char *lead, double v)
+{
+    wff_text_printf(b, "%s", lead);
+    wff_text_json_number(b, v);
+}
+
 int wff_text_write(const wff_text *b, const char *path, const char *what, wff_error *err)
 {
     if (b->failed)

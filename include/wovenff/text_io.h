@@ -60,6 +60,8 @@ void wff_text_printf(wff_text *b, const char *format, ...) __attribute__((format
 void wff_text_json_string(wff_text *b, const char *s);
 /* A JSON number with 10 significant digits; null for NaN and infinities. */
 void wff_text_json_number(wff_text *b, double v);
+/* `lead` as it is (e.g. ", \"ssr\": "), then v as a JSON number. */
+void wff_text_json_member(wff_text *b, const char *lead, double v);
 /* Write the buffer's text to path atomically; an out-of-memory buffer is an
  * error naming path. */
 int wff_text_write(const wff_text *b, const char *path, const char *what, wff_error *err);
