@@ -1,8 +1,13 @@
-/* Static balance of the crimp amplitudes and biaxial states with GSL's
- * hybrid (Powell) root finder. Unknowns and equations are scaled to O(1):
+/* balance.c: static states of one material point (docs/model.md §5, §13):
+ * the balance of the crimp amplitudes, biaxial and uniaxial states, the
+ * equal-force preload and the picture-frame shear state, with GSL's hybrid
+ * (Powell) root finder. Unknowns and equations are scaled to O(1):
  * amplitudes in units of AMPLITUDE_SCALE, stretches as strains, amplitude
  * residuals as forces per cell (R × yarn_spacing_1 × yarn_spacing_2) and
- * resultants as forces per yarn. */
+ * resultants as forces per yarn. (The per-point Newton solve of the
+ * static-amplitude path is static inline in balance.h.) Knows a material
+ * point only through wff_material_evaluate; nothing of meshes, elements or
+ * the solver. */
 #include "wovenff/balance.h"
 
 #include <gsl/gsl_errno.h>

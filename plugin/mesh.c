@@ -1,6 +1,8 @@
-/* Planar meshes through gmsh's C API (gmsh 4.8.4): open a .geo (and mesh it
- * in 2-D) or a .msh, copy nodes, triangles, quadrilaterals and the line
- * elements of physical curves into plain arrays, and check them.
+/* mesh.c: planar meshes through gmsh's C API (gmsh 4.8.4): open a .geo (and
+ * mesh it in 2-D) or a .msh, copy nodes, triangles, quadrilaterals and the
+ * line elements of physical curves into plain arrays, and check them. The
+ * only file that knows gmsh; knows nothing of materials, elements or the
+ * solver.
  *
  * gmsh is one global session per process: each load initialises it, and
  * finalises it on every path, so nothing of gmsh outlives the call. */

@@ -1,4 +1,4 @@
-/* Membrane elements (MODEL.md §8): patch test with and without preload,
+/* Membrane elements (docs/model.md §8): patch test with and without preload,
  * lumped masses, and a degenerate or non-finite state stopping the run. */
 #include "check.h"
 #include "test_meshes.h"

@@ -1,4 +1,4 @@
-/* Explicit solver (MODEL.md §8): momentum and energy conservation, quarter
+/* Explicit solver (docs/model.md §14): momentum and energy conservation, quarter
  * model against the full one, tri against quad strips and strips against
  * the static uniaxial balance. */
 #include "check.h"
