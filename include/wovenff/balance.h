@@ -67,11 +67,13 @@ int wff_shear_static(const wff_material *mat, double gamma, double dA[2],
  * out); then the evaluation with the step dt into out, whose status it
  * returns. Falls back to the last ΔA if Newton fails to reduce the residual
  * (the point is then reported by its result). No allocation, no GSL: it runs
- * at every quadrature point of every step. Static inline so that it is
- * compiled with its caller's (the kernels') flags and inlined there: the
- * static-amplitude results stay bit-identical. */
-static inline int wff_balance_point(const wff_material *mat, const double Fe[6], double dA[2],
-                                    double gf, double dt, wff_point_result *out)
+ * at every quadrature point of every step. Defined here (static) so that it
+ * is compiled with its caller's flags, the kernels' (the static-amplitude
+ * results stay bit-identical), and kept out of line (noinline) so that the
+ * element loops that call it keep their size and speed. */
+static __attribute__((noinline, unused)) int
+wff_balance_point(const wff_material *mat, const double Fe[6], double dA[2], double gf, double dt,
+                  wff_point_result *out)
 {
     const double h = 1e-9; /* m: amplitudes are ~1e-5 m */
     for (int it = 0; it < 12; it++) {
