@@ -15,10 +15,15 @@ OPT      ?= -O2 -fno-math-errno
 # build that runs on other x86-64 machines: make KERNEL_ARCH=-march=x86-64-v2
 KERNEL_ARCH ?= -march=native
 KERNEL_OPT  := -O3 $(KERNEL_ARCH) -fopenmp-simd
-CFLAGS   := -std=gnu11 $(OPT) -fopenmp -Wall -Wextra -Werror -fPIC -Iinclude
+CFLAGS   := -std=gnu11 $(OPT) -fopenmp -Wall -Wextra -Werror -fPIC
 CXXFLAGS := -std=c++14 -O2 -fPIC -DBAMG_LONG_LONG -DNCHECKPTR -Wno-deprecated-declarations \
             -I/usr/include/freefem++ -Iinclude
 LDLIBS   := -fopenmp -lgsl -lgslcblas -lgmsh -lmvec -lm
+# Include paths: the core sees its own headers only; test code also sees tests/c/lib.
+CORE_INC := -Iinclude -Iplugin
+TEST_INC := $(CORE_INC) -Itests/c/lib
+# Header dependencies from the compiler: each object gets a .d file beside it.
+DEPFLAGS := -MMD -MP
 
 DEB_PACKAGES := freefem++ libfreefem++-dev gmsh libgmsh-dev libgsl-dev gnuplot-nox ghostscript \
                 gcc g++ make
@@ -32,27 +37,46 @@ TESTLIB_OBJ := $(TESTLIB_SRC:%.c=$(BUILD)/%.o)
 MODULE   := $(BUILD)/wovenff.so
 MODULE_SRC := $(sort $(wildcard plugin/ff/*.cpp))
 
+MODULE_OBJ := $(MODULE_SRC:%.cpp=$(BUILD)/%.o)
+
 SCENE ?= ballistic_impact
 ARGS  ?=
+
+# Every object depends on build/flags.txt, rewritten only when the compiler or
+# a flag changes, so a changed flag (OPT=..., KERNEL_ARCH=...) rebuilds all.
+FLAGS_FILE := $(BUILD)/flags.txt
+FLAGS_NOW  := $(CC) $(CFLAGS) | $(KERNEL_OPT) | $(CXX) $(CXXFLAGS) | $(LDLIBS)
+$(shell mkdir -p $(BUILD) && [ "$$(cat $(FLAGS_FILE) 2>/dev/null)" = '$(FLAGS_NOW)' ] || \
+        printf '%s\n' '$(FLAGS_NOW)' > $(FLAGS_FILE))
 
 .PHONY: all deps run test bench clean
 .SECONDARY:
 all: $(CORE_OBJ) $(CTEST_BIN) $(MODULE)
 
-$(BUILD)/%.o: %.c $(wildcard include/wovenff/*.h) $(wildcard plugin/*.h plugin/cells/*.h tests/c/lib/*.h)
+$(BUILD)/plugin/%.o: plugin/%.c $(FLAGS_FILE)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Iplugin -Itests/c/lib -c $< -o $@
+	$(CC) $(CFLAGS) $(CORE_INC) $(DEPFLAGS) -c $< -o $@
 
+# The per-element kernels: built for this machine's vector unit (see KERNEL_ARCH).
 KERNEL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard plugin/cells/*.c) plugin/membrane.c)
 $(KERNEL_OBJ): CFLAGS += $(KERNEL_OPT)
 
-$(BUILD)/tests/%: tests/c/%.c $(CORE_OBJ) $(TESTLIB_OBJ)
+$(BUILD)/tests/c/lib/%.o: tests/c/lib/%.c $(FLAGS_FILE)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Iplugin -Itests/c/lib $< $(TESTLIB_OBJ) $(CORE_OBJ) $(LDLIBS) -o $@
+	$(CC) $(CFLAGS) $(TEST_INC) $(DEPFLAGS) -c $< -o $@
 
-$(MODULE): $(MODULE_SRC) $(CORE_OBJ) $(wildcard include/wovenff/*.h)
+$(BUILD)/tests/%: tests/c/%.c $(CORE_OBJ) $(TESTLIB_OBJ) $(FLAGS_FILE)
 	@mkdir -p $(dir $@)
-	$(CXX) $(CXXFLAGS) -shared $(MODULE_SRC) $(CORE_OBJ) $(LDLIBS) -o $@
+	$(CC) $(CFLAGS) $(TEST_INC) $(DEPFLAGS) -MF $@.d -MT $@ $< $(TESTLIB_OBJ) $(CORE_OBJ) \
+	    $(LDLIBS) -o $@
+
+$(BUILD)/plugin/ff/%.o: plugin/ff/%.cpp $(FLAGS_FILE)
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS) $(DEPFLAGS) -c $< -o $@
+
+$(MODULE): $(MODULE_OBJ) $(CORE_OBJ)
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS) -shared $(MODULE_OBJ) $(CORE_OBJ) $(LDLIBS) -o $@
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \
@@ -71,12 +95,15 @@ test: all
 	@sh tests/run.sh
 
 BENCH_BIN := $(BUILD)/bench/kernel_speed $(BUILD)/bench/compare
-$(BUILD)/bench/%: bench/%.c $(CORE_OBJ)
+$(BUILD)/bench/%: bench/%.c $(CORE_OBJ) $(FLAGS_FILE)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) $< $(CORE_OBJ) $(LDLIBS) -o $@
+	$(CC) $(CFLAGS) $(CORE_INC) $(DEPFLAGS) -MF $@.d -MT $@ $< $(CORE_OBJ) $(LDLIBS) -o $@
 
 bench: all $(BENCH_BIN)
 	@sh bench/run.sh
 
 clean:
 	rm -rf $(BUILD)
+
+-include $(CORE_OBJ:.o=.d) $(TESTLIB_OBJ:.o=.d) $(CTEST_BIN:=.d) $(MODULE_OBJ:.o=.d) \
+         $(BENCH_BIN:=.d)

@@ -1,8 +1,13 @@
-/* Static balance of the crimp amplitudes and biaxial states with GSL's
- * hybrid (Powell) root finder. Unknowns and equations are scaled to O(1):
+/* balance.c: static states of one material point (docs/model.md §5, §13):
+ * the balance of the crimp amplitudes, biaxial and uniaxial states, the
+ * equal-force preload and the picture-frame shear state, with GSL's hybrid
+ * (Powell) root finder. Unknowns and equations are scaled to O(1):
  * amplitudes in units of AMPLITUDE_SCALE, stretches as strains, amplitude
  * residuals as forces per cell (R × yarn_spacing_1 × yarn_spacing_2) and
- * resultants as forces per yarn. */
+ * resultants as forces per yarn. (The per-point Newton solve of the
+ * static-amplitude path is static inline in balance.h.) Knows a material
+ * point only through wff_material_evaluate; nothing of meshes, elements or
+ * the solver. */
 #include "wovenff/balance.h"
 
 #include <gsl/gsl_errno.h>
@@ -230,4 +235,28 @@ int wff_uniaxial_static(const wff_material *mat, int family, double stretch,
     hold[1 - family] = WFF_HOLD_RESULTANT;
     target[1 - family] = 0;
     return wff_biaxial_static(mat, hold, target, 0, state, err);
+}
+
+int wff_shear_static(const wff_material *mat, double gamma, double dA[2],
+                     double *shear_resultant, wff_point_result *point, wff_error *err)
+{
+    if (!isfinite(gamma) || fabs(gamma) >= M_PI_2)
+        return wff_fail(err, "shear static state: shear angle %g rad outside (-pi/2, pi/2)",
+                        gamma);
+    double c = cos(0.5 * gamma), s = sin(0.5 * gamma);
+    const double F[6] = {c, s, s, c, 0, 0};
+    double a[2] = {dA[0], dA[1]};
+    if (wff_balance_amplitudes(mat, F, 0, a, err))
+        return -1;
+    wff_point_result r;
+    if (wff_material_evaluate(mat, F, a, 0, 0, &r) != WFF_POINT_OK)
+        return wff_fail(err, "shear static state: degenerate point at %g rad (material %s)",
+                        gamma, mat->source);
+    /* S = P : dF/dγ, dF/dγ = ½ [−s c; c −s; 0 0] */
+    *shear_resultant = 0.5 * (c * (r.stress[1] + r.stress[2]) - s * (r.stress[0] + r.stress[3]));
+    dA[0] = a[0];
+    dA[1] = a[1];
+    if (point)
+        *point = r;
+    return 0;
 }

@@ -1,3 +1,6 @@
+/* error.c: the one way the C core reports a failure: a printf-style message
+ * into the caller's wff_error, returning -1 (include/wovenff/error.h).
+ * Knows nothing of what failed. */
 #include "wovenff/error.h"
 
 #include <stdarg.h>

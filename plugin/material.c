@@ -1,7 +1,11 @@
-/* Material files: `key = value` lines, `#` comments, SI units.
- * The reader keeps each key with its line so that every error can name the
- * file, the line and the key. */
+/* material.c: material files (`key = value` lines, `#` comments, SI units):
+ * the reader, which keeps each key with its line so that every error can name
+ * the file, the line and the key, and the one editor of material text (find
+ * a key's value, replace values, list keys) that overrides, the fit and the
+ * FreeFEM binding use. Knows the cell registry and the cells' parse(), nothing
+ * of meshes, elements or the solver. */
 #include "wovenff/material.h"
+#include "wovenff/text_io.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -10,10 +14,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Largest material file read, with the reason: a material is a page of text;
- * anything larger is not a material file. */
-#define WFF_MATERIAL_FILE_MAX (64 * 1024)
 
 static char *trim(char *s)
 {
@@ -180,82 +180,156 @@ int wff_material_parse_text(const char *text, const char *source_name, wff_mater
 
 int wff_material_load(const char *path, wff_material *mat, wff_error *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return wff_fail(err, "%s: cannot open material file: %s", path, strerror(errno));
-    char *text = malloc(WFF_MATERIAL_FILE_MAX + 1);
-    if (!text) {
-        fclose(f);
-        return wff_fail(err, "%s: out of memory", path);
-    }
-    size_t n = fread(text, 1, WFF_MATERIAL_FILE_MAX + 1, f);
-    int read_error = ferror(f);
-    fclose(f);
-    int rc;
-    if (read_error)
-        rc = wff_fail(err, "%s: read error", path);
-    else if (n > WFF_MATERIAL_FILE_MAX)
-        rc = wff_fail(err, "%s: larger than %d bytes: not a material file", path,
-                      WFF_MATERIAL_FILE_MAX);
-    else if (memchr(text, '\0', n))
-        rc = wff_fail(err, "%s: contains a NUL byte: not a text file", path);
-    else {
-        text[n] = '\0';
-        rc = wff_material_parse_text(text, path, mat, err);
-    }
+    char *text;
+    if (wff_read_text_file(path, "material file", WFF_MATERIAL_FILE_MAX, &text, err))
+        return -1;
+    int rc = wff_material_parse_text(text, path, mat, err);
     free(text);
     return rc;
 }
 
-/* Replace the value on the line of `key` (keeping its comment); -1 if absent. */
-static int replace_value(char *text, size_t size, const char *key, const char *value)
+/* ---- editing material text ------------------------------------------------ */
+
+/* Calls visit for every `key = value` line of text with the key's and the
+ * value's spans (blanks and comment excluded) and the 1-based line; stops
+ * when visit returns nonzero and returns that. */
+typedef int (*key_visitor)(const char *kb, const char *ke, const char *vb, const char *ve,
+                           int line, void *data);
+
+static int for_each_key(const char *text, key_visitor visit, void *data)
 {
-    size_t klen = strlen(key);
-    for (char *line = text; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
-        char *p = line;
-        while (*p == ' ' || *p == '\t')
-            p++;
-        if (strncmp(p, key, klen) != 0)
-            continue;
-        char *q = p + klen;
-        while (*q == ' ' || *q == '\t')
-            q++;
-        if (*q != '=')
-            continue;
-        char *v = q + 1;
-        char *end = v + strcspn(v, "#\n");
-        char *rest = end; /* the comment and the line end stay */
-        char replacement[WFF_KV_VALUE_MAX + 4];
-        snprintf(replacement, sizeof replacement, " %s ", value);
-        size_t old_len = (size_t)(rest - v), new_len = strlen(replacement);
-        size_t tail = strlen(rest) + 1;
-        if (strlen(text) + new_len - old_len + 1 > size)
-            return -2;
-        memmove(v + new_len, rest, tail);
-        memcpy(v, replacement, new_len);
-        return 0;
+    const char *p = text;
+    int line_no = 0;
+    while (*p) {
+        const char *eol = strchr(p, '\n');
+        const char *end = eol ? eol : p + strlen(p);
+        line_no++;
+        const char *hash = memchr(p, '#', (size_t)(end - p));
+        const char *content_end = hash ? hash : end;
+        const char *eq = memchr(p, '=', (size_t)(content_end - p));
+        if (eq) {
+            const char *kb = wff_skip_space(p, eq), *ke = wff_trim_end(kb, eq);
+            const char *vb = wff_skip_space(eq + 1, content_end);
+            const char *ve = wff_trim_end(vb, content_end);
+            int stop = visit(kb, ke, vb, ve, line_no, data);
+            if (stop)
+                return stop;
+        }
+        p = eol ? eol + 1 : end;
     }
-    return -1;
+    return 0;
 }
 
-int wff_material_override(const char *path, const char *overrides, const char *out_path,
-                          wff_error *err)
+typedef struct key_search {
+    const char *key;
+    const char *vb, *ve;
+    int line;
+} key_search;
+
+static int match_key(const char *kb, const char *ke, const char *vb, const char *ve, int line,
+                     void *data)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return wff_fail(err, "%s: cannot open material file: %s", path, strerror(errno));
-    size_t size = WFF_MATERIAL_FILE_MAX + 4096;
-    char *text = calloc(1, size);
-    if (!text) {
-        fclose(f);
-        return wff_fail(err, "%s: out of memory", path);
+    key_search *s = data;
+    size_t klen = strlen(s->key);
+    if ((size_t)(ke - kb) != klen || memcmp(kb, s->key, klen) != 0)
+        return 0;
+    s->vb = vb;
+    s->ve = ve;
+    s->line = line;
+    return 1;
+}
+
+int wff_material_text_find(const char *text, const char *key, const char **value_begin,
+                           const char **value_end, int *line)
+{
+    key_search s = {key, NULL, NULL, 0};
+    if (!for_each_key(text, match_key, &s))
+        return 0;
+    *value_begin = s.vb;
+    *value_end = s.ve;
+    *line = s.line;
+    return 1;
+}
+
+typedef struct key_list { char *buf; size_t cap; } key_list;
+
+static int add_key(const char *kb, const char *ke, const char *vb, const char *ve, int line,
+                   void *data)
+{
+    (void)vb, (void)ve, (void)line;
+    key_list *l = data;
+    size_t used = strlen(l->buf);
+    if (ke > kb && used + 8 < l->cap)
+        snprintf(l->buf + used, l->cap - used, "%s%.*s", used ? ", " : "", (int)(ke - kb), kb);
+    return 0;
+}
+
+void wff_material_text_keys(const char *text, char *buf, size_t cap)
+{
+    buf[0] = '\0';
+    key_list l = {buf, cap};
+    for_each_key(text, add_key, &l);
+}
+
+int wff_material_text_replace(const char *text, const char *source, int n,
+                              const char *const *keys, const char *const *values, char **out,
+                              wff_error *err)
+{
+    *out = NULL;
+    /* the spans of the values to replace, in text order */
+    typedef struct span { const char *b, *e, *value; } span;
+    span sp[WFF_KV_MAX];
+    if (n < 0 || n > WFF_KV_MAX)
+        return wff_fail(err, "%s: %d values to replace (at most %d)", source, n, WFF_KV_MAX);
+    size_t size = strlen(text) + 1;
+    for (int i = 0; i < n; i++) {
+        int line;
+        if (!wff_material_text_find(text, keys[i], &sp[i].b, &sp[i].e, &line)) {
+            char known[400];
+            wff_material_text_keys(text, known, sizeof known);
+            return wff_fail(err, "%s has no key '%s' (its keys: %s)", source, keys[i], known);
+        }
+        sp[i].value = values[i];
+        size += strlen(values[i]);
+        for (int j = 0; j < i; j++)
+            if (sp[j].b == sp[i].b)
+                return wff_fail(err, "%s: key '%s' given twice", source, keys[i]);
     }
-    size_t n = fread(text, 1, WFF_MATERIAL_FILE_MAX, f);
-    fclose(f);
-    text[n] = '\0';
-    int rc = 0;
-    const char *p = overrides;
-    while (rc == 0 && *p) {
+    for (int i = 1; i < n; i++) /* insertion sort by position */
+        for (int j = i; j > 0 && sp[j].b < sp[j - 1].b; j--) {
+            span t = sp[j];
+            sp[j] = sp[j - 1];
+            sp[j - 1] = t;
+        }
+    char *edited = malloc(size);
+    if (!edited)
+        return wff_fail(err, "%s: out of memory", source);
+    size_t len = 0;
+    const char *p = text;
+    for (int i = 0; i <= n; i++) {
+        const char *stop = i < n ? sp[i].b : p + strlen(p);
+        memcpy(edited + len, p, (size_t)(stop - p));
+        len += (size_t)(stop - p);
+        if (i < n) {
+            size_t vlen = strlen(sp[i].value);
+            memcpy(edited + len, sp[i].value, vlen);
+            len += vlen;
+            p = sp[i].e;
+        }
+    }
+    edited[len] = '\0';
+    *out = edited;
+    return 0;
+}
+
+int wff_material_text_set(const char *text, const char *source, const char *assignments,
+                          const char *what, char **out, wff_error *err)
+{
+    char *current = strdup(text);
+    if (!current)
+        return wff_fail(err, "%s: out of memory", source);
+    const char *p = assignments;
+    while (*p) {
         while (*p == ',' || *p == ' ' || *p == ';')
             p++;
         if (!*p)
@@ -263,42 +337,52 @@ int wff_material_override(const char *path, const char *overrides, const char *o
         size_t len = strcspn(p, ",; ");
         char item[WFF_KV_KEY_MAX + WFF_KV_VALUE_MAX + 2];
         if (len >= sizeof item) {
-            rc = wff_fail(err, "override '%.*s' is too long", (int)len, p);
-            break;
+            free(current);
+            return wff_fail(err, "%s '%.*s' is too long", what, (int)len, p);
         }
         memcpy(item, p, len);
         item[len] = '\0';
         p += len;
         char *eq = strchr(item, '=');
         if (!eq || eq == item || !eq[1]) {
-            rc = wff_fail(err, "override '%s': expected key=value", item);
-            break;
+            free(current);
+            return wff_fail(err, "%s '%s': expected key=value", what, item);
         }
         *eq = '\0';
-        int r = replace_value(text, size, item, eq + 1);
-        if (r == -1)
-            rc = wff_fail(err, "override '%s=%s': %s has no key '%s'", item, eq + 1, path, item);
-        else if (r == -2)
-            rc = wff_fail(err, "override '%s': material text too long", item);
-    }
-    wff_material check;
-    if (rc == 0) {
-        char source[600];
-        snprintf(source, sizeof source, "%s with %s", path, overrides);
-        rc = wff_material_parse_text(text, source, &check, err);
-    }
-    if (rc == 0) {
-        char tmp[1100];
-        snprintf(tmp, sizeof tmp, "%s.tmp", out_path);
-        FILE *o = fopen(tmp, "wb");
-        if (!o)
-            rc = wff_fail(err, "%s: cannot write: %s", tmp, strerror(errno));
-        else {
-            fprintf(o, "# %s with %s\n%s", path, overrides, text);
-            if (fclose(o) != 0 || rename(tmp, out_path) != 0)
-                rc = wff_fail(err, "%s: cannot write: %s", out_path, strerror(errno));
+        const char *key = item, *value = eq + 1;
+        char *edited;
+        if (wff_material_text_replace(current, source, 1, &key, &value, &edited, err)) {
+            char why[WFF_ERROR_MAX];
+            snprintf(why, sizeof why, "%s", err ? err->message : "");
+            free(current);
+            return wff_fail(err, "%s '%s=%s': %s", what, key, value, why);
         }
+        free(current);
+        current = edited;
     }
+    *out = current;
+    return 0;
+}
+
+int wff_material_override(const char *path, const char *overrides, const char *out_path,
+                          wff_error *err)
+{
+    char *text, *edited = NULL;
+    if (wff_read_text_file(path, "material file", WFF_MATERIAL_FILE_MAX, &text, err))
+        return -1;
+    int rc = wff_material_text_set(text, path, overrides, "override", &edited, err);
     free(text);
+    wff_material check;
+    char source[600];
+    snprintf(source, sizeof source, "%s with %s", path, overrides);
+    if (rc == 0)
+        rc = wff_material_parse_text(edited, source, &check, err);
+    if (rc == 0) {
+        wff_text b = {0};
+        wff_text_printf(&b, "# %s\n%s", source, edited);
+        rc = wff_text_write(&b, out_path, "material file", err);
+        free(b.s);
+    }
+    free(edited);
     return rc;
 }

@@ -1,6 +1,7 @@
 /* Membrane elements: reference geometry, internal forces, lumped masses and
  * stable step. See include/wovenff/membrane.h for the formulas. */
 #include "wovenff/membrane.h"
+#include "wovenff/balance.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -408,38 +409,6 @@ static int tri_block_forces(const wff_elements *el, const wff_element_material *
     return 0;
 }
 
-/* Quasi-static amplitudes at one point: Newton on R(F, ΔA) = 0 with a
- * finite-difference Jacobian (γᶠ held), from the point's last ΔA; then the
- * evaluation with the step dt. Falls back to the last ΔA if Newton fails to
- * reduce the residual (the point is then reported by its result). */
-static int static_point(const wff_material *mat, const double Fe[6], double dA[2], double gf,
-                        double dt, wff_point_result *out)
-{
-    const double h = 1e-9; /* m: amplitudes are ~1e-5 m */
-    for (int it = 0; it < 12; it++) {
-        wff_point_result r0, r1, r2;
-        if (mat->cell->evaluate(mat->params, Fe, dA, gf, 0, &r0) != WFF_POINT_OK)
-            break;
-        double d1[2] = {dA[0] + h, dA[1]}, d2[2] = {dA[0], dA[1] + h};
-        mat->cell->evaluate(mat->params, Fe, d1, gf, 0, &r1);
-        mat->cell->evaluate(mat->params, Fe, d2, gf, 0, &r2);
-        double j11 = (r1.residual[0] - r0.residual[0]) / h, j21 = (r1.residual[1] - r0.residual[1]) / h;
-        double j12 = (r2.residual[0] - r0.residual[0]) / h, j22 = (r2.residual[1] - r0.residual[1]) / h;
-        double det = j11 * j22 - j12 * j21;
-        if (!(fabs(det) > 0) || !isfinite(det))
-            break;
-        double s0 = (-r0.residual[0] * j22 + r0.residual[1] * j12) / det;
-        double s1 = (-r0.residual[1] * j11 + r0.residual[0] * j21) / det;
-        /* limit a step to 10 µm: the compaction exponential is steep */
-        double big = fmax(fabs(s0), fabs(s1)), scale = big > 1e-5 ? 1e-5 / big : 1;
-        dA[0] += scale * s0;
-        dA[1] += scale * s1;
-        if (big < 1e-13)
-            break;
-    }
-    return mat->cell->evaluate(mat->params, Fe, dA, gf, dt, out);
-}
-
 int wff_elements_static_amplitudes(wff_elements *el, wff_element_material *em,
                                    const double dA0[2], wff_error *err)
 {
@@ -470,7 +439,7 @@ static void tri_forces_static(const wff_elements *el, const wff_element_material
     for (int q = 0; q < WFF_TRI_POINTS; q++) {
         double *dA = el->point_dA + 6 * e + 2 * q;
         wff_point_result r;
-        int status = point_ok(static_point(mat, Fe, dA, gamma_f[3 * e + q], dt, &r), Fe, dA, &r);
+        int status = point_ok(wff_balance_point(mat, Fe, dA, gamma_f[3 * e + q], dt, &r), Fe, dA, &r);
         if (status != WFF_POINT_OK) {
             note_bad_sums(sums, e, q, status);
             return;
@@ -583,7 +552,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
                 point_amplitudes = 0;
             }
             int status = point_ok(em->static_amplitudes
-                                      ? static_point(mat, Fe, pdA, *gf, dt, &r)
+                                      ? wff_balance_point(mat, Fe, pdA, *gf, dt, &r)
                                       : mat->cell->evaluate(mat->params, Fe, dA, *gf, dt, &r),
                                   Fe, pdA, &r);
             if (status != WFF_POINT_OK) {

@@ -1,6 +1,8 @@
-/* Planar meshes through gmsh's C API (gmsh 4.8.4): open a .geo (and mesh it
- * in 2-D) or a .msh, copy nodes, triangles, quadrilaterals and the line
- * elements of physical curves into plain arrays, and check them.
+/* mesh.c: planar meshes through gmsh's C API (gmsh 4.8.4): open a .geo (and
+ * mesh it in 2-D) or a .msh, copy nodes, triangles, quadrilaterals and the
+ * line elements of physical curves into plain arrays, and check them. The
+ * only file that knows gmsh (mesh_arrays.c has what is done with the arrays
+ * afterwards); knows nothing of materials, elements or the solver.
  *
  * gmsh is one global session per process: each load initialises it, and
  * finalises it on every path, so nothing of gmsh outlives the call. */
@@ -789,47 +791,4 @@ int wff_mesh_load(const char *path, const wff_mesh_options *options, wff_mesh *m
     }
     *mesh = m;
     return 0;
-}
-
-void wff_mesh_free(wff_mesh *mesh)
-{
-    if (!mesh)
-        return;
-    free(mesh->xy);
-    free(mesh->tri);
-    free(mesh->tri_region);
-    free(mesh->quad);
-    free(mesh->quad_region);
-    free(mesh->edge);
-    free(mesh->edge_label);
-    free(mesh->groups);
-    memset(mesh, 0, sizeof *mesh);
-}
-
-int wff_mesh_group_tag(const wff_mesh *mesh, int dim, const char *name)
-{
-    if (!mesh || !name)
-        return -1;
-    for (int i = 0; i < mesh->n_groups; i++)
-        if (mesh->groups[i].dim == dim && strcmp(mesh->groups[i].name, name) == 0)
-            return mesh->groups[i].tag;
-    return -1;
-}
-
-void wff_mesh_triangulate(const wff_mesh *mesh, int *tri_out, int *region_out)
-{
-    if (mesh->n_tris > 0) {
-        memcpy(tri_out, mesh->tri, 3 * (size_t)mesh->n_tris * sizeof *tri_out);
-        memcpy(region_out, mesh->tri_region, (size_t)mesh->n_tris * sizeof *region_out);
-    }
-    int *t = tri_out + 3 * (size_t)mesh->n_tris;
-    int *r = region_out + mesh->n_tris;
-    for (int q = 0; q < mesh->n_quads; q++) {
-        const int *v = &mesh->quad[4 * q];
-        t[0] = v[0], t[1] = v[1], t[2] = v[2];
-        t[3] = v[0], t[4] = v[2], t[5] = v[3];
-        t += 6;
-        r[0] = r[1] = mesh->quad_region[q];
-        r += 2;
-    }
 }

@@ -1,3 +1,7 @@
+/* options.c: mesh options from a script's one-line text ("h_min=0.002
+ * recombine=1 ..."): size_factor and recombine into wff_mesh_options, every
+ * other name=value into the .geo's numbers (include/wovenff/options.h).
+ * Knows nothing of gmsh, materials or the solver. */
 #include "wovenff/options.h"
 
 #include <errno.h>

@@ -1,5 +1,6 @@
-/* The cell registry: the linker gathers every WFF_REGISTER_CELL entry into the
- * section "wff_cells" and provides its bounds. Constant data only. */
+/* registry.c: the cell registry: the linker gathers every WFF_REGISTER_CELL
+ * entry into the section "wff_cells" and provides its bounds. Constant data
+ * only; names no cell (a new cell registers itself in its own file). */
 #include "wovenff/cell.h"
 
 #include <string.h>

@@ -11,7 +11,7 @@
  *   strip_weft         nominal strain λ2 − 1     P22                       wff_uniaxial_static, family 1
  *   equibiaxial_warp   strain λ1 − 1 = λ2 − 1    P11                       wff_biaxial_static, both stretches held
  *   equibiaxial_weft   strain λ1 − 1 = λ2 − 1    P22                       the same state
- *   shear              shear angle γ, rad        S = ∂W/∂γ                 wff_shear_static (below)
+ *   shear              shear angle γ, rad        S = ∂W/∂γ                 wff_shear_static (balance.h)
  *
  * Every state is quasi-static and elastic: amplitudes in balance, γᶠ = 0 held
  * (no shear flow). For `shear` the resultant S is the work conjugate of the
@@ -39,6 +39,7 @@
 
 #include <stddef.h>
 
+#include "wovenff/balance.h"
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
 
@@ -92,14 +93,6 @@ int wff_fit_data_write(const wff_fit_data *data, const char *path, wff_error *er
 void wff_fit_data_free(wff_fit_data *data);
 
 /* ---- model predictions ------------------------------------------------------ */
-
-/* Picture-frame static state: symmetric pure shear
- *   F = [cos(γ/2) sin(γ/2); sin(γ/2) cos(γ/2); 0 0]
- * (yarns keep their length, the angle between them is π/2 − γ), amplitudes
- * in balance (dA: first guess in, solution out), γᶠ = 0. *shear_resultant =
- * S = ∂W/∂γ (N/m); point (may be NULL) gets the full evaluation. */
-int wff_shear_static(const wff_material *mat, double gamma, double dA[2],
-                     double *shear_resultant, wff_point_result *point, wff_error *err);
 
 /* y[i] = the model's prediction of test `test` at x[i], i < n. The points may
  * come in any order: they are solved by continuation from the reference state

@@ -9,6 +9,8 @@
 #ifndef WOVENFF_MATERIAL_H
 #define WOVENFF_MATERIAL_H
 
+#include <stddef.h>
+
 #include "wovenff/cell.h"
 
 #ifdef __cplusplus
@@ -20,6 +22,9 @@ extern "C" {
 #define WFF_KV_MAX 64
 #define WFF_KV_KEY_MAX 48
 #define WFF_KV_VALUE_MAX 96
+/* Largest material file read, with the reason: a material is a page of text;
+ * anything larger is not a material file. */
+#define WFF_MATERIAL_FILE_MAX (64 * 1024)
 
 typedef struct wff_kv_entry {
     char key[WFF_KV_KEY_MAX];
@@ -49,6 +54,29 @@ int wff_material_parse_text(const char *text, const char *source_name,
  * ("K_d=0" removes locking) and for fitting. */
 int wff_material_override(const char *path, const char *overrides, const char *out_path,
                           wff_error *err);
+
+/* ---- editing material text: the one editor, used by wff_material_override,
+ * the fit (fit.h) and the FreeFEM binding. A key is found on a line
+ * `key = value`, before any `#` comment. */
+
+/* Where the value of `key` is: [*value_begin, *value_end) without the blanks
+ * and the comment around it, on 1-based *line. Returns 1 if found, 0 if not. */
+int wff_material_text_find(const char *text, const char *key, const char **value_begin,
+                           const char **value_end, int *line);
+/* The text's keys, "cell, rho_A, ...", into buf (capacity cap), for messages. */
+void wff_material_text_keys(const char *text, char *buf, size_t cap);
+/* *out (malloc'ed; the caller frees it) = text with the value of keys[i]
+ * replaced by the string values[i], i < n (at most WFF_KV_MAX): each key once
+ * and already in the text; blanks and the comment around a value are kept.
+ * source names the text in messages. */
+int wff_material_text_replace(const char *text, const char *source, int n,
+                              const char *const *keys, const char *const *values, char **out,
+                              wff_error *err);
+/* The same from a list "key=value,key=value" (items separated by ',', ';' or
+ * blanks; applied in order, so a key given twice takes the last value).
+ * Messages start with `what` and the item, e.g. "override 'K_x=1': ...". */
+int wff_material_text_set(const char *text, const char *source, const char *assignments,
+                          const char *what, char **out, wff_error *err);
 
 /* For cells' parse(): take a required number. Missing or non-numeric is an error. */
 int wff_kv_number(wff_kv *kv, const char *key, double *value, wff_error *err);

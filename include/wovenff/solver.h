@@ -15,7 +15,11 @@
  * predictor–corrector that keeps nodes on its surface.
  *
  * Energies are those of the modelled part multiplied by symmetry_factor
- * (4 for a quarter model), so they read as the whole specimen's. */
+ * (4 for a quarter model), so they read as the whole specimen's.
+ *
+ * Implemented by plugin/model.c (set-up, boundary conditions, settings),
+ * contact.c (the projectile), integrator.c (the step, energies), fields.c
+ * (output) and checkpoint.c (save and load). */
 #ifndef WOVENFF_SOLVER_H
 #define WOVENFF_SOLVER_H
 
@@ -101,9 +105,10 @@ typedef struct wff_model {
     double last_error;        /* energy balance error at the last step */
 } wff_model;
 
-/* Create a model from a mesh file (.geo or .msh, see mesh.h) and a material
- * file. F_pre is the 2×2 preload (row-major) applied at the material point,
- * dA0 the initial amplitude changes. On failure nothing is allocated. */
+/* Create a model from a mesh file (.geo or .msh, see mesh.h; mesh_options
+ * may be NULL) and a material file: at rest, no preload (wff_model_set_preload
+ * sets one), every DOF free except the amplitudes of a cell without any,
+ * dtfactor 0.8, dtinterval 20, symmetry 1. On failure nothing is allocated. */
 int wff_model_create(wff_model *m, const char *mesh_path, const wff_mesh_options *mesh_options,
                      const char *material_path, wff_error *err);
 /* The same from a mesh already in memory; the model takes the mesh's arrays
@@ -112,7 +117,9 @@ int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *materia
                                wff_error *err);
 void wff_model_free(wff_model *m);
 
-/* Preload: F_pre (row-major 2×2, det > 0) and uniform initial amplitudes. */
+/* Preload: F_pre (row-major 2×2, det > 0) applied at every material point
+ * (the masses follow it) and uniform initial amplitude changes dA0 (m; not
+ * used by a cell without amplitudes). */
 int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[2],
                           wff_error *err);
 
@@ -130,8 +137,10 @@ int wff_model_prescribe_group(wff_model *m, const char *group, int component, do
 int wff_model_clamp_friction(wff_model *m, const char *group, double normal_force, double mu,
                              wff_error *err);
 
-/* Rigid projectile with its nose tip at z = tip touching the fabric plane,
- * moving along +z. mass is the modelled part's. */
+/* Rigid projectile of nose and shank radius `radius` (m), moving along +z at
+ * `velocity` (m/s, >= 0) with Coulomb friction mu against the fabric, placed
+ * with its nose tip at z = 0 touching the fabric plane (move it with
+ * wff_model_place_projectile). mass (kg) is the modelled part's. */
 int wff_model_set_projectile(wff_model *m, double radius, double mass, double velocity,
                              double mu, wff_error *err);
 

@@ -30,7 +30,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -39,6 +38,7 @@
 
 extern "C" {
 #include "wovenff/fit.h"
+#include "wovenff/text_io.h"
 }
 
 using namespace Fem2D;
@@ -203,39 +203,23 @@ long ffFitSynth(string *const &material, string *const &csv, string *const &opti
             wff_ff_fail(fn, err);
         return n;
     }
-    // set=K_I=0.0104,a=85000: the material with these values changed
-    std::ifstream file(material->c_str(), std::ios::binary);
-    if (!file) {
-        std::string msg = *material + ": cannot open material file";
-        wff_ff_fail(fn, msg.c_str());
-    }
-    std::stringstream whole;
-    whole << file.rdbuf();
-    std::string text = whole.str();
-    std::vector<std::string> keys;
-    std::vector<double> values;
-    std::istringstream items(o.set);
-    std::string item;
-    while (std::getline(items, item, ',')) {
-        size_t eq = item.find('=');
-        if (eq == std::string::npos || (int)keys.size() >= WFF_FIT_PARAMS_MAX) {
-            std::string msg = "option set: '" + item + "' is not key=value (at most " +
-                              std::to_string(WFF_FIT_PARAMS_MAX) + " of them)";
-            wff_ff_fail(fn, msg.c_str());
-        }
-        keys.push_back(item.substr(0, eq));
-        values.push_back(number(fn, "set " + keys.back(), item.substr(eq + 1)));
-    }
-    std::vector<const char *> names;
-    for (const std::string &k : keys)
-        names.push_back(k.c_str());
-    std::vector<char> edited(text.size() + 64 * keys.size() + 64);
+    // set=K_I=0.0104,a=85000: the material with these values changed (the C
+    // core's material editor; its messages name the item and the file)
+    char *text = nullptr, *edited = nullptr;
+    if (wff_read_text_file(material->c_str(), "material file", WFF_MATERIAL_FILE_MAX, &text,
+                           &err))
+        wff_ff_fail(fn, err);
+    int edit_rc = wff_material_text_set(text, material->c_str(), o.set.c_str(), "option set",
+                                        &edited, &err);
+    std::free(text);
+    if (edit_rc)
+        wff_ff_fail(fn, err);
+    std::string source = *material + " with set=" + o.set;
     wff_material mat;
     wff_fit_data data;
-    if (wff_fit_material_edit(text.c_str(), material->c_str(), (int)keys.size(), names.data(),
-                              values.data(), edited.data(), edited.size(), &err) ||
-        wff_material_parse_text(edited.data(), material->c_str(), &mat, &err) ||
-        wff_fit_synthesize(&mat, &spec, &data, &err))
+    int parse_rc = wff_material_parse_text(edited, source.c_str(), &mat, &err);
+    std::free(edited);
+    if (parse_rc || wff_fit_synthesize(&mat, &spec, &data, &err))
         wff_ff_fail(fn, err);
     int rc = wff_fit_data_write(&data, csv->c_str(), &err);
     n = data.n;

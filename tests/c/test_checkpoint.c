@@ -9,6 +9,7 @@
  *   3. a truncated, altered, foreign or missing file is refused with its
  *      reason; writing into a missing folder fails; no .tmp is left behind. */
 #include "check.h"
+#include "test_tmp.h"
 #include "test_meshes.h"
 #include "wovenff/solver.h"
 
@@ -27,9 +28,7 @@ static const char *tmp_path(const char *name)
 {
     static char path[4][700];
     static int next;
-    char *p = path[next++ % 4];
-    snprintf(p, sizeof path[0], "%s/%s", tmpdir, name);
-    return p;
+    return test_tmp_path(tmpdir, name, path[next++ % 4], sizeof path[0]);
 }
 
 /* The impact case: clamped-by-friction square, projectile with friction. */
@@ -298,18 +297,11 @@ static void mismatches(check_state *st)
 int main(void)
 {
     check_state st = {0, 0};
-    const char *base_tmp = getenv("WFF_TEST_TMP");
-    snprintf(tmpdir, sizeof tmpdir, "%s/test_checkpoint_XXXXXX", base_tmp ? base_tmp : "/tmp");
-    if (!mkdtemp(tmpdir)) {
-        perror(tmpdir);
+    if (test_tmp_dir("test_checkpoint", tmpdir, sizeof tmpdir))
         return 1;
-    }
     restart_impact(&st);
     restart_strip(&st);
     mismatches(&st);
-    const char *names[] = {"impact.ckpt", "strip.ckpt", "base.ckpt", "bad.ckpt"};
-    for (int i = 0; i < 4; i++)
-        remove(tmp_path(names[i]));
-    rmdir(tmpdir);
+    test_tmp_remove(tmpdir);
     return check_summary(&st, "test_checkpoint");
 }

@@ -19,11 +19,13 @@
  *       stopped by the instability detector, and bounded at dtfactor 0.1;
  *   3.  a strip held by a friction clamp and pulled: sticks under a weak pull, slips
  *       under a strong one, friction dissipates only when it slips, energy balanced.
- * Materials are written at run time with wff_material_override under $WFF_TEST_TMP
+ * Materials are written at run time with wff_material_override in a test_tmp.h folder
  * (else /tmp) and removed at the end. */
 #include "check.h"
 #include "rng.h"
 #include "test_meshes.h"
+#include "test_ramp.h"
+#include "test_tmp.h"
 #include "wovenff/balance.h"
 #include "wovenff/material.h"
 #include "wovenff/solver.h"
@@ -42,7 +44,8 @@ static const char *const ALL_EDGES[] = {"left", "right", "bottom", "top"};
 
 /* ---------------------------------------------------------------- helpers */
 
-static char tmp_files[8][512];
+static char tmp_dir[512];
+static char tmp_files[8][700];
 static int n_tmp_files;
 
 /* The material file `base` with some values replaced, written under $WFF_TEST_TMP;
@@ -54,11 +57,13 @@ static const char *material_variant(check_state *st, const char *base, const cha
         CHECK(st, 0, "too many material variants");
         return NULL;
     }
-    const char *dir = getenv("WFF_TEST_TMP");
-    if (!dir || !*dir)
-        dir = "/tmp";
-    char *path = tmp_files[n_tmp_files];
-    snprintf(path, sizeof tmp_files[0], "%s/edges_%s_%ld.txt", dir, name, (long)getpid());
+    if (!tmp_dir[0] && test_tmp_dir("test_edges", tmp_dir, sizeof tmp_dir)) {
+        CHECK(st, 0, "no folder for the material variants");
+        return NULL;
+    }
+    char leaf[128];
+    snprintf(leaf, sizeof leaf, "%s.txt", name);
+    char *path = test_tmp_path(tmp_dir, leaf, tmp_files[n_tmp_files], sizeof tmp_files[0]);
     wff_error err;
     if (wff_material_override(base, overrides, path, &err)) {
         CHECK(st, 0, "material %s (%s): %s", name, overrides, err.message);
@@ -240,13 +245,7 @@ static void pull_strip(check_state *st, wff_model *m, double length, double widt
     static balance_log log;
     log.n = 0;
     while (rc == 0 && m->time < t_move + t_hold) {
-        double t = m->time + 0.5 * block, v = V;
-        if (t < t_ramp)
-            v = 0.5 * V * (1 - cos(M_PI * t / t_ramp));
-        else if (t > t_move)
-            v = 0;
-        else if (t > t_ramp + t_cruise)
-            v = 0.5 * V * (1 + cos(M_PI * (t - t_ramp - t_cruise) / t_ramp));
+        double t = m->time + 0.5 * block, v = test_ramp_velocity(t, V, t_ramp, t_cruise);
         rc = wff_model_prescribe_group(m, "right", WFF_UX, v, &err) < 0 ||
              wff_model_advance(m, m->time + block, 10000000, &err);
         CHECK(st, rc == 0, "%s: %s", what, rc ? err.message : "");
@@ -638,15 +637,15 @@ static double fd_energy(const wff_material *m, double F[6], double dA[2], double
 static void fd_states(check_state *st, const wff_material *mat, double range, int states,
                       double *worst_P, double *worst_R, int *finite)
 {
-    rng r = {0xC0FFEE};
+    wff_rng r = {0xC0FFEE};
     *worst_P = *worst_R = 0;
     *finite = 1;
     for (int s = 0; s < states; s++) {
-        double l1 = rng_uniform(&r, 0.985, 1.04), l2 = rng_uniform(&r, 0.985, 1.04);
-        double sh = rng_uniform(&r, -0.6, 0.6);
-        double tx = rng_uniform(&r, -0.1, 0.1), ty = rng_uniform(&r, -0.1, 0.1);
+        double l1 = wff_rng_uniform(&r, 0.985, 1.04), l2 = wff_rng_uniform(&r, 0.985, 1.04);
+        double sh = wff_rng_uniform(&r, -0.6, 0.6);
+        double tx = wff_rng_uniform(&r, -0.1, 0.1), ty = wff_rng_uniform(&r, -0.1, 0.1);
         double F[6] = {l1, l2 * sin(sh), 0, l2 * cos(sh), tx, ty};
-        double dA[2] = {rng_uniform(&r, -range, range / 3), rng_uniform(&r, -range, range / 3)};
+        double dA[2] = {wff_rng_uniform(&r, -range, range / 3), wff_rng_uniform(&r, -range, range / 3)};
         wff_point_result out;
         int rc = wff_material_evaluate(mat, F, dA, 0, 0, &out);
         int ok = rc == WFF_POINT_OK && isfinite(out.energy);
@@ -1028,13 +1027,7 @@ static void clamp_run(check_state *st, double N, double mu, double pull, clamp_r
     static balance_log log;
     log.n = 0;
     while (rc == 0 && m.time < t_move + t_hold) {
-        double t = m.time + 0.5 * block, v = V;
-        if (t < t_ramp)
-            v = 0.5 * V * (1 - cos(M_PI * t / t_ramp));
-        else if (t > t_move)
-            v = 0;
-        else if (t > t_ramp + t_cruise)
-            v = 0.5 * V * (1 + cos(M_PI * (t - t_ramp - t_cruise) / t_ramp));
+        double t = m.time + 0.5 * block, v = test_ramp_velocity(t, V, t_ramp, t_cruise);
         rc = wff_model_prescribe_group(&m, "right", WFF_UX, v, &err) < 0 ||
              wff_model_advance(&m, m.time + block, 10000000, &err);
         CHECK(st, rc == 0, "clamp N %g: %s", N, rc ? err.message : "");
@@ -1145,7 +1138,7 @@ int main(void)
     printf("  timings: 10 elements %.2f s, slivers %.2f s, mixed %.2f s, crimp-free %.2f s, "
            "light/stiff %.2f s, compression %.2f s, clamp %.2f s\n", t[1] - t[0], t[2] - t[1],
            t[3] - t[2], t[4] - t[3], t[5] - t[4], t[6] - t[5], t[7] - t[6]);
-    for (int i = 0; i < n_tmp_files; i++)
-        remove(tmp_files[i]);
+    if (tmp_dir[0])
+        test_tmp_remove(tmp_dir);
     return check_summary(&st, "test_edges");
 }

@@ -12,6 +12,7 @@
  *    and the line.
  * Files go under $WFF_TEST_TMP (else a fresh directory in /tmp). */
 #include "check.h"
+#include "test_tmp.h"
 #include "wovenff/fit.h"
 
 #include <math.h>
@@ -458,17 +459,8 @@ static void check_errors(check_state *st, const setup *s)
 int main(void)
 {
     check_state st = {0, 0};
-    const char *base = getenv("WFF_TEST_TMP");
-    if (base && *base) {
-        snprintf(tmp_dir, sizeof tmp_dir, "%s/test_fit", base);
-        mkdir(tmp_dir, 0777);
-    } else {
-        snprintf(tmp_dir, sizeof tmp_dir, "/tmp/wff_test_fit_XXXXXX");
-        if (!mkdtemp(tmp_dir)) {
-            perror(tmp_dir);
-            return 2;
-        }
-    }
+    if (test_tmp_dir("test_fit", tmp_dir, sizeof tmp_dir))
+        return 2;
     double t0 = now();
     setup s;
     if (make_setup(&st, &s) == 0) {
@@ -482,6 +474,8 @@ int main(void)
         check_errors(&st, &s);
     }
     free(s.text);
+    if (st.failures == 0) /* keep the files of a failing run for a look */
+        test_tmp_remove(tmp_dir);
     printf("  total %.2f s\n", now() - t0);
     return check_summary(&st, "test_fit");
 }

@@ -1,6 +1,7 @@
 /* Material files: every malformed case is rejected with a message that names
  * the file, the line and the key. */
 #include "check.h"
+#include "test_tmp.h"
 #include "wovenff/material.h"
 
 #include <stdlib.h>
@@ -177,9 +178,9 @@ int main(void)
 
     /* overrides: a copy with values replaced, validated, written whole */
     {
-        char out[512];
-        const char *dir = getenv("WFF_TEST_TMP");
-        snprintf(out, sizeof out, "%s/override_material.txt", dir ? dir : "/tmp");
+        char dir[512], out[700];
+        CHECK(&st, test_tmp_dir("test_material", dir, sizeof dir) == 0, "temporary folder");
+        test_tmp_path(dir, "override_material.txt", out, sizeof out);
         int rc = wff_material_override(KEVLAR, "K_d=0,kb_1=0, kb_2=0", out, &e);
         CHECK(&st, rc == 0, "override: %s", rc ? e.message : "");
         wff_material mo;
@@ -203,6 +204,7 @@ int main(void)
               "impossible override value: %s", e.message);
         CHECK(&st, wff_material_override(KEVLAR, "K_d", out, &e) == -1 &&
                        strstr(e.message, "key=value"), "malformed override: %s", e.message);
+        test_tmp_remove(dir);
     }
     free(base);
     return check_summary(&st, "test_material");

@@ -1,7 +1,6 @@
-/* Membrane elements (MODEL.md §8): patch test with and without preload,
+/* Membrane elements (docs/model.md §8): patch test with and without preload,
  * lumped masses, and a degenerate or non-finite state stopping the run. */
 #include "check.h"
-#include "rng.h"
 #include "test_meshes.h"
 #include "wovenff/balance.h"
 #include "wovenff/material.h"

@@ -1,12 +1,12 @@
 /* Meshes through gmsh: the .geo files of meshes/, every MSH flavour, the
  * triangle twin, and each rejected input (message names file and fault).
  * Files are written under $WFF_TEST_TMP (else a fresh directory in /tmp). */
-#define _GNU_SOURCE /* nftw, mkdtemp */
+#define _GNU_SOURCE
 #include "check.h"
+#include "test_tmp.h"
 #include "wovenff/mesh.h"
 
 #include <dirent.h>
-#include <ftw.h>
 #include <gmshc.h>
 #include <locale.h>
 #include <stdlib.h>
@@ -21,7 +21,7 @@ static char tmp_dir[512];
 
 static void tmp_path(char *out, size_t size, const char *name)
 {
-    snprintf(out, size, "%s/%s", tmp_dir, name);
+    test_tmp_path(tmp_dir, name, out, size);
 }
 
 static void write_file(const char *path, const char *text)
@@ -687,26 +687,11 @@ static void test_quiet(check_state *st)
     }
 }
 
-static int remove_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw)
-{
-    (void)sb, (void)flag, (void)ftw;
-    return remove(path);
-}
-
 int main(void)
 {
     check_state st = {0, 0};
-    const char *base = getenv("WFF_TEST_TMP");
-    if (base && *base) {
-        snprintf(tmp_dir, sizeof tmp_dir, "%s/test_mesh", base);
-        mkdir(tmp_dir, 0777);
-    } else {
-        snprintf(tmp_dir, sizeof tmp_dir, "/tmp/wff_test_mesh_XXXXXX");
-        if (!mkdtemp(tmp_dir)) {
-            perror(tmp_dir);
-            return 2;
-        }
-    }
+    if (test_tmp_dir("test_mesh", tmp_dir, sizeof tmp_dir))
+        return 2;
     test_quiet(&st);
     test_ballistic(&st);
     test_strip(&st);
@@ -714,7 +699,7 @@ int main(void)
     test_orientation(&st);
     test_errors(&st);
     if (st.failures == 0) /* keep the files of a failing run for a look */
-        nftw(tmp_dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+        test_tmp_remove(tmp_dir);
     else
         fprintf(stderr, "test_mesh: files kept in %s\n", tmp_dir);
     return check_summary(&st, "test_mesh");

@@ -1,9 +1,10 @@
-/* Explicit solver (MODEL.md §8): momentum and energy conservation, quarter
+/* Explicit solver (docs/model.md §14): momentum and energy conservation, quarter
  * model against the full one, tri against quad strips and strips against
  * the static uniaxial balance. */
 #include "check.h"
 #include "rng.h"
 #include "test_meshes.h"
+#include "test_ramp.h"
 #include "wovenff/balance.h"
 #include "wovenff/material.h"
 #include "wovenff/solver.h"
@@ -66,18 +67,18 @@ static void momentum_free(check_state *st, int type, const char *what)
     wff_model m;
     if (make(st, &m, &r, KEVLAR))
         return;
-    rng g = {2024};
+    wff_rng g = {2024};
     for (int n = 0; n < m.n_nodes; n++) {
         double *u = m.u + D * n, *v = m.v + D * n;
-        u[0] = rng_uniform(&g, -1, 1) * 2e-5;
-        u[1] = rng_uniform(&g, -1, 1) * 2e-5;
-        u[2] = rng_uniform(&g, -1, 1) * 2e-4;
-        u[3] = rng_uniform(&g, -3, 1) * 1e-6;
-        u[4] = rng_uniform(&g, -3, 1) * 1e-6;
+        u[0] = wff_rng_uniform(&g, -1, 1) * 2e-5;
+        u[1] = wff_rng_uniform(&g, -1, 1) * 2e-5;
+        u[2] = wff_rng_uniform(&g, -1, 1) * 2e-4;
+        u[3] = wff_rng_uniform(&g, -3, 1) * 1e-6;
+        u[4] = wff_rng_uniform(&g, -3, 1) * 1e-6;
         for (int i = 0; i < 3; i++)
-            v[i] = rng_uniform(&g, -1, 1);
-        v[3] = rng_uniform(&g, -1, 1) * 0.01;
-        v[4] = rng_uniform(&g, -1, 1) * 0.01;
+            v[i] = wff_rng_uniform(&g, -1, 1);
+        v[3] = wff_rng_uniform(&g, -1, 1) * 0.01;
+        v[4] = wff_rng_uniform(&g, -1, 1) * 0.01;
     }
     double p0[3], p1[3], s0, s1;
     momentum(&m, p0, &s0);
@@ -282,13 +283,7 @@ static int strip_run(check_state *st, int type, int family, double strain, strip
     double load_min = INFINITY, load_max = -INFINITY;
     memset(out, 0, sizeof *out);
     while (rc == 0 && m.time < t_move + t_hold) {
-        double t = m.time + 0.5 * block, v = V;
-        if (t < t_ramp)
-            v = 0.5 * V * (1 - cos(M_PI * t / t_ramp));
-        else if (t > t_move)
-            v = 0;
-        else if (t > t_ramp + t_cruise)
-            v = 0.5 * V * (1 + cos(M_PI * (t - t_ramp - t_cruise) / t_ramp));
+        double t = m.time + 0.5 * block, v = test_ramp_velocity(t, V, t_ramp, t_cruise);
         if (wff_model_prescribe_group(&m, moved, along, v, &err) < 0) {
             CHECK(st, 0, "%s", err.message);
             rc = -1;

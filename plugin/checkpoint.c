@@ -1,0 +1,283 @@
+/* checkpoint.c: a model's evolving state saved to and loaded from a binary
+ * file (the format is in include/wovenff/solver.h): 64-bit FNV-1a
+ * fingerprints of what must match, the state fields in file order, an
+ * atomic save (text_io.c) and a load that says which input differs. Knows the
+ * model's arrays; nothing of how they evolve, of cells by name or of FreeFEM. */
+#include "solver_internal.h"
+#include "wovenff/text_io.h"
+
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Largest checkpoint read: far above any model this code runs (a 50k-element
+ * model's state is a few megabytes). */
+#define CHECKPOINT_FILE_MAX ((size_t)1 << 40)
+
+static const char checkpoint_magic[8] = {'W', 'F', 'F', 'S', 'T', 'A', 'T', 'E'};
+#define BYTE_ORDER_MARK 0x0102030405060708ULL
+
+static uint64_t fnv1a(uint64_t h, const void *data, size_t size)
+{
+    const unsigned char *b = data;
+    for (size_t i = 0; i < size; i++) {
+        h ^= b[i];
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
+#define FNV_START 0xcbf29ce484222325ULL
+
+static size_t n_gamma(const wff_model *m)
+{
+    return (size_t)(WFF_TRI_POINTS * m->el.n_tris + WFF_QUAD_POINTS * m->el.n_quads);
+}
+
+/* What a checkpoint must match: sizes, fingerprints, settings. */
+typedef struct checkpoint_header {
+    char magic[8];
+    uint32_t version, header_size;
+    uint64_t byte_order;
+    int32_t n_nodes, n_tris, n_quads, n_gamma, n_candidates, projectile_active, clamp_nodes,
+        dt_interval, reference_path, pad;
+    uint64_t mesh_hash, material_hash, mass_hash, bc_hash, settings_hash;
+    double dt_factor, symmetry_factor, projectile_radius, projectile_mass, projectile_mu;
+    uint64_t payload_size;
+} checkpoint_header;
+
+static void fingerprint(const wff_model *m, checkpoint_header *h)
+{
+    memset(h, 0, sizeof *h);
+    memcpy(h->magic, checkpoint_magic, sizeof h->magic);
+    h->version = WFF_CHECKPOINT_VERSION;
+    h->header_size = sizeof *h;
+    h->byte_order = BYTE_ORDER_MARK;
+    h->n_nodes = m->n_nodes;
+    h->n_tris = m->el.n_tris;
+    h->n_quads = m->el.n_quads;
+    h->n_gamma = (int32_t)n_gamma(m);
+    h->n_candidates = m->projectile.active ? m->projectile.n_candidates : 0;
+    h->projectile_active = m->projectile.active;
+    h->clamp_nodes = m->clamp.n;
+    h->dt_interval = m->dt_interval;
+    h->reference_path = m->em.reference_path;
+    h->pad = 0;
+    uint64_t g = FNV_START;
+    g = fnv1a(g, m->mesh.xy, sizeof(double) * 2 * (size_t)m->n_nodes);
+    g = fnv1a(g, m->el.tri, sizeof(int) * 3 * (size_t)m->el.n_tris);
+    g = fnv1a(g, m->el.quad, sizeof(int) * 4 * (size_t)m->el.n_quads);
+    h->mesh_hash = g;
+    const char *cell = m->mat.cell ? m->mat.cell->name : "";
+    g = fnv1a(FNV_START, cell, strlen(cell));
+    g = fnv1a(g, &m->mat.areal_density, sizeof(double));
+    g = fnv1a(g, m->mat.params, sizeof m->mat.params);
+    h->material_hash = g;
+    h->mass_hash = fnv1a(FNV_START, m->mass, sizeof(double) * (size_t)m->n_dofs);
+    g = fnv1a(FNV_START, m->dof_kind, (size_t)m->n_dofs);
+    g = fnv1a(g, m->clamp.node, sizeof(int) * (size_t)m->clamp.n);
+    g = fnv1a(g, m->clamp.normal_force, sizeof(double) * (size_t)m->clamp.n);
+    g = fnv1a(g, &m->clamp.mu, sizeof(double));
+    h->bc_hash = g;
+    /* settings that change the numbers: preload, amplitude treatment, contact search,
+     * threads (the force sums' order) */
+    g = fnv1a(FNV_START, m->em.F_pre, sizeof m->em.F_pre);
+    g = fnv1a(g, &m->em.amplitude_mass_factor, sizeof(double));
+    g = fnv1a(g, &m->em.static_amplitudes, sizeof(int));
+    g = fnv1a(g, &m->projectile.search_all, sizeof(int));
+    g = fnv1a(g, &m->el.n_threads, sizeof(int));
+    h->settings_hash = g;
+    h->dt_factor = m->dt_factor;
+    h->symmetry_factor = m->symmetry_factor;
+    if (m->projectile.active) {
+        h->projectile_radius = m->projectile.radius;
+        h->projectile_mass = m->projectile.mass;
+        h->projectile_mu = m->projectile.mu;
+    }
+}
+
+/* The evolving state, in file order: pointer, element size, count. */
+typedef struct state_field { void *data; size_t size, count; } state_field;
+
+static int state_fields(wff_model *m, int n_candidates, state_field *f)
+{
+    wff_projectile *p = &m->projectile;
+    int k = 0;
+#define FIELD(ptr, n) f[k++] = (state_field){(void *)(ptr), sizeof *(ptr), (size_t)(n)}
+    FIELD(&m->time, 1);
+    FIELD(&m->dt, 1);
+    FIELD(&m->dt_stable, 1);
+    FIELD(&m->step, 1);
+    FIELD(&m->dt_worst_element, 1);
+    FIELD(&m->internal_energy, 1);
+    FIELD(&m->dissipated_shear, 1);
+    FIELD(&m->dissipated_friction, 1);
+    FIELD(&m->external_work, 1);
+    FIELD(&m->initial_total, 1);
+    FIELD(&m->initial_kinetic, 1);
+    FIELD(&m->v_half_valid, 1);
+    FIELD(&m->element_steps, 1);
+    FIELD(&m->blowup_steps, 1);
+    FIELD(&m->last_error, 1);
+    FIELD(&p->tip, 1);
+    FIELD(&p->velocity, 1);
+    FIELD(p->axis, 2);
+    FIELD(&p->max_penetration, 1);
+    FIELD(&p->force, 1);
+    FIELD(&p->n_candidates, 1);
+    FIELD(p->candidates, n_candidates);
+    FIELD(m->u, m->n_dofs);
+    FIELD(m->v, m->n_dofs);
+    FIELD(m->f, m->n_dofs);
+    FIELD(m->reaction, m->n_dofs);
+    FIELD(m->v_prescribed, m->n_dofs);
+    FIELD(m->gamma_f, n_gamma(m));
+    if (m->em.static_amplitudes) /* the points' own amplitudes */
+        FIELD(m->el.point_dA, 2 * n_gamma(m));
+#undef FIELD
+    return k;
+}
+#define MAX_STATE_FIELDS 32
+
+int wff_model_save(const wff_model *m, const char *path, wff_error *err)
+{
+    checkpoint_header h;
+    fingerprint(m, &h);
+    state_field fields[MAX_STATE_FIELDS];
+    int nf = state_fields((wff_model *)m, h.n_candidates, fields);
+    size_t payload = 0;
+    for (int i = 0; i < nf; i++)
+        payload += fields[i].size * fields[i].count;
+    h.payload_size = payload;
+    wff_atomic_file out;
+    if (wff_atomic_open(&out, path, "checkpoint", err))
+        return -1;
+    uint64_t sum = fnv1a(FNV_START, &h, sizeof h);
+    wff_atomic_write(&out, &h, sizeof h);
+    for (int i = 0; i < nf; i++) {
+        size_t bytes = fields[i].size * fields[i].count;
+        if (bytes == 0)
+            continue;
+        sum = fnv1a(sum, fields[i].data, bytes);
+        wff_atomic_write(&out, fields[i].data, bytes);
+    }
+    wff_atomic_write(&out, &sum, sizeof sum);
+    return wff_atomic_commit(&out, err);
+}
+
+static const char *hash_mismatch(const checkpoint_header *a, const checkpoint_header *b)
+{
+    if (a->mesh_hash != b->mesh_hash)
+        return "the mesh differs (same sizes, other node coordinates or connectivity)";
+    if (a->material_hash != b->material_hash)
+        return "the material differs (cell or parameters)";
+    if (a->mass_hash != b->mass_hash)
+        return "the lumped masses differ (another preload or areal density)";
+    if (a->bc_hash != b->bc_hash)
+        return "the boundary conditions differ (fixed or prescribed DOFs, friction clamp)";
+    if (a->settings_hash != b->settings_hash)
+        return "the solver settings differ (preload F_pre, amplitude mass factor, static "
+               "amplitudes, contact search or threads)";
+    return NULL;
+}
+
+int wff_model_load_state(wff_model *m, const char *path, wff_error *err)
+{
+    char *buf;
+    size_t size;
+    if (wff_read_file(path, "checkpoint", CHECKPOINT_FILE_MAX, &buf, &size, err))
+        return -1;
+    int rc = -1;
+    checkpoint_header h, want;
+    if (size < sizeof checkpoint_magic || memcmp(buf, checkpoint_magic, sizeof checkpoint_magic)) {
+        wff_fail(err, "%s is not a wovenff checkpoint (no WFFSTATE magic)", path);
+        goto done;
+    }
+    if (size < sizeof h + sizeof(uint64_t)) {
+        wff_fail(err, "checkpoint %s is truncated (%zu bytes)", path, size);
+        goto done;
+    }
+    memcpy(&h, buf, sizeof h);
+    if (h.byte_order != BYTE_ORDER_MARK) {
+        wff_fail(err, "checkpoint %s was written on a machine with another byte order", path);
+        goto done;
+    }
+    if (h.version != WFF_CHECKPOINT_VERSION || h.header_size != sizeof h) {
+        wff_fail(err, "checkpoint %s has format version %u (header %u bytes); this build reads "
+                 "version %d (header %zu bytes)", path, h.version, h.header_size,
+                 WFF_CHECKPOINT_VERSION, sizeof h);
+        goto done;
+    }
+    if (h.payload_size != size - sizeof h - sizeof(uint64_t)) {
+        wff_fail(err, "checkpoint %s is truncated or has trailing data (%zu bytes, header says "
+                 "%llu)", path, size, (unsigned long long)(sizeof h + h.payload_size + 8));
+        goto done;
+    }
+    uint64_t stored;
+    memcpy(&stored, buf + size - sizeof stored, sizeof stored);
+    if (fnv1a(FNV_START, buf, size - sizeof stored) != stored) {
+        wff_fail(err, "checkpoint %s is corrupt (checksum mismatch)", path);
+        goto done;
+    }
+    fingerprint(m, &want);
+    if (h.n_nodes != want.n_nodes || h.n_tris != want.n_tris || h.n_quads != want.n_quads ||
+        h.n_gamma != want.n_gamma) {
+        wff_fail(err, "checkpoint %s was written for a model of %d nodes, %d triangles, %d "
+                 "quadrilaterals; this model has %d nodes, %d triangles, %d quadrilaterals "
+                 "(another mesh)", path, h.n_nodes, h.n_tris, h.n_quads, want.n_nodes,
+                 want.n_tris, want.n_quads);
+        goto done;
+    }
+    const char *why = hash_mismatch(&h, &want);
+    if (why) {
+        wff_fail(err, "checkpoint %s does not match this model: %s", path, why);
+        goto done;
+    }
+    if (h.dt_factor != want.dt_factor || h.dt_interval != want.dt_interval ||
+        h.symmetry_factor != want.symmetry_factor || h.reference_path != want.reference_path) {
+        wff_fail(err, "checkpoint %s has solver settings dtfactor %g, dtinterval %d, symmetry "
+                 "%g, reference_path %d; this model has %g, %d, %g, %d", path, h.dt_factor,
+                 h.dt_interval, h.symmetry_factor, h.reference_path, want.dt_factor,
+                 want.dt_interval, want.symmetry_factor, want.reference_path);
+        goto done;
+    }
+    if (h.projectile_active != want.projectile_active ||
+        h.projectile_radius != want.projectile_radius ||
+        h.projectile_mass != want.projectile_mass || h.projectile_mu != want.projectile_mu) {
+        if (h.projectile_active && want.projectile_active)
+            wff_fail(err, "checkpoint %s has a projectile of radius %g m, mass %g kg, mu %g; "
+                     "this model's has %g m, %g kg, %g", path, h.projectile_radius,
+                     h.projectile_mass, h.projectile_mu, want.projectile_radius,
+                     want.projectile_mass, want.projectile_mu);
+        else
+            wff_fail(err, "checkpoint %s was written %s a projectile, this model has %s", path,
+                     h.projectile_active ? "with" : "without",
+                     want.projectile_active ? "one" : "none");
+        goto done;
+    }
+    if (h.n_candidates < 0 || h.n_candidates > h.n_nodes) {
+        wff_fail(err, "checkpoint %s is corrupt (%d contact candidates)", path, h.n_candidates);
+        goto done;
+    }
+    state_field fields[MAX_STATE_FIELDS];
+    int nf = state_fields(m, h.n_candidates, fields);
+    size_t payload = 0;
+    for (int i = 0; i < nf; i++)
+        payload += fields[i].size * fields[i].count;
+    if (payload != h.payload_size) {
+        wff_fail(err, "checkpoint %s: state of %llu bytes, this model's is %zu", path,
+                 (unsigned long long)h.payload_size, payload);
+        goto done;
+    }
+    const char *at = buf + sizeof h;
+    for (int i = 0; i < nf; i++) {
+        size_t bytes = fields[i].size * fields[i].count;
+        if (bytes)
+            memcpy(fields[i].data, at, bytes);
+        at += bytes;
+    }
+    rc = 0;
+done:
+    free(buf);
+    return rc;
+}

@@ -1,0 +1,102 @@
+/* fields.c: output of a model's state: per-node fields by name (DOFs,
+ * the cell's diagnostics, the shear angle, the stored energy; element values
+ * averaged to nodes by area) and the stored energy split by mechanism. Reads
+ * the state; changes nothing. Knows cells only through their names tables;
+ * nothing of the integrator, contact or FreeFEM. */
+#include "solver_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const dof_names[D] = {"ux", "uy", "uz", "dA1", "dA2"};
+
+int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff_error *err)
+{
+    for (int c = 0; c < D; c++)
+        if (strcmp(name, dof_names[c]) == 0) {
+            for (int n = 0; n < m->n_nodes; n++)
+                out[n] = m->u[D * n + c];
+            return 0;
+        }
+    if (strcmp(name, "vz") == 0) {
+        for (int n = 0; n < m->n_nodes; n++)
+            out[n] = m->v[D * n + 2];
+        return 0;
+    }
+    const wff_cell_type *cell = m->mat.cell;
+    int diag = -1;
+    for (int d = 0; d < cell->n_diag; d++)
+        if (strcmp(name, cell->diag_names[d]) == 0)
+            diag = d;
+    /* generic names for the yarn tensions, whatever the cell calls them */
+    for (int k = 0; k < 2; k++)
+        if (strcmp(name, k ? "yarn_tension2" : "yarn_tension1") == 0)
+            diag = cell->yarn_tension_diag[k];
+    int shear = strcmp(name, "gamma") == 0, energy = strcmp(name, "W") == 0;
+    if (diag < 0 && !shear && !energy) {
+        char known[512] = "ux uy uz dA1 dA2 vz gamma W yarn_tension1 yarn_tension2";
+        for (int d = 0; d < cell->n_diag; d++) {
+            size_t used = strlen(known);
+            snprintf(known + used, sizeof known - used, " %s", cell->diag_names[d]);
+        }
+        return wff_fail(err, "unknown field '%s' (known: %s)", name, known);
+    }
+    double *weight = calloc((size_t)m->n_nodes, sizeof(double));
+    if (!weight)
+        return wff_fail(err, "out of memory");
+    memset(out, 0, sizeof(double) * (size_t)m->n_nodes);
+    int n_el = m->el.n_tris + m->el.n_quads;
+    for (int e = 0; e < n_el; e++) {
+        double value;
+        if (shear) {
+            double F[6], dA[2];
+            wff_element_center_state(&m->el, m->mesh.xy, m->u, e, F, dA);
+            const double *Fp = m->em.F_pre;
+            double g1[3], g2[3];
+            for (int i = 0; i < 3; i++) {
+                g1[i] = F[2 * i] * Fp[0] + F[2 * i + 1] * Fp[2];
+                g2[i] = F[2 * i] * Fp[1] + F[2 * i + 1] * Fp[3];
+            }
+            double dot = g1[0] * g2[0] + g1[1] * g2[1] + g1[2] * g2[2];
+            double cx = g1[1] * g2[2] - g1[2] * g2[1], cy = g1[2] * g2[0] - g1[0] * g2[2],
+                   cz = g1[0] * g2[1] - g1[1] * g2[0];
+            value = M_PI_2 - atan2(sqrt(cx * cx + cy * cy + cz * cz), dot);
+        } else {
+            wff_point_result r;
+            wff_element_center_eval(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, e, &r);
+            value = energy ? r.energy : r.diag[diag];
+        }
+        int nn = e < m->el.n_tris ? 3 : 4;
+        const int *node = e < m->el.n_tris ? m->el.tri + 3 * e : m->el.quad + 4 * (e - m->el.n_tris);
+        double area;
+        if (e < m->el.n_tris)
+            area = m->el.tri_area[e];
+        else {
+            area = 0;
+            for (int q = 0; q < 4; q++)
+                area += m->el.quad_weight[4 * (e - m->el.n_tris) + q];
+        }
+        for (int a = 0; a < nn; a++) {
+            out[node[a]] += area * value;
+            weight[node[a]] += area;
+        }
+    }
+    for (int n = 0; n < m->n_nodes; n++)
+        out[n] = weight[n] > 0 ? out[n] / weight[n] : 0;
+    free(weight);
+    return 0;
+}
+
+int wff_model_energy_split(const wff_model *m, double *out)
+{
+    const wff_cell_type *cell = m->mat.cell;
+    int n = cell->n_mech < WFF_MECH_MAX ? cell->n_mech : WFF_MECH_MAX;
+    double mech[WFF_MECH_MAX] = {0};
+    if (n > 0)
+        wff_elements_energy_split(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, mech);
+    for (int k = 0; k < n; k++)
+        out[k] = m->symmetry_factor * mech[k];
+    return n;
+}

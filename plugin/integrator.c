@@ -1,0 +1,288 @@
+/* integrator.c: the explicit central-difference integrator
+ * (docs/model.md §12, §14): the force pass, the velocity update with the
+ * boundary conditions and the friction clamp's Coulomb correction
+ * (docs/model.md §15), the stable step, the advance loop, the energies and
+ * the instability detector. Calls the elements for forces and the stable
+ * step and contact.c once a step; knows nothing of cells by name, of output
+ * fields, of checkpoints or of FreeFEM. */
+#include "solver_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* Energy created, relative to the reference energy, beyond which the run is
+ * taken as unstable. */
+#define ENERGY_BLOWUP 0.5
+/* ... on this many steps in a row (an instability keeps growing; a spike of a
+ * step or two, e.g. a prescribed velocity jumped by the script, does not) ... */
+#define BLOWUP_STEPS 3
+/* ... or at once beyond this (50 times the reference energy created). */
+#define ENERGY_BLOWUP_NOW 50.0
+
+/* "triangle 3 (nodes 4 5 9)" or "quadrilateral 2 (nodes ...)" for element e
+ * (triangles first, then quads), numbered from 1 within its type. */
+static void element_name(const wff_model *m, int e, char *out, size_t size)
+{
+    if (e < 0) {
+        snprintf(out, size, "no element");
+        return;
+    }
+    int tri = e < m->el.n_tris;
+    const int *node = tri ? m->el.tri + 3 * e : m->el.quad + 4 * (e - m->el.n_tris);
+    if (tri)
+        snprintf(out, size, "triangle %d (nodes %d %d %d)", e + 1, node[0] + 1, node[1] + 1,
+                 node[2] + 1);
+    else
+        snprintf(out, size, "quadrilateral %d (nodes %d %d %d %d)", e - m->el.n_tris + 1,
+                 node[0] + 1, node[1] + 1, node[2] + 1, node[3] + 1);
+}
+
+/* The run is unstable: say what showed it (`what`), when, the element that
+ * sets the stable step, and a step and a dtfactor to try. */
+static int fail_unstable(const wff_model *m, const char *what, wff_error *err)
+{
+    char name[96];
+    element_name(m, m->dt_worst_element, name, sizeof name);
+    /* above the default: back to 0.8; at or below it the estimate was not
+     * safe here: halve the factor */
+    double suggested = m->dt_factor > 0.8 ? 0.8 : 0.5 * m->dt_factor;
+    return wff_fail(err, "t = %.6g s (step %ld): %s: unstable (time step %.3g s = %.3g x the "
+                    "stable estimate %.3g s at %s); suggested step %.3g s: suggested "
+                    "-dtfactor %.2g", m->time, m->step, what, m->dt, m->dt_factor,
+                    m->dt_stable, name, suggested * m->dt_stable, suggested);
+}
+
+/* Internal and contact forces at the current u; returns 0 or -1 (err set). */
+static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
+{
+    memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
+    wff_force_totals t;
+    wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, dt_flow, m->f, &t);
+    m->element_steps += m->el.n_tris + m->el.n_quads;
+    if (t.bad_element >= 0) {
+        char name[96];
+        element_name(m, t.bad_element, name, sizeof name);
+        const char *quantity = t.bad_status == WFF_POINT_DEGENERATE
+                                   ? "degenerate deformation (yarns collapsed or parallel: "
+                                     "inverted element)"
+                                   : "NaN or infinite displacement, amplitude, stress or energy";
+        if (m->blowup_steps > 0) { /* the detector was already counting */
+            char what[WFF_ERROR_MAX - 200];
+            snprintf(what, sizeof what, "%s, quadrature point %d: %s, with the energy balance "
+                     "off by %.3g%% of the reference energy the step before", name,
+                     t.bad_point + 1, quantity, 100 * m->last_error);
+            return fail_unstable(m, what, err);
+        }
+        char hint[160] = "";
+        if (m->dt_factor > 1)
+            snprintf(hint, sizeof hint, " (the step is %.3g x the stable estimate: likely "
+                     "unstable; suggested -dtfactor 0.8)", m->dt_factor);
+        return wff_fail(err, "t = %.6g s (step %ld): %s, quadrature point %d: %s%s", m->time,
+                        m->step, name, t.bad_point + 1, quantity, hint);
+    }
+    m->internal_energy = t.internal_energy;
+    m->dissipated_shear += t.dissipated;
+
+    return 0;
+}
+
+/* Coulomb friction as a velocity correction: an impulse up to `limit`
+ * against the relative tangential speed `speed` of a node of mass `mass`
+ * (sticking if the limit allows). The friction force impulse/Δt works
+ * against the slip that remains, speed − impulse/mass, over the step: that is
+ * the energy it dissipates (zero while sticking). Returns the impulse. */
+static double friction_impulse(double mass, double speed, double limit, double *dissipated)
+{
+    double stick = mass * speed;
+    double impulse = stick < limit ? stick : limit;
+    double slip = speed - impulse / mass;
+    *dissipated += impulse * slip;
+    return impulse;
+}
+
+/* v^{n+½} from f^n; dt_done is the step just taken (0 on the first half step):
+ * the second half of its trapezoidal external work, ½ Rⁿ⁺¹·Δu, is added here
+ * on the prescribed DOFs (the first half was added with the position update). */
+static void update_velocities(wff_model *m, double dt_mid, double dt_done)
+{
+    for (int i = 0; i < m->n_dofs; i++) {
+        switch (m->dof_kind[i]) {
+        case WFF_DOF_FREE:
+            m->v[i] += dt_mid * m->f[i] / m->mass[i];
+            m->reaction[i] = 0;
+            break;
+        case WFF_DOF_FIXED:
+            m->v[i] = 0;
+            m->reaction[i] = -m->f[i];
+            break;
+        default:
+            m->external_work += 0.5 * (-m->f[i]) * dt_done * m->v[i];
+            m->v[i] = m->v_prescribed[i];
+            m->reaction[i] = -m->f[i];
+            break;
+        }
+    }
+    double dissipated = 0;
+    /* friction clamp: in-plane, two faces */
+    for (int c = 0; c < m->clamp.n; c++) {
+        int n = m->clamp.node[c];
+        double *vn = m->v + D * n;
+        if (m->dof_kind[D * n] != WFF_DOF_FREE || m->dof_kind[D * n + 1] != WFF_DOF_FREE)
+            continue;
+        double speed = hypot(vn[0], vn[1]);
+        if (speed == 0)
+            continue;
+        double impulse = friction_impulse(m->mass[D * n], speed,
+                                          2 * m->clamp.mu * m->clamp.normal_force[c] * dt_mid,
+                                          &dissipated);
+        double scale = 1 - impulse / (m->mass[D * n] * speed);
+        vn[0] *= scale;
+        vn[1] *= scale;
+    }
+    m->dissipated_friction += dissipated;
+}
+
+static int update_time_step(wff_model *m, wff_error *err)
+{
+    int worst;
+    double dt = wff_elements_stable_step(&m->el, &m->em, m->mesh.xy, m->u, &worst);
+    if (!(dt > 0) || !isfinite(dt)) {
+        char name[96];
+        element_name(m, worst, name, sizeof name);
+        return wff_fail(err, "t = %.6g s (step %ld): %s: stable time step %g s is not "
+                        "positive: degenerate deformation (yarns collapsed or parallel) or "
+                        "NaN", m->time, m->step, name, dt);
+    }
+    m->dt_stable = dt;
+    m->dt_worst_element = worst;
+    m->dt = m->dt_factor * dt;
+    return 0;
+}
+
+/* Kinetic energies (model part) at the integer step, v^{n+½} − ½Δt a^n from
+ * the last half step: in-plane, transverse, amplitude, projectile. No
+ * allocation: the advance loop calls it every step. */
+static void kinetic_now(const wff_model *m, double k[4])
+{
+    const double half = m->v_half_valid ? 0.5 * m->dt : 0;
+    const double *v = m->v, *f = m->f, *mass = m->mass;
+    const unsigned char *kind = m->dof_kind;
+    double inplane = 0, transverse = 0, amplitude = 0;
+    for (int n = 0; n < m->n_nodes; n++) { /* branch-free over the 5 DOFs of a node */
+        const int i = D * n;
+        double e[D];
+        for (int j = 0; j < D; j++) {
+            double vn = v[i + j] - half * f[i + j] / mass[i + j];
+            e[j] = kind[i + j] == WFF_DOF_FREE ? mass[i + j] * vn * vn : 0;
+        }
+        inplane += e[0] + e[1];
+        transverse += e[2];
+        amplitude += e[3] + e[4];
+    }
+    k[0] = 0.5 * inplane;
+    k[1] = 0.5 * transverse;
+    k[2] = 0.5 * amplitude;
+    k[3] = 0;
+    if (m->projectile.active) {
+        double vp = m->projectile.velocity + half * m->projectile.force / m->projectile.mass;
+        k[3] = 0.5 * m->projectile.mass * vp * vp;
+    }
+}
+
+void wff_model_energies(const wff_model *m, wff_energies *out)
+{
+    double k[4];
+    kinetic_now(m, k);
+    double s = m->symmetry_factor;
+    out->kinetic_inplane = s * k[0];
+    out->kinetic_transverse = s * k[1];
+    out->kinetic_amplitude = s * k[2];
+    out->kinetic_projectile = s * k[3];
+    out->internal = s * (m->internal_energy);
+    out->dissipated_shear = s * m->dissipated_shear;
+    out->dissipated_friction = s * m->dissipated_friction;
+    out->external_work = s * m->external_work;
+    double total = k[0] + k[1] + k[2] + k[3] + m->internal_energy +
+                   m->dissipated_shear + m->dissipated_friction - m->external_work;
+    /* normaliser: the initial kinetic energy, or (for a scene driven by its
+     * boundaries) the work done on it or the energy it now holds */
+    double stored = m->internal_energy - (m->initial_total - m->initial_kinetic);
+    double ref = fmax(m->initial_kinetic, fabs(m->external_work));
+    ref = fmax(ref, fmax(k[0] + k[1] + k[2] + k[3], fabs(stored)));
+    /* below the kinetic energy of the fabric moving at ~3e-5 m/s, energies are
+     * round-off: floor the normaliser there */
+    ref = fmax(ref, 1e-9 * m->fabric_mass * 1.0 /* (m/s)^2 */);
+    out->reference = s * ref;
+    out->error = m->v_half_valid ? (total - m->initial_total) / ref : 0; /* not started: exact */
+}
+
+int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err)
+{
+    if (m->step == 0 && !m->v_half_valid) {
+        /* start: forces at u⁰, energy reference */
+        if (update_time_step(m, err))
+            return -1;
+        if (m->projectile.active)
+            wff_contact_refresh_candidates(m);
+        if (compute_forces(m, 0, err))
+            return -1;
+        double k[4];
+        kinetic_now(m, k); /* v_half_valid is 0: the velocities as given */
+        m->initial_kinetic = k[0] + k[1] + k[2] + k[3];
+        m->initial_total = m->initial_kinetic + m->internal_energy;
+        m->v_half_valid = 1;
+        /* first half step */
+        update_velocities(m, 0.5 * m->dt, 0);
+        if (wff_contact_correct(m, m->dt, 0.5 * m->dt, err))
+            return -1;
+    }
+    if (m->projectile.active)
+        wff_contact_refresh_candidates(m);
+    long done = 0;
+    while (m->time < t_end && done < max_steps) {
+        /* u^{n+1} = u^n + Δt v^{n+½} */
+        double dt = m->dt;
+        /* external work by the trapezoidal rule: ½(R^n + R^{n+1})·Δu */
+        for (int i = 0; i < m->n_dofs; i++) {
+            double du = dt * m->v[i];
+            if (m->dof_kind[i] == WFF_DOF_PRESCRIBED)
+                m->external_work += 0.5 * m->reaction[i] * du;
+            m->u[i] += du;
+        }
+        if (m->projectile.active)
+            m->projectile.tip += dt * m->projectile.velocity;
+        m->time += dt;
+        m->step++;
+        done++;
+        if (m->step % m->dt_interval == 0) {
+            if (update_time_step(m, err))
+                return -1;
+            if (m->projectile.active)
+                wff_contact_refresh_candidates(m);
+        }
+        if (compute_forces(m, dt, err))
+            return -1;
+        update_velocities(m, 0.5 * (dt + m->dt), dt);
+        if (wff_contact_correct(m, m->dt, 0.5 * (dt + m->dt), err))
+            return -1;
+        {   /* every step (a pass over the DOFs, ~4 % of a step): an unstable
+             * step grows the energy by a large factor per step */
+            wff_energies e;
+            wff_model_energies(m, &e);
+            /* an unstable step creates energy (a deficit is not instability) and
+             * keeps creating it: a one- or two-step spike, as when a script jumps
+             * a prescribed velocity while the work done is still tiny, is not */
+            m->blowup_steps = e.error > ENERGY_BLOWUP ? m->blowup_steps + 1 : 0;
+            if (!isfinite(e.error) || m->blowup_steps >= BLOWUP_STEPS ||
+                e.error > ENERGY_BLOWUP_NOW) {
+                char what[160];
+                snprintf(what, sizeof what, "energy balance off by %.3g%% of the reference "
+                         "energy", 100 * e.error);
+                return fail_unstable(m, what, err);
+            }
+            m->last_error = e.error;
+        }
+    }
+    return 0;
+}

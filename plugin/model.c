@@ -1,0 +1,345 @@
+/* model.c: a model's set-up and settings: create and free, the preload,
+ * the mesh's named groups, fixed and prescribed DOFs, the friction clamp's
+ * nodes and forces (docs/model.md §15), reactions, solver settings by name
+ * and the nearest node. Knows the mesh, the material and the elements;
+ * nothing of how a step is taken (integrator.c), of contact (contact.c),
+ * of output fields or checkpoints, of cells by name or of FreeFEM. */
+#include "solver_internal.h"
+#include "wovenff/material.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void wff_model_free(wff_model *m)
+{
+    free(m->u);
+    free(m->v);
+    free(m->f);
+    free(m->mass);
+    free(m->dof_kind);
+    free(m->v_prescribed);
+    free(m->gamma_f);
+    free(m->reaction);
+    free(m->projectile.candidates);
+    free(m->projectile.contact_node);
+    free(m->projectile.impulse);
+    free(m->clamp.node);
+    free(m->clamp.normal_force);
+    wff_elements_free(&m->el);
+    wff_mesh_free(&m->mesh);
+    memset(m, 0, sizeof *m);
+}
+
+int wff_model_create(wff_model *m, const char *mesh_path, const wff_mesh_options *mesh_options,
+                     const char *material_path, wff_error *err)
+{
+    wff_mesh mesh;
+    if (wff_mesh_load(mesh_path, mesh_options, &mesh, err))
+        return -1;
+    if (wff_model_create_from_mesh(m, &mesh, material_path, err)) {
+        char why[WFF_ERROR_MAX];
+        snprintf(why, sizeof why, "%s", err->message);
+        return wff_fail(err, "%s: %s", mesh_path, why);
+    }
+    return 0;
+}
+
+static void sum_fabric_mass(wff_model *m)
+{
+    m->fabric_mass = 0;
+    for (int n = 0; n < m->n_nodes; n++)
+        m->fabric_mass += m->mass[D * n];
+}
+
+/* Before the first step: the stored energy of the state as set up (e.g. the
+ * preload), so that energies read before any step are complete. A force pass
+ * with γᶠ held; its forces are recomputed when the run starts, and a bad
+ * element is reported then. */
+static void stored_energy_now(wff_model *m)
+{
+    if (m->v_half_valid || m->step > 0)
+        return;
+    wff_force_totals t;
+    memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
+    wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, 0, m->f, &t);
+    m->internal_energy = t.bad_element >= 0 ? 0 : t.internal_energy;
+}
+
+int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *material_path,
+                               wff_error *err)
+{
+    memset(m, 0, sizeof *m);
+    m->mesh = *mesh;
+    memset(mesh, 0, sizeof *mesh);
+    if (wff_material_load(material_path, &m->mat, err)) {
+        wff_mesh_free(&m->mesh);
+        return -1;
+    }
+    if (wff_elements_init(&m->el, m->mesh.xy, m->mesh.n_tris, m->mesh.tri, m->mesh.n_quads,
+                          m->mesh.quad, err)) {
+        wff_mesh_free(&m->mesh);
+        return -1;
+    }
+    m->n_nodes = m->mesh.n_nodes;
+    m->n_dofs = D * m->n_nodes;
+    size_t nd = (size_t)m->n_dofs;
+    size_t nq = (size_t)(WFF_TRI_POINTS * m->el.n_tris + WFF_QUAD_POINTS * m->el.n_quads);
+    m->u = calloc(nd, sizeof(double));
+    m->v = calloc(nd, sizeof(double));
+    m->f = calloc(nd, sizeof(double));
+    m->mass = calloc(nd, sizeof(double));
+    m->dof_kind = calloc(nd, 1);
+    m->v_prescribed = calloc(nd, sizeof(double));
+    m->reaction = calloc(nd, sizeof(double));
+    m->gamma_f = calloc(nq ? nq : 1, sizeof(double));
+    if (!m->u || !m->v || !m->f || !m->mass || !m->dof_kind || !m->v_prescribed ||
+        !m->reaction || !m->gamma_f) {
+        wff_model_free(m);
+        return wff_fail(err, "out of memory for a model of %d nodes", m->n_nodes);
+    }
+    m->em.mat = &m->mat;
+    m->em.F_pre[0] = m->em.F_pre[3] = 1;
+    m->em.J_pre = 1;
+    wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
+    sum_fabric_mass(m);
+    /* amplitude DOFs of a cell without amplitudes stay put */
+    if (m->mat.cell->n_amplitudes == 0)
+        for (int n = 0; n < m->n_nodes; n++)
+            m->dof_kind[D * n + 3] = m->dof_kind[D * n + 4] = WFF_DOF_FIXED;
+    m->dt_factor = 0.8;
+    m->dt_interval = 20;
+    m->symmetry_factor = 1;
+    stored_energy_now(m);
+    return 0;
+}
+
+int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[2],
+                          wff_error *err)
+{
+    double det = F_pre[0] * F_pre[3] - F_pre[1] * F_pre[2];
+    if (!(det > 0))
+        return wff_fail(err, "preload F_pre = [%g %g; %g %g] has det %g: must be > 0", F_pre[0],
+                        F_pre[1], F_pre[2], F_pre[3], det);
+    memcpy(m->em.F_pre, F_pre, 4 * sizeof(double));
+    m->em.J_pre = det;
+    wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
+    sum_fabric_mass(m);
+    if (m->mat.cell->n_amplitudes)
+        for (int n = 0; n < m->n_nodes; n++) {
+            m->u[D * n + 3] = dA0[0];
+            m->u[D * n + 4] = dA0[1];
+        }
+    stored_energy_now(m);
+    return 0;
+}
+
+/* Mark the nodes of a named group; calls visit(m, node, data) once per node. */
+static int for_group_nodes(wff_model *m, const char *group, wff_error *err,
+                           void (*visit)(wff_model *, int, void *), void *data)
+{
+    int tag1 = wff_mesh_group_tag(&m->mesh, 1, group);
+    int tag2 = wff_mesh_group_tag(&m->mesh, 2, group);
+    if (tag1 < 0 && tag2 < 0) {
+        char names[256] = "";
+        for (int g = 0; g < m->mesh.n_groups; g++) {
+            size_t used = strlen(names);
+            snprintf(names + used, sizeof names - used, "%s%s", g ? ", " : "",
+                     m->mesh.groups[g].name);
+        }
+        return wff_fail(err, "no physical group named '%s' in the mesh (groups: %s)", group,
+                        names[0] ? names : "none");
+    }
+    unsigned char *seen = calloc((size_t)m->n_nodes, 1);
+    if (!seen)
+        return wff_fail(err, "out of memory");
+    if (tag1 >= 0)
+        for (int e = 0; e < m->mesh.n_edges; e++)
+            if (m->mesh.edge_label[e] == tag1)
+                seen[m->mesh.edge[2 * e]] = seen[m->mesh.edge[2 * e + 1]] = 1;
+    if (tag2 >= 0) {
+        for (int e = 0; e < m->mesh.n_tris; e++)
+            if (m->mesh.tri_region[e] == tag2)
+                for (int a = 0; a < 3; a++)
+                    seen[m->mesh.tri[3 * e + a]] = 1;
+        for (int e = 0; e < m->mesh.n_quads; e++)
+            if (m->mesh.quad_region[e] == tag2)
+                for (int a = 0; a < 4; a++)
+                    seen[m->mesh.quad[4 * e + a]] = 1;
+    }
+    int count = 0;
+    for (int n = 0; n < m->n_nodes; n++)
+        if (seen[n]) {
+            visit(m, n, data);
+            count++;
+        }
+    free(seen);
+    if (count == 0)
+        return wff_fail(err, "physical group '%s' has no nodes", group);
+    return count;
+}
+
+typedef struct dof_setting { int component, kind; double velocity; } dof_setting;
+
+static void set_dof(wff_model *m, int node, void *data)
+{
+    const dof_setting *s = data;
+    int i = D * node + s->component;
+    m->dof_kind[i] = (unsigned char)s->kind;
+    m->v_prescribed[i] = s->velocity;
+    m->v[i] = s->kind == WFF_DOF_PRESCRIBED ? s->velocity : 0;
+}
+
+static int check_component(int component, wff_error *err)
+{
+    if (component < 0 || component >= D)
+        return wff_fail(err, "DOF component %d: must be 0..4 (ux uy uz dA1 dA2)", component);
+    return 0;
+}
+
+int wff_model_fix_group(wff_model *m, const char *group, int component, wff_error *err)
+{
+    if (check_component(component, err))
+        return -1;
+    dof_setting s = {component, WFF_DOF_FIXED, 0};
+    return for_group_nodes(m, group, err, set_dof, &s);
+}
+
+int wff_model_prescribe_group(wff_model *m, const char *group, int component, double velocity,
+                              wff_error *err)
+{
+    if (check_component(component, err))
+        return -1;
+    if (!isfinite(velocity))
+        return wff_fail(err, "prescribed velocity of '%s' is not finite", group);
+    dof_setting s = {component, WFF_DOF_PRESCRIBED, velocity};
+    return for_group_nodes(m, group, err, set_dof, &s);
+}
+
+static void add_clamp_node(wff_model *m, int node, void *data)
+{
+    (void)data;
+    m->clamp.node[m->clamp.n++] = node;
+    m->dof_kind[D * node + WFF_UZ] = WFF_DOF_FIXED; /* pressed flat */
+    m->v[D * node + WFF_UZ] = 0;
+}
+
+int wff_model_clamp_friction(wff_model *m, const char *group, double normal_force, double mu,
+                             wff_error *err)
+{
+    if (!(normal_force > 0) || !(mu >= 0))
+        return wff_fail(err, "friction clamp '%s': normal force %g N must be > 0 and mu %g >= 0",
+                        group, normal_force, mu);
+    free(m->clamp.node);
+    free(m->clamp.normal_force);
+    m->clamp.n = 0;
+    m->clamp.node = malloc(sizeof(int) * (size_t)m->n_nodes);
+    m->clamp.normal_force = malloc(sizeof(double) * (size_t)m->n_nodes);
+    if (!m->clamp.node || !m->clamp.normal_force)
+        return wff_fail(err, "out of memory");
+    int count = for_group_nodes(m, group, err, add_clamp_node, NULL);
+    if (count < 0)
+        return -1;
+    /* share the force by lumped (displacement) mass, i.e. by nodal area */
+    double total = 0;
+    for (int i = 0; i < m->clamp.n; i++)
+        total += m->mass[D * m->clamp.node[i]];
+    for (int i = 0; i < m->clamp.n; i++)
+        m->clamp.normal_force[i] = normal_force * m->mass[D * m->clamp.node[i]] / total;
+    m->clamp.mu = mu;
+    return count;
+}
+
+typedef struct reaction_sum { const wff_model *m; int component; double sum; } reaction_sum;
+
+static void add_reaction(wff_model *m, int node, void *data)
+{
+    reaction_sum *r = data;
+    r->sum += m->reaction[D * node + r->component];
+}
+
+int wff_model_group_reaction(wff_model *m, const char *group, int component, double *sum,
+                             wff_error *err)
+{
+    if (check_component(component, err))
+        return -1;
+    reaction_sum r = {m, component, 0};
+    int n = for_group_nodes(m, group, err, add_reaction, &r);
+    *sum = r.sum;
+    return n;
+}
+
+int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err)
+{
+    if (strcmp(key, "dtfactor") == 0) {
+        if (!(value > 0 && value <= 2))
+            return wff_fail(err, "dtfactor = %g: must be in (0, 2] (1 is the stability limit)",
+                            value);
+        m->dt_factor = value;
+        if (m->dt_stable > 0)
+            m->dt = value * m->dt_stable;
+    } else if (strcmp(key, "dtinterval") == 0) {
+        if (!(value >= 1 && value <= 1e6) || value != floor(value))
+            return wff_fail(err, "dtinterval = %g: must be a whole number of steps >= 1", value);
+        m->dt_interval = (int)value;
+    } else if (strcmp(key, "symmetry") == 0) {
+        if (value != 1 && value != 2 && value != 4)
+            return wff_fail(err, "symmetry = %g: must be 1 (full), 2 (half) or 4 (quarter)",
+                            value);
+        m->symmetry_factor = value;
+    } else if (strcmp(key, "threads") == 0) {
+        if (value != floor(value) || wff_elements_set_threads(&m->el, (int)value, err))
+            return value != floor(value) ? wff_fail(err, "threads = %g: a whole number", value)
+                                         : -1;
+    } else if (strcmp(key, "amplitude_mass_factor") == 0) {
+        if (!(value >= 1 && value <= 1e6))
+            return wff_fail(err, "amplitude_mass_factor = %g: must be >= 1 (1 is the paper's "
+                            "1/6 of the displacement mass)", value);
+        m->em.amplitude_mass_factor = value;
+        wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
+    } else if (strcmp(key, "static_amplitudes") == 0) {
+        if (value != 0 && value != 1)
+            return wff_fail(err, "static_amplitudes = %g: must be 0 (dynamic nodal amplitudes, "
+                            "the paper) or 1 (balanced at every point, King 2005)", value);
+        if (value == 1 && m->mat.cell->n_amplitudes == 0)
+            return wff_fail(err, "static_amplitudes: cell '%s' has no amplitudes",
+                            m->mat.cell->name);
+        if (value == 1) { /* first guess: the amplitudes of node 0 (the preload's) */
+            const double guess[2] = {m->u[3], m->u[4]};
+            if (wff_elements_static_amplitudes(&m->el, &m->em, guess, err))
+                return -1;
+        } else {
+            m->em.static_amplitudes = 0;
+        }
+    } else if (strcmp(key, "contact_search") == 0) {
+        if (value != 0 && value != 1)
+            return wff_fail(err, "contact_search = %g: must be 1 (only nodes the projectile "
+                            "can reach) or 0 (every node, every step)", value);
+        m->projectile.search_all = value == 0;
+    } else if (strcmp(key, "reference_path") == 0) {
+        if (value != 0 && value != 1)
+            return wff_fail(err, "reference_path = %g: must be 0 (cell fast path where there "
+                            "is one) or 1 (plain evaluate)", value);
+        m->em.reference_path = (int)value;
+    } else {
+        return wff_fail(err, "unknown solver setting '%s' (known: dtfactor, dtinterval, "
+                        "symmetry, reference_path, threads, amplitude_mass_factor, static_amplitudes, "
+                        "contact_search)", key);
+    }
+    return 0;
+}
+
+int wff_model_nearest_node(const wff_model *m, double x, double y)
+{
+    int best = 0;
+    double best_d = INFINITY;
+    for (int n = 0; n < m->n_nodes; n++) {
+        double d = hypot(m->mesh.xy[2 * n] - x, m->mesh.xy[2 * n + 1] - y);
+        if (d < best_d) {
+            best_d = d;
+            best = n;
+        }
+    }
+    return best;
+}

@@ -1,0 +1,20 @@
+/* solver_internal.h: what the solver's files (model.c, contact.c,
+ * integrator.c, fields.c, checkpoint.c) share and nobody else sees: the DOF
+ * stride and the contact calls the integrator makes once a step. The public
+ * API is include/wovenff/solver.h. */
+#ifndef WFF_SOLVER_INTERNAL_H
+#define WFF_SOLVER_INTERNAL_H
+
+#include "wovenff/solver.h"
+
+#define D WFF_DOFS_PER_NODE
+
+/* contact.c: the nodes near enough the projectile's axis to touch it before
+ * the next refresh (every node with contact_search 0). */
+void wff_contact_refresh_candidates(wff_model *m);
+/* contact.c: the kinematic contact and friction impulses of one step, added
+ * to f as forces over dt_mid; -1 (err set) if the projectile has passed
+ * through the fabric. */
+int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
+
+#endif
