@@ -24,7 +24,8 @@ stats dat using 7 name "SA2" nooutput
 stats dat using (column(10) > column(11) ? column(10) : column(11)) name "SF" nooutput
 xy = 1.08 * (SX_max > SY_max ? SX_max : SY_max)
 zpad = 0.2 * (SA1_max + SA2_max)
-level(k, c) = system(sprintf("awk 'NR > 1 && NR == %d + 2 { print $%d }' '%s'", k, c, dat)) + 0
+level(k, c) = (v = system(sprintf("awk 'NR == %d + 2 { print $%d }' '%s'", k, c, dat)) + 0, \
+               abs(v) < 1e-12 ? 0 : v)   # row k's column c, round-off shown as 0
 
 set terminal pngcairo size 1400,1050 font ',10'
 set output png
@@ -32,6 +33,9 @@ set multiplot title "Unit cell, " . heading . "\nhalf-yarn trusses from the cell
     . "crossover spring, locking spars (colour: force); x, y to scale, z (height) stretched" noenhanced
 set view 70, 30, 1.0; set view equal xy; set xyplane relative 0
 set border 4095 lc rgb "gray70"; set tics textcolor "black"   # the whole box: every segment ends visibly inside it
+raw = xy / 2; mag = 10**floor(log10(raw))   # about four tics across the cell
+tic = raw / mag >= 5 ? 5 * mag : raw / mag >= 2 ? 2 * mag : mag
+set xtics tic; set ytics tic
 set xrange [-xy:xy]; set yrange [-xy:xy]; set zrange [-SA2_max - zpad:SA1_max + zpad]
 set xlabel "x, warp (µm)"; set ylabel "y, weft (µm)"; set zlabel "z (µm)" rotate parallel
 set palette defined (0 '#c0c0c0', 0.3 '#ff9900', 1 '#dd0000')
