@@ -6,6 +6,7 @@
 #   gnuplot -e "dat='cell_P.dat'; png='cell_P.png'; path='shear'; heading='...'; p1=373.5; p2=373.5" explorer_cell.gp
 # dat      one row per level: load F11 F12 F21 F22 A1 A2 dA1 dA2 F_L1 F_L2
 #          (F in-plane, -; A, dA in µm; spar forces in N)
+# heading  the title: path, cell, material, mode
 # p1, p2   the reference quarter wavelengths p_k⁰ (µm, the cell's reference_geometry)
 # Lengths in µm: x, y to scale, z (height) stretched.
 
@@ -29,7 +30,7 @@ level(k, c) = (v = system(sprintf("awk 'NR == %d + 2 { print $%d }' '%s'", k, c,
 
 set terminal pngcairo size 1400,1050 font ',10'
 set output png
-set multiplot title "Unit cell, " . heading . "\nhalf-yarn trusses from the cell edge to the crossover, " \
+set multiplot title "The unit cell, " . heading . "\nhalf-yarn trusses from the cell edge to the crossover, " \
     . "crossover spring, locking spars (colour: force); x, y to scale, z (height) stretched" noenhanced
 set view 70, 30, 1.0; set view equal xy; set xyplane relative 0
 set border 4095 lc rgb "gray70"; set tics textcolor "black"   # the whole box: every segment ends visibly inside it

@@ -5,6 +5,7 @@
 # csv      the path's CSV (first column the load, then time and the cell's columns)
 # units    the unit of every CSV column, space-separated, in the CSV's order
 # path     warp | weft | equibiaxial | equalforce | shear (sets the x axis)
+# heading  the title: path, cell, material, mode
 # dynamic  1: dynamic amplitudes (the static balance is drawn dashed beside)
 set datafile separator ','
 set datafile columnheaders
@@ -16,10 +17,6 @@ xlab = path eq "equalforce" ? "yarn tension T, both families (N)" : \
        path eq "shear" ? "shear angle γ (°)" : "nominal strain (%)"
 xs = path eq "equalforce" ? 1 : path eq "shear" ? 180 / pi : 100
 x(dummy) = column(1) * xs
-what = path eq "warp" ? "uniaxial warp strip (weft edge free)" : \
-       path eq "weft" ? "uniaxial weft strip (warp edge free)" : \
-       path eq "equibiaxial" ? "equibiaxial stretch" : \
-       path eq "equalforce" ? "equal-force biaxial tension" : "picture-frame shear"
 
 # the cell's forces besides the yarn tensions, and its mechanisms
 forces = ""; mechs = ""
@@ -36,7 +33,7 @@ nothing(text) = sprintf("set label 1 '%s' at graph 0.5, 0.5 center; unset tics; 
 
 set terminal pngcairo size 1500,950 font ',10'
 set output png
-set multiplot layout 2,3 title what . ": " . heading noenhanced
+set multiplot layout 2,3 title heading noenhanced
 set grid
 set key below horizontal
 set xlabel xlab
