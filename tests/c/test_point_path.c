@@ -34,6 +34,14 @@ static void shear_F(double gamma, double stretch, double F[6])
     memcpy(F, f, sizeof f);
 }
 
+static wff_material load(check_state *st, const char *path)
+{
+    wff_material m;
+    wff_error e;
+    CHECK(st, wff_material_load(path, &m, &e) == 0, "%s", e.message);
+    return m;
+}
+
 static double energy(const wff_material *m, const double F[6], const double dA[2])
 {
     wff_point_result r;
@@ -43,9 +51,8 @@ static double energy(const wff_material *m, const double F[6], const double dA[2
 
 static void free_oscillation(check_state *st, const char *path)
 {
-    wff_material m;
+    wff_material m = load(st, path);
     wff_error e;
-    CHECK(st, wff_material_load(path, &m, &e) == 0, "%s", e.message);
     double F[6];
     shear_F(0.3, 1.005, F);
     double balanced[2] = {0, 0};
@@ -99,9 +106,8 @@ static void free_oscillation(check_state *st, const char *path)
 /* amplitude_omega >= sqrt(λ_max(H)/m), H = −∂R/∂ΔA by central differences. */
 static void omega_bounds_frequency(check_state *st, const char *path)
 {
-    wff_material m;
+    wff_material m = load(st, path);
     wff_error e;
-    CHECK(st, wff_material_load(path, &m, &e) == 0, "%s", e.message);
     const double gammas[] = {0, 0.3, 0.6}, strains[] = {0, 0.01, 0.02};
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
@@ -133,9 +139,8 @@ static void omega_bounds_frequency(check_state *st, const char *path)
 
 static void shear_flow(check_state *st)
 {
-    wff_material m;
+    wff_material m = load(st, KEVLAR);
     wff_error e;
-    CHECK(st, wff_material_load(KEVLAR, &m, &e) == 0, "%s", e.message);
     double F0[6], F1[6];
     shear_F(0, 1, F0);
     shear_F(0.4, 1, F1);
@@ -151,9 +156,8 @@ static void shear_flow(check_state *st)
 
 static void record(check_state *st, const char *path)
 {
-    wff_material m;
+    wff_material m = load(st, path);
     wff_error e;
-    CHECK(st, wff_material_load(path, &m, &e) == 0, "%s", e.message);
     double F[6];
     shear_F(0.5, 1.01, F);
     wff_point_state s = {{-3e-6, 2e-6}, {0.1, -0.2}, 0.05, 0, 0};
@@ -175,9 +179,8 @@ static void record(check_state *st, const char *path)
 
 static void errors(check_state *st)
 {
-    wff_material m;
+    wff_material m = load(st, LINEAR);
     wff_error e;
-    CHECK(st, wff_material_load(LINEAR, &m, &e) == 0, "%s", e.message);
     double F[6];
     shear_F(0, 1.01, F);
     wff_point_state s = {{0, 0}, {0, 0}, 0, 0, 0};
