@@ -37,16 +37,30 @@ namespace {
 const char *const kStateLayout = "dA1 dA2 vA1 vA2 gamma_f previous_step";
 const long kStateSize = 6;
 
+// ExecError unless v has n entries (layout says which), all finite numbers.
+void require_finite(const char *fn, const char *name, const KN<double> *v, long n,
+                    const char *layout)
+{
+    wff_ff_require_size(fn, name, v, n, layout);
+    for (long i = 0; i < n; i++)
+        if (!std::isfinite((*v)[i])) {
+            char msg[200];
+            snprintf(msg, sizeof msg, "%s[%ld] = %g is not a finite number (%s)", name, i,
+                     (*v)[i], layout);
+            wff_ff_fail(fn, msg);
+        }
+}
+
 void take_F(const char *fn, const char *name, const KN<double> *v, double F[6])
 {
-    wff_ff_require_size(fn, name, v, 6, "F11 F12 F21 F22 F31 F32");
+    require_finite(fn, name, v, 6, "F11 F12 F21 F22 F31 F32");
     for (int i = 0; i < 6; i++)
         F[i] = (*v)[i];
 }
 
 wff_point_state take_state(const char *fn, const KN<double> *v)
 {
-    wff_ff_require_size(fn, "state", v, kStateSize, kStateLayout);
+    require_finite(fn, "state", v, kStateSize, kStateLayout);
     wff_point_state s = {{(*v)[0], (*v)[1]}, {(*v)[2], (*v)[3]}, (*v)[4], (*v)[5], 0};
     return s;
 }
@@ -165,7 +179,7 @@ long ffExploreRow(string *const &material, KN<double> *const &Fv, KN<double> *co
     double F[6];
     take_F(fn, "F", Fv, F);
     wff_point_state s = take_state(fn, state);
-    wff_ff_require_size(fn, "dAstatic", dA_static, 2, "dA1 dA2");
+    require_finite(fn, "dAstatic", dA_static, 2, "dA1 dA2");
     const double dAst[2] = {(*dA_static)[0], (*dA_static)[1]};
     if (!out)
         wff_ff_fail(fn, "no output array");
