@@ -3,7 +3,7 @@
 # (warp up to +A_1, weft down to −A_2), the crossover spring and the locking
 # spars (in-plane length s_k = J/p_k, height A_k; colour: force). Called by
 # unit_cell_explorer.edp as
-#   gnuplot -e "dat='cell_P.dat'; png='cell_P.png'; path='shear'; heading='...'; p1=373.5; p2=373.5" explorer_cell.gp
+#   gnuplot -e "dat='cell_P.dat'; out='cell_P.png'; path='shear'; heading='...'; p1=373.5; p2=373.5" explorer_cell.gp
 # dat      one row per level: load F11 F12 F21 F22 A1 A2 dA1 dA2 F_L1 F_L2
 #          (F in-plane, -; A, dA in µm; spar forces in N)
 # heading  the title: path, cell, material, mode
@@ -29,7 +29,7 @@ level(k, c) = (v = system(sprintf("awk 'NR == %d + 2 { print $%d }' '%s'", k, c,
                abs(v) < 1e-12 ? 0 : v)   # row k's column c, round-off shown as 0
 
 set terminal pngcairo size 1400,1050 font ',10'
-set output png
+set output out
 set multiplot title "The unit cell, " . heading . "\nhalf-yarn trusses from the cell edge to the crossover, " \
     . "crossover spring, locking spars (colour: force); x, y to scale, z (height) stretched" noenhanced
 set view 70, 30, 1.0; set view equal xy; set xyplane relative 0

@@ -1,7 +1,7 @@
 # explorer_path.gp — the unit-cell explorer's six panels for one load path,
 # drawn from the path's CSV by column name (any cell: its own diagnostics and
 # mechanisms). Called by unit_cell_explorer.edp as
-#   gnuplot -e "csv='P.csv'; png='P.png'; path='warp'; units='...'; heading='...'; dynamic=0" explorer_path.gp
+#   gnuplot -e "csv='P.csv'; out='P.png'; path='warp'; units='...'; heading='...'; dynamic=0" explorer_path.gp
 # csv      the path's CSV (first column the load, then time and the cell's columns)
 # units    the unit of every CSV column, space-separated, in the CSV's order
 # path     warp | weft | equibiaxial | equalforce | shear (sets the x axis)
@@ -32,7 +32,7 @@ nothing(text) = sprintf("set label 1 '%s' at graph 0.5, 0.5 center; unset tics; 
     . "plot [0:1][0:1] -1 notitle; unset label 1; set tics; set xlabel xlab", text)
 
 set terminal pngcairo size 1500,950 font ',10'
-set output png
+set output out
 set multiplot layout 2,3 title heading noenhanced
 set grid
 set key below horizontal
