@@ -25,8 +25,10 @@ stats dat using 7 name "SA2" nooutput
 stats dat using (column(10) > column(11) ? column(10) : column(11)) name "SF" nooutput
 xy = 1.08 * (SX_max > SY_max ? SX_max : SY_max)
 zpad = 0.2 * (SA1_max + SA2_max)
-level(k, c) = (v = system(sprintf("awk 'NR == %d + 2 { print $%d }' '%s'", k, c, dat)) + 0, \
-               abs(v) < 1e-12 ? 0 : v)   # row k's column c, round-off shown as 0
+# each level's load, ΔA and spar forces for the titles (round-off shown as 0)
+array Q[4]; array D1[4]; array D2[4]; array L1[4]; array L2[4]
+stats dat using (r = int($0) + 1, Q[r] = $1, D1[r] = $8, D2[r] = $9, L1[r] = $10, L2[r] = $11, 0) nooutput
+clean(v) = abs(v) < 1e-12 ? 0 : v
 
 set terminal pngcairo size 1400,1050 font ',10'
 set output out
@@ -48,7 +50,7 @@ load_text(q) = path eq "equalforce" ? sprintf("T = %.3g N", q) : \
 do for [k = 0:3] {
     set origin 0.41 * (k % 2), (k < 2 ? 0.46 : 0.0); set size 0.41, 0.46
     set title sprintf("%s:  ΔA_1 = %.1f, ΔA_2 = %.1f µm,  F_{L1} = %.3g, F_{L2} = %.3g N", \
-        load_text(level(k, 1)), level(k, 8), level(k, 9), level(k, 10), level(k, 11))
+        load_text(Q[k + 1]), clean(D1[k + 1]), clean(D2[k + 1]), clean(L1[k + 1]), clean(L2[k + 1]))
     splot for [sg = -1:1:2] dat every ::k::k using (geom(sg * (G1x + G2x))):(sg * (G1y + G2y)):(0):(-2 * sg * G2x):(-2 * sg * G2y):(0) \
               w vectors nohead lc rgb 'gray50' dt 2, \
           for [sg = -1:1:2] dat every ::k::k using (geom(sg * (G1x - G2x))):(sg * (G1y - G2y)):(0):(-2 * sg * G1x):(-2 * sg * G1y):(0) \
