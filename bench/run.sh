@@ -23,6 +23,8 @@ now() { date +%s.%N; }
 elapsed() { awk -v a="$1" -v b="$(now)" 'BEGIN { printf "%.2f", b - a }'; }
 
 tables_only=${BENCH_TABLES:-0}
+tend=2.5e-3   # end time of the runs of part 3 (the plot names it too)
+[ "$quick" = 1 ] && tend=0.5e-3
 if [ "$tables_only" != 1 ]; then
 echo "== 1. kernel speed (build/bench/kernel_speed)"
 : > "$out/kernel.jsonl"
@@ -51,8 +53,6 @@ scene_wall=$(elapsed "$t0")
 echo "scene_default $scene_wall s"
 
 echo "== 3. speed vs accuracy on the ballistic scene"
-tend=2.5e-3
-[ "$quick" = 1 ] && tend=0.5e-3
 scene() { # name, then scene options
     name=$1; shift
     dir="$out/runs/$name"
@@ -108,19 +108,73 @@ awk -F, 'NR == 1 { print "| run | elements | steps | wall s | apex L2 error | pe
          { printf "| %s | %s | %s | %s | %.2g %% | %+.2g %% | %+.3f | %.2g %% |\n", $1, $2, $3, $4, 100*$6, 100*$7, 1e3*$8, 100*$9 }' \
     "$out/tradeoff.csv" > "$out/tradeoff.md"
 cat "$out/tradeoff.md"
+# pareto.png: error against wall time, each run a numbered point and a key
+# beside the plot (number, run, wall time, error). The numbers are placed by a
+# greedy search so none covers another or a point: beside the point if there is
+# room, else further out with a thin leader line. The plot area is fixed in
+# pixels so the search knows how large a number is in decades.
+awk -F, -v ranges="$out/pareto_ranges.txt" -v key="$out/pareto_key.txt" \
+    -v W=1150 -v H=650 -v left=0.08 -v right=0.72 -v bottom=0.11 -v top=0.91 '
+function abs(v) { return v < 0 ? -v : v }
+function free(x0, x1, y0, y1,    j) {   # is the box [x0, x1] x [y0, y1] (decades) free?
+    if (x0 < xlo || x1 > xhi || y0 < ylo || y1 > yhi) return 0
+    for (j = 1; j <= n; j++)   # the points, as boxes of a marker size
+        if (X[j] + mx > x0 && X[j] - mx < x1 && Y[j] + my > y0 && Y[j] - my < y1) return 0
+    for (j = 1; j <= placed; j++)
+        if (x0 < B1[j] && x1 > B0[j] && y0 < C1[j] && y1 > C0[j]) return 0
+    return 1
+}
+NR > 1 && $4 > 0 && $6 > 0 { n++; name[n] = $1; wall[n] = $4; err[n] = $6
+                             X[n] = log($4) / log(10); Y[n] = log($6) / log(10) }
+END {
+    if (n == 0) { print "1 10 0.0001 1" > ranges; exit }   # no run to show: empty axes
+    minX = minY = 1e9; maxX = maxY = -1e9
+    for (i = 1; i <= n; i++) {
+        if (X[i] < minX) minX = X[i]; if (X[i] > maxX) maxX = X[i]
+        if (Y[i] < minY) minY = Y[i]; if (Y[i] > maxY) maxY = Y[i]
+    }
+    xlo = int(minX - 0.1 + 100) - 100; xhi = 100 - int(100 - (maxX + 0.1))      # whole decades
+    ylo = int(minY - 0.2 + 100) - 100; yhi = 100 - int(100 - (maxY + 0.1))
+    printf "%g %g %g %g\n", 10^xlo, 10^xhi, 10^ylo, 10^yhi > ranges
+    px = (xhi - xlo) / (W * (right - left)); py = (yhi - ylo) / (H * (top - bottom))  # decades per pixel
+    cw = 7 * px; hh = 7 * py; mx = 6 * px; my = 6 * py     # a digit, half a line, a marker
+    for (i = 1; i <= n; i++) o[i] = i    # numbered from the top down
+    for (i = 2; i <= n; i++) for (j = i; j > 1 && Y[o[j]] > Y[o[j - 1]]; j--) { t = o[j]; o[j] = o[j - 1]; o[j - 1] = t }
+    for (k = 1; k <= n; k++) {
+        i = o[k]; hw = cw * length(k "") / 2; done = 0
+        for (ring = 1; ring <= 12 && !done; ring++)     # rings of 8 places around the point
+            for (a = 0; a < 8 && !done; a++) {
+                dx = ring * (mx + hw + 2 * px) * (a == 0 || a == 1 || a == 7 ? 1 : a >= 3 && a <= 5 ? -1 : 0)
+                dy = ring * (my + hh + 1 * py) * (a >= 1 && a <= 3 ? 1 : a >= 5 ? -1 : 0)
+                if (free(X[i] + dx - hw, X[i] + dx + hw, Y[i] + dy - hh, Y[i] + dy + hh)) {
+                    done = 1; lx = X[i] + dx; ly = Y[i] + dy; far = ring > 1
+                }
+            }
+        if (!done) { lx = X[i] + mx + hw; ly = Y[i]; far = 0 }
+        placed++; B0[placed] = lx - hw; B1[placed] = lx + hw; C0[placed] = ly - hh; C1[placed] = ly + hh
+        printf "%d,%s,%.6g,%.6g,%.6g,%.6g,%d\n", k, name[i], wall[i], err[i], 10^lx, 10^ly, far
+        printf "%2d  %-20s %6.3g s  %7.2g %%\n", k, name[i], wall[i], 100 * err[i] > key
+    }
+}' "$out/tradeoff.csv" > "$out/pareto_labels.csv"
+read xlo xhi ylo yhi < "$out/pareto_ranges.txt"
+tend_ms=$(awk -v t="$tend" 'BEGIN { printf "%g", t * 1e3 }')
+keytext=$(awk 'BEGIN { printf " #  run                   wall     error" } { printf "\\n%s", $0 }' "$out/pareto_key.txt")
 cat > "$out/pareto.gp" <<EOF
 set datafile separator ','
-set terminal pngcairo size 900,600
+set terminal pngcairo size 1150,650 font ',10'
 set output '$out/pareto.png'
-set title 'Ballistic scene: accuracy against cost (error of the apex history vs the reference)'
-set xlabel 'wall time (s)'; set ylabel 'relative L2 error of the apex history, 0-2.5 ms'
-set termoption noenhanced
-set logscale xy; set grid; set key top right
+set lmargin at screen 0.08; set rmargin at screen 0.72; set bmargin at screen 0.11; set tmargin at screen 0.91
+set title 'Ballistic scene: accuracy against cost (error of the apex history against the reference run)'
+set xlabel 'wall time (s)'; set ylabel 'relative L2 error of the apex history, 0-$tend_ms ms'
+set logscale xy; set grid; set xrange [$xlo:$xhi]; set yrange [$ylo:$yhi]; set format y '10^{%L}'
+set key at screen 0.74, screen 0.91 left top Left reverse samplen 1 noenhanced
+set label 1 "$keytext" at screen 0.74, screen 0.80 left front font 'DejaVu Sans Mono,8' noenhanced
 # numerical knobs (same physics) and physics changes (another answer) apart
 num(n) = (n eq 'clamp_friction' || n eq 'linear_yarns' || n eq 'no_bending' || n eq 'no_locking' || n eq 'no_shear_flow') ? 0 : 1
-plot '$out/tradeoff.csv' every ::1 using 4:((\$6 > 0 && num(strcol(1))) ? \$6 : 1/0) with points pt 7 ps 1.5 lc 1 title 'numerical knobs (mesh, step, amplitudes, elements, threads, contact search)', \
-     '' every ::1 using 4:((\$6 > 0 && !num(strcol(1))) ? \$6 : 1/0) with points pt 5 ps 1.3 lc 7 title 'physics left out or changed', \
-     '' every ::1 using 4:(\$6 > 0 ? \$6 : 1/0):1 with labels offset 1,0.6 left font ',7' notitle
+plot '$out/pareto_labels.csv' using 3:4:(\$7 > 0 ? \$5 - \$3 : 1/0):(\$6 - \$4) with vectors nohead lc rgb 'gray60' notitle, \
+     '' using 3:(num(strcol(2)) ? \$4 : 1/0) with points pt 7 ps 1.3 lc 1 title 'numerical knobs (same physics)', \
+     '' using 3:(num(strcol(2)) ? 1/0 : \$4) with points pt 5 ps 1.1 lc 7 title 'physics left out or changed', \
+     '' using 5:6:1 with labels center font ',8' notitle
 EOF
 gnuplot "$out/pareto.gp" || echo "gnuplot failed"
 [ "$tables_only" = 1 ] && { echo "results in $out (tables and plot only)"; exit 0; }

@@ -18,6 +18,7 @@ extern "C" {
 void wff_ff_register_point();  // ff_point.cpp: pointwise material API
 void wff_ff_register_solver(); // ff_solver.cpp: models, meshes, explicit solver
 void wff_ff_register_fit();    // ff_fit.cpp: parameter identification
+void wff_ff_register_explore(); // ff_explore.cpp: one point along a load path (explorer)
 
 // ExecError("fn: message"). Never returns.
 [[noreturn]] void wff_ff_fail(const char *fn, const char *message);

@@ -52,6 +52,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_point,
     wff_ff_register_solver,
     wff_ff_register_fit,
+    wff_ff_register_explore,
 };
 
 static void init()

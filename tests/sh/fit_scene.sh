@@ -32,17 +32,24 @@ done
 grep -q '"points": 18' "$out/fit.json" || { echo "fit.json: not 18 points"; fail=1; }
 grep -q '^# Fitted by wovenff' "$out/fitted_material.txt" || { echo "fitted material lacks its header"; fail=1; }
 
-# expect NAME PATTERN -- ARGS: exit 8 and PATTERN (fixed string) in the output
+# expect NAME CODE PATTERN -- ARGS: exit CODE and PATTERN (fixed string) in the output
 expect() {
-    name=$1; pattern=$2; shift 3
+    name=$1; code=$2; pattern=$3; shift 4
     sh tools/ff.sh freefem_scripts/fit_parameters.edp -plots 0 -out "$out/$name" "$@" \
         > "$out/$name.log" 2>&1
     rc=$?
-    [ $rc -eq 8 ] || { echo "$name: exit $rc, want 8"; fail=1; }
+    [ $rc -eq "$code" ] || { echo "$name: exit $rc, want $code"; fail=1; }
     grep -qF -- "$pattern" "$out/$name.log" || {
         echo "$name: output lacks '$pattern':"; tail -3 "$out/$name.log"; fail=1; }
 }
-expect unknown_param "parameter 'K_X' is not a key" -- -n 3 -tests strip_warp -params K_I,K_X
+expect unknown_param 8 "parameter 'K_X' is not a key" -- -n 3 -tests strip_warp -params K_I,K_X
 printf 'test,x,y\nstrip_warp,0.01,1200\nstrip_warp,0.02\n' > "$out/bad.csv"
-expect bad_line "$out/bad.csv:3: expected 3 comma-separated fields" -- -data "$out/bad.csv" -params K_I
+expect bad_line 8 "$out/bad.csv:3: expected 3 comma-separated fields" -- -data "$out/bad.csv" -params K_I
+expect unknown_option 2 "error: fit_parameters: unknown option '-bogus'" -- -bogus 1
+expect not_a_number 2 "error: fit_parameters: -maxiter '12x' is not a number" -- -maxiter 12x
+expect no_value 2 "error: fit_parameters: option -seed needs a value" -- -seed
+expect bad_test 2 "error: fit_parameters: -tests 'strip_warp,bulge': 'bulge' is not one of" -- -tests strip_warp,bulge
+for name in unknown_option not_a_number no_value bad_test; do
+    [ -e "$out/$name" ] && { echo "$name: the scene wrote $out/$name"; fail=1; }
+done
 exit $fail

@@ -1,89 +1,147 @@
 #!/bin/sh
-# Unit-cell explorer, all five paths with 8 levels each (static amplitudes),
-# then the shear path with dynamic amplitudes and shear flow:
-# - exit 0; each CSV has the expected header and steps + 1 rows;
-# - warp strip: crimp interchange at the end (dA1 < 0, dA2 > 0), and the weft
-#   strip the mirror image;
-# - shear: the spars are engaged at the largest shear (F_L1, F_L2 > 0) and
-#   carry more than at the start;
-# - every row: the energies per mechanism (wovenffEnergySplit) add up to W
-#   (from wovenffPoint) within 1e-9 relative;
+# Unit-cell explorer with every cell.
+# king_plain, all five paths, 8 levels each (static amplitudes):
+# - exit 0; each CSV has the cell's header and steps + 1 rows; every row's
+#   energies per mechanism (E_*) add up to W within 1e-9 relative;
+# - warp strip: crimp interchange at the end (dA1 < 0 < dA2), the weft strip
+#   the mirror image, and the weft strip reaches its straight-yarn regime (end
+#   stiffness dP22/dstrain above 20x the start's);
+# - equal force: both yarns carry the load; shear: the spars are engaged at the
+#   largest shear and carry more than at the start; a lock angle in summary.json;
 # - the PNGs and summary.json exist and are not empty;
-# - dynamic run: gamma_f has flowed (0 < gamma_f < gamma) and the amplitudes
-#   stay near their static balance;
-# - the new bindings stop with a message on bad input (dt < 0).
+# then the shear path with dynamic amplitudes and shear flow: gamma_f has
+# flowed (0 < gamma_f < gamma), the amplitudes stay near their static balance.
+# basket_2x2, warp and shear, 4 levels: its own header (F_P1, F_P2), energies
+# add up, crimp interchange, the 3-D picture drawn.
+# linear_yarns, warp, weft and shear, 4 levels: no amplitude columns; the strip
+# load is stiffness x strain (P11 = S_1 e, P22 = 0; T1 = P11 yarn_spacing_1;
+# the weft P22 = S_2 e), E_shear = G gamma^2 / 2; dynamic amplitudes are
+# refused with a note; no 3-D picture.
+# Errors: an unknown option, a value that is not a number and an option
+# without its value stop the explorer with exit 2 before anything is written;
+# a binding error (dynamic amplitudes on linear_yarns, dt < 0) reaches the user.
 # Run from the repository root (tests/run.sh does).
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}"
 out="$tmp/unit_cell_explorer"
-rm -rf "$out" "$out.dyn"
-steps=8
-sh tools/ff.sh freefem_scripts/unit_cell_explorer.edp -steps $steps -out "$out" > "$out.log" 2>&1
-rc=$?
-tail -4 "$out.log"
-[ $rc -eq 0 ] || { echo "explorer exited $rc"; cat "$out.log"; exit 1; }
+rm -rf "$out" "$out".*
 fail=0
-
-tail_cols="time,lambda1,lambda2,gamma,gamma_f,P11,P22,P12,R1,R2,dA1,dA2,dA1_static,dA2_static,T1,T2,F_I,F_L1,F_L2,M_s,W,K_amp,E_yarn_stretch,E_yarn_bending,E_compaction,E_locking,E_shear"
-# check_csv FILE FIRST_COLUMN ROWS
+# explore NAME ARGS...: run the explorer into $out.NAME, stop the test on a failure
+explore() {
+    name=$1; shift
+    sh tools/ff.sh freefem_scripts/unit_cell_explorer.edp -out "$out.$name" "$@" > "$out.$name.log" 2>&1
+    rc=$?
+    [ $rc -eq 0 ] || { echo "explorer $name exited $rc"; cat "$out.$name.log"; exit 1; }
+}
+# awk program prefix: the header's names to column numbers, c["name"]
+hdr='NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }'
+# check_csv FILE HEADER ROWS
 check_csv() {
     f=$1
     [ -s "$f" ] || { echo "missing or empty: $f"; fail=1; return; }
-    want="$2,$tail_cols"
     got=$(head -1 "$f")
-    [ "$got" = "$want" ] || { echo "$f: header is '$got'"; echo "    want '$want'"; fail=1; }
+    [ "$got" = "$2" ] || { echo "$f: header is '$got'"; echo "    want '$2'"; fail=1; }
     rows=$(($(wc -l < "$f") - 1))
     [ "$rows" -eq "$3" ] || { echo "$f: $rows rows, want $3"; fail=1; }
-    # energies per mechanism (columns 24..) add up to W (column 22)
-    awk -F, 'NR > 1 { s = 0; for (i = 24; i <= NF; i++) s += $i; d = s - $22; if (d < 0) d = -d;
-        w = $22 < 0 ? -$22 : $22; if (d > 1e-9 * w + 1e-30) { printf "%s row %d: sum %.15g vs W %.15g\n",
-        FILENAME, NR - 1, s, $22; bad = 1 } } END { exit bad }' "$f" || fail=1
+    awk -F, "$hdr"' { s = 0; for (n in c) if (n ~ /^E_/) s += $c[n]; w = $c["W"];
+        d = s - w; if (d < 0) d = -d; if (d > 1e-9 * (w < 0 ? -w : w) + 1e-30) {
+        printf "%s row %d: sum of E_* %.15g vs W %.15g\n", FILENAME, NR - 1, s, w; bad = 1 } }
+        END { exit bad }' "$f" || fail=1
 }
-for p in warp weft equibiaxial; do check_csv "$out/$p.csv" strain $((steps + 1)); done
-check_csv "$out/equalforce.csv" yarn_tension $((steps + 1))
-check_csv "$out/shear.csv" shear_angle $((steps + 1))
+# expect_end FILE CONDITION MESSAGE: CONDITION (awk, columns as $c["name"]) on the last row
+expect_end() {
+    awk -F, "$hdr"' END { if (!('"$2"')) { print "'"$1: $3"'"; exit 1 } }' "$1" || fail=1
+}
 
-# crimp interchange: the pulled family straightens, the other crimps more
-awk -F, 'END { if (!($12 < 0 && $13 > 0)) { print "warp strip: dA1 = " $12 ", dA2 = " $13
-    " at the end, want dA1 < 0 < dA2"; exit 1 } }' "$out/warp.csv" || fail=1
-awk -F, 'END { if (!($13 < 0 && $12 > 0)) { print "weft strip: dA1 = " $12 ", dA2 = " $13
-    " at the end, want dA2 < 0 < dA1"; exit 1 } }' "$out/weft.csv" || fail=1
-# equal force: both yarns carry the load parameter
-awk -F, 'END { d1 = $16 - $1; d2 = $17 - $1; if (d1 < 0) d1 = -d1; if (d2 < 0) d2 = -d2;
-    if (d1 > 1e-6 * $1 || d2 > 1e-6 * $1) { print "equalforce: T = " $16 ", " $17 " vs " $1; exit 1 } }' \
-    "$out/equalforce.csv" || fail=1
-# locking: spars engaged at the largest shear, and loaded more than at the start
-awk -F, 'NR == 2 { f0 = $19 + $20 } END { if (!($19 > 0 && $20 > 0 && $19 + $20 > 10 * f0)) {
-    print "shear: F_L = " $19 ", " $20 " at the end (start " f0 ")"; exit 1 } }' "$out/shear.csv" || fail=1
-
+# ---- king_plain
+explore king -steps 8
+tail -3 "$out.king.log"
+king="time,lambda1,lambda2,gamma,gamma_f,P11,P22,P12,R1,R2,dA1,dA2,dA1_static,dA2_static,T1,T2,beta1,beta2,F_I,F_L1,F_L2,M_s,W,K_amp,E_yarn_stretch,E_yarn_bending,E_compaction,E_locking,E_shear"
+for p in warp weft equibiaxial; do check_csv "$out.king/$p.csv" "strain,$king" 9; done
+check_csv "$out.king/equalforce.csv" "yarn_tension,$king" 9
+check_csv "$out.king/shear.csv" "shear_angle,$king" 9
+expect_end "$out.king/warp.csv" '$c["dA1"] < 0 && $c["dA2"] > 0' "warp strip: want dA1 < 0 < dA2 at the end"
+expect_end "$out.king/weft.csv" '$c["dA2"] < 0 && $c["dA1"] > 0' "weft strip: want dA2 < 0 < dA1 at the end"
+awk -F, "$hdr"' { e[NR] = $1; p[NR] = $c["P22"] } END { k0 = (p[3] - p[2]) / (e[3] - e[2]);
+    k1 = (p[NR] - p[NR - 1]) / (e[NR] - e[NR - 1]); if (!(k1 > 20 * k0)) {
+    print "weft strip: end stiffness " k1 " N/m not 20x the start " k0 " (still in the toe?)"; exit 1 } }' \
+    "$out.king/weft.csv" || fail=1
+expect_end "$out.king/equalforce.csv" \
+    'sqrt(($c["T1"] - $1)^2) < 1e-6 * $1 && sqrt(($c["T2"] - $1)^2) < 1e-6 * $1' "equalforce: T1, T2 != load"
+awk -F, "$hdr"' NR == 2 { f0 = $c["F_L1"] + $c["F_L2"] } { a = $c["F_L1"]; b = $c["F_L2"] }
+    END { if (!(a > 0 && b > 0 && a + b > 10 * f0)) { print "shear: F_L = " a ", " b " at the end (start " f0 ")"; exit 1 } }' \
+    "$out.king/shear.csv" || fail=1
 for p in warp weft equibiaxial equalforce shear; do
-    for f in "$p.png" "cell_$p.png"; do
-        [ -s "$out/$f" ] || { echo "missing or empty: $f"; fail=1; }
-    done
+    for f in "$p.png" "cell_$p.png"; do [ -s "$out.king/$f" ] || { echo "missing or empty: king $f"; fail=1; }; done
 done
-[ -s "$out/summary.json" ] || { echo "missing or empty: summary.json"; fail=1; }
-grep -q '"lock_angle_deg": [0-9]' "$out/summary.json" || { echo "summary.json: no lock angle"; fail=1; }
+[ -s "$out.king/summary.json" ] || { echo "missing or empty: summary.json"; fail=1; }
+grep -q '"lock_angle_deg": [0-9]' "$out.king/summary.json" || { echo "summary.json: no lock angle"; fail=1; }
 
-# dynamic amplitudes and shear flow on the shear path, no pictures
-sh tools/ff.sh freefem_scripts/unit_cell_explorer.edp -path shear -steps 6 -amplitudes dynamic \
-    -dynamic 1 -plots 0 -out "$out.dyn" > "$out.dyn.log" 2>&1
-rc=$?
-[ $rc -eq 0 ] || { echo "dynamic explorer exited $rc"; cat "$out.dyn.log"; exit 1; }
-check_csv "$out.dyn/shear.csv" shear_angle 7
-awk -F, 'END { if (!($6 > 0 && $6 < $5)) { print "dynamic shear: gamma_f = " $6 ", gamma = " $5; exit 1 }
-    for (k = 12; k <= 13; k++) { d = $k - $(k + 2); if (d < 0) d = -d;
-        if (d > 2e-6) { print "dynamic shear: dA" k - 11 " = " $k " far from static " $(k + 2); exit 1 } } }' \
-    "$out.dyn/shear.csv" || fail=1
+explore dyn -path shear -steps 6 -amplitudes dynamic -dynamic 1 -plots 0
+check_csv "$out.dyn/shear.csv" "shear_angle,$king" 7
+expect_end "$out.dyn/shear.csv" '$c["gamma_f"] > 0 && $c["gamma_f"] < $c["gamma"]' "dynamic shear: want 0 < gamma_f < gamma"
+expect_end "$out.dyn/shear.csv" 'sqrt(($c["dA1"] - $c["dA1_static"])^2) < 2e-6 && sqrt(($c["dA2"] - $c["dA2_static"])^2) < 2e-6' \
+    "dynamic shear: amplitudes far from the static balance"
+grep -q '"amplitude_substeps": [1-9]' "$out.dyn/summary.json" || { echo "dynamic: no amplitude steps"; fail=1; }
+
+# ---- basket_2x2
+explore basket -material freefem_scripts/materials/kevlar_basket.txt -path warp,shear -steps 4
+basket="time,lambda1,lambda2,gamma,gamma_f,P11,P22,P12,R1,R2,dA1,dA2,dA1_static,dA2_static,T1,T2,beta1,beta2,F_I,F_L1,F_L2,F_P1,F_P2,M_s,W,K_amp,E_yarn_stretch,E_yarn_bending,E_compaction,E_locking,E_shear"
+check_csv "$out.basket/warp.csv" "strain,$basket" 5
+check_csv "$out.basket/shear.csv" "shear_angle,$basket" 5
+expect_end "$out.basket/warp.csv" '$c["dA1"] < 0 && $c["dA2"] > 0' "basket warp strip: want dA1 < 0 < dA2"
+for f in warp.png cell_warp.png shear.png cell_shear.png; do
+    [ -s "$out.basket/$f" ] || { echo "missing or empty: basket $f"; fail=1; }
+done
+
+# ---- linear_yarns (S_1 = S_2 = 5.15e6 N/m, G = 179 N/m, yarn_spacing_1 = 0.747e-3 m)
+explore linear -material freefem_scripts/materials/kevlar_linear.txt -path warp,weft,shear -steps 4 \
+    -amplitudes dynamic
+linear="time,lambda1,lambda2,gamma,gamma_f,P11,P22,P12,T1,T2,W,E_yarn_stretch,E_shear"
+for p in warp weft; do check_csv "$out.linear/$p.csv" "strain,$linear" 5; done
+check_csv "$out.linear/shear.csv" "shear_angle,$linear" 5
+awk -F, "$hdr"' { e = $1; if (sqrt(($c["P11"] - 5.15e6 * e)^2) > 1e-9 * 5.15e6 * e || $c["P22"] != 0 ||
+    sqrt(($c["T1"] - $c["P11"] * 0.747e-3)^2) > 1e-9 * $c["P11"] * 0.747e-3) {
+    print "linear warp strip at " e ": P11 = " $c["P11"] ", P22 = " $c["P22"] ", T1 = " $c["T1"]; bad = 1 } }
+    END { exit bad }' "$out.linear/warp.csv" || fail=1
+awk -F, "$hdr"' { e = $1; if (sqrt(($c["P22"] - 5.15e6 * e)^2) > 1e-9 * 5.15e6 * e) {
+    print "linear weft strip at " e ": P22 = " $c["P22"]; bad = 1 } } END { exit bad }' "$out.linear/weft.csv" || fail=1
+awk -F, "$hdr"' { g = $c["gamma"]; w = 0.5 * 179 * g * g; if (sqrt(($c["E_shear"] - w)^2) > 1e-9 * w + 1e-12) {
+    print "linear shear at " g ": E_shear = " $c["E_shear"] ", G g^2/2 = " w; bad = 1 } } END { exit bad }' \
+    "$out.linear/shear.csv" || fail=1
+grep -q "cell linear_yarns has no crimp amplitudes" "$out.linear.log" || { echo "linear: no note on the amplitudes"; fail=1; }
+[ -s "$out.linear/warp.png" ] || { echo "missing or empty: linear warp.png"; fail=1; }
+[ -e "$out.linear/cell_warp.png" ] && { echo "linear: a 3-D picture without a reference geometry"; fail=1; }
+
+# ---- errors: exit 2 naming the option, nothing written
+# bad NAME PATTERN ARGS...
+bad() {
+    name=$1; pattern=$2; shift 2
+    sh tools/ff.sh freefem_scripts/unit_cell_explorer.edp -out "$out.bad" "$@" > "$out.$name.log" 2>&1
+    rc=$?
+    [ $rc -eq 2 ] || { echo "explorer $name: exit $rc, want 2"; fail=1; }
+    grep -qF -- "$pattern" "$out.$name.log" || { echo "explorer $name: no '$pattern':"; head -3 "$out.$name.log"; fail=1; }
+    [ -e "$out.bad" ] && { echo "explorer $name: wrote $out.bad"; rm -rf "$out.bad"; fail=1; }
+}
+bad unknown "error: unit_cell_explorer: unknown option '-bogus'" -bogus 1
+bad notnumber "error: unit_cell_explorer: -steps 'abc' is not a number" -steps abc
+bad novalue "error: unit_cell_explorer: option -steps needs a value" -plots 0 -steps
 
 # binding errors reach the script user
-cat > "$tmp/uce_bad_dt.edp" <<'EOF'
-load "wovenff"
-real[int] F = [1, 0, 0, 1, 0, 0], dA = [0, 0], o(1);
-wovenffPointStep("freefem_scripts/materials/kevlar_s706.txt", F, dA, 0.0, -1e-6, o);
-EOF
-sh tools/ff.sh "$tmp/uce_bad_dt.edp" > "$tmp/uce_bad_dt.log" 2>&1
-rc=$?
-if [ $rc -ne 8 ] || ! grep -q "wovenffPointStep: dt = -1e-06 must be >= 0" "$tmp/uce_bad_dt.log"; then
-    echo "wovenffPointStep with dt < 0: exit $rc"; cat "$tmp/uce_bad_dt.log"; fail=1
-fi
+# binding NAME PATTERN LINE: a two-line script (load, F, dA, state) plus LINE, exit 8
+binding() {
+    { echo 'load "wovenff"'; echo 'real[int] F = [1.01, 0, 0, 1, 0, 0], dA = [0, 0], st(6), o(1);'; echo "$3"; } \
+        > "$tmp/uce_$1.edp"
+    st=0
+    sh tools/ff.sh "$tmp/uce_$1.edp" > "$tmp/uce_$1.log" 2>&1 || st=$?
+    if [ $st -ne 8 ] || ! grep -qF "$2" "$tmp/uce_$1.log"; then
+        echo "binding $1: exit $st"; cat "$tmp/uce_$1.log"; fail=1
+    fi
+}
+binding bad_dt "wovenffPointStep: dt = -1e-06 must be >= 0" \
+    'wovenffPointStep("freefem_scripts/materials/kevlar_s706.txt", F, dA, 0.0, -1e-6, o);'
+binding no_amplitudes "wovenffPathSegment: cell 'linear_yarns' (material freefem_scripts/materials/kevlar_linear.txt) has no amplitudes" \
+    'st = 0; wovenffPathSegment("freefem_scripts/materials/kevlar_linear.txt", F, F, 1e-6, 1, 0, st);'
+binding state_size "wovenffPathSegment: state must have 6 entries" \
+    'real[int] s2(5); wovenffPathSegment("freefem_scripts/materials/kevlar_s706.txt", F, F, 1e-6, 1, 0, s2);'
 exit $fail

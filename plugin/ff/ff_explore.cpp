@@ -1,0 +1,245 @@
+// wovenff FreeFEM binding: one material point along a load path, for the
+// unit-cell explorer (C core: plugin/point_path.c). Works with every cell: the
+// record's columns come from the cell's own diagnostic and mechanism names.
+// Every function reads its material file afresh and reports failures with
+// ExecError. No physics here.
+//
+//   int n = wovenffPathSegment(mat, Fa, Fb, duration, dynamicAmplitudes, shearFlow, state);
+//       F linear in time from Fa to Fb over duration (s): dynamic amplitudes
+//       (0|1) and/or shear flow (0|1); state = [dA1, dA2, vA1, vA2, gamma_f,
+//       previous step] in and out (m, m/s, rad, s); n: steps taken
+//   string cols = wovenffExploreColumns(mat);   // "lambda1,lambda2,...,E_shear"
+//   string units = wovenffExploreUnits(mat);    // their units, space-separated
+//   int i = wovenffExploreColumn(mat, "F_L1");  // index of a column, -1 if none
+//   int n = wovenffExploreRow(mat, F, state, dAstatic, out);   // the values
+//   int na = wovenffCellAmplitudes(mat);        // amplitude DOFs: 0 or 2
+//   int has = wovenffReferenceGeometry(mat, out);   // 1: out = [p0_1, p0_2, A0_1, A0_2] (m)
+//
+// F is row-major 3x2 (F11 F12 F21 F22 F31 F32); SI units.
+#include "ff++.hpp"
+#include "AFunction_ext.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "ff_wovenff.hpp"
+
+extern "C" {
+#include "wovenff/point_path.h"
+}
+
+using namespace Fem2D;
+
+namespace {
+
+const char *const kStateLayout = "dA1 dA2 vA1 vA2 gamma_f previous_step";
+const long kStateSize = 6;
+
+// ExecError unless v has n entries (layout says which), all finite numbers.
+void require_finite(const char *fn, const char *name, const KN<double> *v, long n,
+                    const char *layout)
+{
+    wff_ff_require_size(fn, name, v, n, layout);
+    for (long i = 0; i < n; i++)
+        if (!std::isfinite((*v)[i])) {
+            char msg[200];
+            snprintf(msg, sizeof msg, "%s[%ld] = %g is not a finite number (%s)", name, i,
+                     (*v)[i], layout);
+            wff_ff_fail(fn, msg);
+        }
+}
+
+void take_F(const char *fn, const char *name, const KN<double> *v, double F[6])
+{
+    require_finite(fn, name, v, 6, "F11 F12 F21 F22 F31 F32");
+    for (int i = 0; i < 6; i++)
+        F[i] = (*v)[i];
+}
+
+wff_point_state take_state(const char *fn, const KN<double> *v)
+{
+    require_finite(fn, "state", v, kStateSize, kStateLayout);
+    wff_point_state s = {{(*v)[0], (*v)[1]}, {(*v)[2], (*v)[3]}, (*v)[4], (*v)[5], 0};
+    return s;
+}
+
+struct Column {
+    std::string name;
+    const char *unit;
+    double value;
+};
+
+// The explorer's record at one level, column by column: kinematics, stress,
+// the amplitudes (cells with amplitudes only), the cell's diagnostics (a name
+// already listed is not repeated: linear_yarns reports lambda1, lambda2),
+// energy, the amplitudes' kinetic energy, energy per mechanism.
+std::vector<Column> columns(const wff_material &mat, const wff_point_record &rec,
+                            const wff_point_state &s, const double dA_static[2])
+{
+    const wff_cell_type *c = mat.cell;
+    std::vector<Column> out = {{"lambda1", "-", rec.stretch[0]},
+                               {"lambda2", "-", rec.stretch[1]},
+                               {"gamma", "rad", rec.shear_angle},
+                               {"gamma_f", "rad", s.gamma_f},
+                               {"P11", "N/m", rec.point.stress[0]},
+                               {"P22", "N/m", rec.point.stress[3]},
+                               {"P12", "N/m", rec.point.stress[1]}};
+    if (c->n_amplitudes > 0)
+        out.insert(out.end(), {{"R1", "N/m^2", rec.point.residual[0]},
+                               {"R2", "N/m^2", rec.point.residual[1]},
+                               {"dA1", "m", s.dA[0]},
+                               {"dA2", "m", s.dA[1]},
+                               {"dA1_static", "m", dA_static[0]},
+                               {"dA2_static", "m", dA_static[1]}});
+    for (int i = 0; i < c->n_diag; i++) {
+        bool listed = false;
+        for (const Column &col : out)
+            listed = listed || col.name == c->diag_names[i];
+        if (!listed)
+            out.push_back({c->diag_names[i], c->diag_units[i], rec.point.diag[i]});
+    }
+    out.push_back({"W", "J/m^2", rec.point.energy});
+    if (c->n_amplitudes > 0)
+        out.push_back({"K_amp", "J/m^2", rec.amplitude_kinetic});
+    for (int i = 0; i < rec.n_mech; i++)
+        out.push_back({std::string("E_") + c->mech_names[i], "J/m^2", rec.mech_energy[i]});
+    return out;
+}
+
+// The columns without values (names and units).
+std::vector<Column> column_names(const char *fn, const string *material)
+{
+    wff_material mat;
+    wff_ff_material(fn, material, &mat);
+    wff_point_record rec = {};
+    rec.n_mech = mat.cell->energy_split ? mat.cell->n_mech : 0;
+    const wff_point_state s = {};
+    const double none[2] = {0, 0};
+    return columns(mat, rec, s, none);
+}
+
+std::string joined(const std::vector<Column> &cols, bool units, const char *sep)
+{
+    std::string text;
+    for (size_t i = 0; i < cols.size(); i++)
+        text += (i ? sep : "") + (units ? std::string(cols[i].unit) : cols[i].name);
+    return text;
+}
+
+long ffPathSegment(string *const &material, KN<double> *const &Fa, KN<double> *const &Fb,
+                   const double &duration, const long &dynamic_amplitudes,
+                   const long &shear_flow, KN<double> *const &state)
+{
+    const char *fn = "wovenffPathSegment";
+    double F_a[6], F_b[6];
+    take_F(fn, "Fa", Fa, F_a);
+    take_F(fn, "Fb", Fb, F_b);
+    wff_point_state s = take_state(fn, state);
+    wff_material mat;
+    wff_ff_material(fn, material, &mat);
+    wff_path_mode mode = {dynamic_amplitudes != 0, shear_flow != 0, WFF_PATH_STEP_SAFETY,
+                          WFF_PATH_FLOW_SUBSTEPS};
+    wff_error err;
+    if (wff_point_path_segment(&mat, F_a, F_b, duration, &mode, &s, &err))
+        wff_ff_fail(fn, err);
+    const double back[kStateSize] = {s.dA[0], s.dA[1], s.velocity[0], s.velocity[1],
+                                     s.gamma_f, s.previous_step};
+    for (long i = 0; i < kStateSize; i++)
+        (*state)[i] = back[i];
+    return s.substeps;
+}
+
+string *ffExploreColumns(Stack stack, string *const &material)
+{
+    std::vector<Column> cols = column_names("wovenffExploreColumns", material);
+    return Add2StackOfPtr2Free(stack, new string(joined(cols, false, ",")));
+}
+
+string *ffExploreUnits(Stack stack, string *const &material)
+{
+    std::vector<Column> cols = column_names("wovenffExploreUnits", material);
+    return Add2StackOfPtr2Free(stack, new string(joined(cols, true, " ")));
+}
+
+long ffExploreColumn(string *const &material, string *const &name)
+{
+    std::vector<Column> cols = column_names("wovenffExploreColumn", material);
+    for (size_t i = 0; i < cols.size(); i++)
+        if (cols[i].name == *name)
+            return (long)i;
+    return -1;
+}
+
+long ffExploreRow(string *const &material, KN<double> *const &Fv, KN<double> *const &state,
+                  KN<double> *const &dA_static, KN<double> *const &out)
+{
+    const char *fn = "wovenffExploreRow";
+    double F[6];
+    take_F(fn, "F", Fv, F);
+    wff_point_state s = take_state(fn, state);
+    require_finite(fn, "dAstatic", dA_static, 2, "dA1 dA2");
+    const double dAst[2] = {(*dA_static)[0], (*dA_static)[1]};
+    if (!out)
+        wff_ff_fail(fn, "no output array");
+    wff_material mat;
+    wff_ff_material(fn, material, &mat);
+    wff_point_record rec;
+    wff_error err;
+    if (wff_point_path_record(&mat, F, &s, &rec, &err))
+        wff_ff_fail(fn, err);
+    std::vector<Column> cols = columns(mat, rec, s, dAst);
+    out->resize((long)cols.size());
+    for (size_t i = 0; i < cols.size(); i++)
+        (*out)[(long)i] = cols[i].value;
+    return (long)cols.size();
+}
+
+long ffCellAmplitudes(string *const &material)
+{
+    wff_material mat;
+    wff_ff_material("wovenffCellAmplitudes", material, &mat);
+    return mat.cell->n_amplitudes;
+}
+
+long ffReferenceGeometry(string *const &material, KN<double> *const &out)
+{
+    const char *fn = "wovenffReferenceGeometry";
+    if (!out)
+        wff_ff_fail(fn, "no output array");
+    wff_material mat;
+    wff_ff_material(fn, material, &mat);
+    if (!mat.cell->reference_geometry) {
+        out->resize(0);
+        return 0;
+    }
+    double pitch0[2], amplitude0[2];
+    mat.cell->reference_geometry(mat.params, pitch0, amplitude0);
+    out->resize(4);
+    (*out)[0] = pitch0[0];
+    (*out)[1] = pitch0[1];
+    (*out)[2] = amplitude0[0];
+    (*out)[3] = amplitude0[1];
+    return 1;
+}
+
+} // namespace
+
+void wff_ff_register_explore()
+{
+    Global.Add("wovenffPathSegment", "(",
+               new OneOperator7_<long, string *, KN<double> *, KN<double> *, double, long, long,
+                                 KN<double> *>(ffPathSegment));
+    Global.Add("wovenffExploreColumns", "(",
+               new OneOperator1s_<string *, string *>(ffExploreColumns));
+    Global.Add("wovenffExploreUnits", "(", new OneOperator1s_<string *, string *>(ffExploreUnits));
+    Global.Add("wovenffExploreColumn", "(",
+               new OneOperator2_<long, string *, string *>(ffExploreColumn));
+    Global.Add("wovenffExploreRow", "(",
+               new OneOperator5_<long, string *, KN<double> *, KN<double> *, KN<double> *,
+                                 KN<double> *>(ffExploreRow));
+    Global.Add("wovenffCellAmplitudes", "(", new OneOperator1_<long, string *>(ffCellAmplitudes));
+    Global.Add("wovenffReferenceGeometry", "(",
+               new OneOperator2_<long, string *, KN<double> *>(ffReferenceGeometry));
+}

@@ -1,0 +1,123 @@
+/* One material point along a load path: dynamic amplitudes by central
+ * differences and/or γᶠ by the flow rule over a segment with F linear in
+ * time, and the record of one level (include/wovenff/point_path.h). Pointwise
+ * like the cells: no mesh, no file, no script, no allocation. */
+#include "wovenff/point_path.h"
+
+#include <math.h>
+
+/* A segment that would need more steps than this is a wrong input (a duration
+ * of seconds for a microsecond oscillator), not a computation to wait for. */
+#define MAX_SEGMENT_STEPS 100000000L
+
+static void lerp_F(const double F_a[6], const double F_b[6], double fraction, double F[6])
+{
+    for (int i = 0; i < 6; i++)
+        F[i] = F_a[i] + fraction * (F_b[i] - F_a[i]);
+}
+
+static int degenerate(const wff_material *mat, const double F[6], wff_error *err)
+{
+    return wff_fail(err, "degenerate point (a yarn direction has zero length or the yarns "
+                    "are parallel): F = [%g %g %g %g %g %g], material %s",
+                    F[0], F[1], F[2], F[3], F[4], F[5], mat->source);
+}
+
+/* (ρ_A/6) d²ΔA/dt² = R (docs/model.md §5) by central differences (§14): the
+ * velocity takes the mean of the last and this step (a half step at the
+ * start), the amplitudes a whole step. One step for the whole segment, from
+ * the cell's amplitude frequency bound at its start (§12). */
+static int dynamic_segment(const wff_material *mat, const double F_a[6], const double F_b[6],
+                           double duration, const wff_path_mode *mode, wff_point_state *s,
+                           wff_error *err)
+{
+    double membrane_speed, omega;
+    mat->cell->wave_speeds(mat->params, mat->areal_density, F_a, s->dA, &membrane_speed,
+                           &omega);
+    if (!(omega > 0) || !isfinite(omega))
+        return wff_fail(err, "no finite amplitude frequency (omega = %g rad/s) at F = "
+                        "[%g %g %g %g %g %g], material %s", omega, F_a[0], F_a[1], F_a[2],
+                        F_a[3], F_a[4], F_a[5], mat->source);
+    double steps = ceil(duration / (mode->step_safety * 2 / omega));
+    if (steps > MAX_SEGMENT_STEPS)
+        return wff_fail(err, "a segment of %g s needs %.3g amplitude steps (omega = %g rad/s): "
+                        "shorten the duration", duration, steps, omega);
+    long n = steps < 1 ? 1 : (long)steps;
+    double dt = duration / (double)n;
+    double mass = mat->areal_density / 6; /* lumped amplitude mass, kg/m² */
+    for (long i = 0; i < n; i++) {
+        double F[6];
+        lerp_F(F_a, F_b, (double)i / (double)n, F);
+        wff_point_result r;
+        if (wff_material_evaluate(mat, F, s->dA, s->gamma_f, mode->shear_flow ? dt : 0, &r))
+            return degenerate(mat, F, err);
+        if (mode->shear_flow)
+            s->gamma_f = r.gamma_f;
+        double half = 0.5 * (s->previous_step + dt);
+        for (int k = 0; k < 2; k++) {
+            s->velocity[k] += half * r.residual[k] / mass;
+            s->dA[k] += dt * s->velocity[k];
+        }
+        s->previous_step = dt;
+    }
+    s->substeps += n;
+    return 0;
+}
+
+/* γᶠ by the flow rule (§7) with the amplitudes held: flow_substeps backward
+ * Euler steps, each at the F of its end. */
+static int flow_segment(const wff_material *mat, const double F_a[6], const double F_b[6],
+                        double duration, const wff_path_mode *mode, wff_point_state *s,
+                        wff_error *err)
+{
+    int n = mode->flow_substeps;
+    double dt = duration / n;
+    for (int i = 1; i <= n; i++) {
+        double F[6];
+        lerp_F(F_a, F_b, (double)i / n, F);
+        wff_point_result r;
+        if (wff_material_evaluate(mat, F, s->dA, s->gamma_f, dt, &r))
+            return degenerate(mat, F, err);
+        s->gamma_f = r.gamma_f;
+    }
+    s->substeps += n;
+    return 0;
+}
+
+int wff_point_path_segment(const wff_material *mat, const double F_a[6], const double F_b[6],
+                           double duration, const wff_path_mode *mode, wff_point_state *state,
+                           wff_error *err)
+{
+    if (!(duration > 0) || !isfinite(duration))
+        return wff_fail(err, "segment duration %g s must be > 0", duration);
+    if (!(mode->step_safety > 0 && mode->step_safety <= 1) || mode->flow_substeps < 1)
+        return wff_fail(err, "step safety %g must be in (0, 1] and flow substeps %d >= 1",
+                        mode->step_safety, mode->flow_substeps);
+    if (mode->dynamic_amplitudes) {
+        if (mat->cell->n_amplitudes == 0)
+            return wff_fail(err, "cell '%s' (material %s) has no amplitudes to make dynamic",
+                            mat->cell->name, mat->source);
+        return dynamic_segment(mat, F_a, F_b, duration, mode, state, err);
+    }
+    if (mode->shear_flow)
+        return flow_segment(mat, F_a, F_b, duration, mode, state, err);
+    return 0;
+}
+
+int wff_point_path_record(const wff_material *mat, const double F[6],
+                          const wff_point_state *state, wff_point_record *rec, wff_error *err)
+{
+    const wff_cell_type *cell = mat->cell;
+    if (wff_material_evaluate(mat, F, state->dA, state->gamma_f, 0, &rec->point))
+        return degenerate(mat, F, err);
+    double g1g2 = F[0] * F[1] + F[2] * F[3] + F[4] * F[5]; /* g_1·g_2 */
+    rec->stretch[0] = sqrt(F[0] * F[0] + F[2] * F[2] + F[4] * F[4]);
+    rec->stretch[1] = sqrt(F[1] * F[1] + F[3] * F[3] + F[5] * F[5]);
+    rec->shear_angle = asin(g1g2 / (rec->stretch[0] * rec->stretch[1]));
+    rec->n_mech = cell->energy_split ? cell->n_mech : 0;
+    if (rec->n_mech)
+        cell->energy_split(mat->params, F, state->dA, state->gamma_f, rec->mech_energy);
+    double v2 = state->velocity[0] * state->velocity[0] + state->velocity[1] * state->velocity[1];
+    rec->amplitude_kinetic = 0.5 * (mat->areal_density / 6) * v2;
+    return 0;
+}
