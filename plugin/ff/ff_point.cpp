@@ -1,6 +1,6 @@
 // wovenff FreeFEM binding: the pointwise material API (one material point,
 // no mesh). Every function reads its material file afresh (no cache: see
-// docs/freefem_api.md for the cost) and reports failures with ExecError.
+// docs/freefem_api.md for the cost) and reports failures with wff_ff_fail.
 //
 //   real r = wovenffPoint(matFile, F, dA, gammaf, out);   // P, R, W, diagnostics
 //   wovenffBalance(matFile, F, dA);                        // dA: guess in, balance out
@@ -9,8 +9,9 @@
 //   wovenffUniaxial(matFile, family, stretch, out);        // [l1, l2, dA1, dA2, P11, P22]
 //   cout << wovenffCellInfo(matFile);                      // cell and out layout
 //   wovenffPointStep(matFile, F, dA, gammaf, dt, out);     // wovenffPoint's out + new gamma_f
-//   wovenffEnergySplit(matFile, F, dA, gammaf, out);       // energy per mechanism, J/m^2
-//   string names = wovenffMechNames(matFile);              // "yarn_stretch yarn_bending ..."
+//   wovenffPointEnergySplit(matFile, F, dA, gammaf, out);  // energy per mechanism, J/m^2
+//   string names = wovenffPointMechNames(matFile);         // "yarn_stretch yarn_bending ..."
+// (wovenffEnergySplit / wovenffMechNames are a model's: ff_solver.cpp)
 //
 // F is row-major 3x2 (F11 F12 F21 F22 F31 F32), dA = [dA1, dA2] in m; SI units.
 #include "ff++.hpp"
@@ -120,7 +121,7 @@ double ffPointStep(string *const &material, KN<double> *const &Fv, KN<double> *c
     return 0;
 }
 
-// The cell's energy_split, or ExecError naming the cell if it has none.
+// The cell's energy_split; fails naming the cell if it has none.
 const wff_cell_type *split_cell(const char *fn, const wff_material &mat)
 {
     const wff_cell_type *c = mat.cell;
@@ -135,7 +136,7 @@ const wff_cell_type *split_cell(const char *fn, const wff_material &mat)
 double ffEnergySplit(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv,
                      const double &gamma_f, KN<double> *const &out)
 {
-    const char *fn = "wovenffEnergySplit";
+    const char *fn = "wovenffPointEnergySplit";
     double F[6], dA[2];
     take(fn, "F", Fv, 6, kFLayout, F);
     take(fn, "dA", dAv, 2, kDALayout, dA);
@@ -163,7 +164,7 @@ double ffEnergySplit(string *const &material, KN<double> *const &Fv, KN<double> 
 
 string *ffMechNames(Stack stack, string *const &material)
 {
-    const char *fn = "wovenffMechNames";
+    const char *fn = "wovenffPointMechNames";
     wff_material mat;
     wff_ff_material(fn, material, &mat);
     const wff_cell_type *c = split_cell(fn, mat);
@@ -278,7 +279,7 @@ string *ffCellInfo(Stack stack, string *const &material)
         text += line;
     }
     if (c->energy_split && c->n_mech > 0) {
-        text += "wovenffEnergySplit out (J/m^2):";
+        text += "wovenffPointEnergySplit out (J/m^2):";
         for (int i = 0; i < c->n_mech; i++)
             text += std::string(" ") + c->mech_names[i];
         text += "\n";
@@ -306,10 +307,10 @@ void wff_ff_register_point()
     Global.Add("wovenffPointStep", "(",
                new OneOperator6_<double, string *, KN<double> *, KN<double> *, double, double,
                                  KN<double> *>(ffPointStep));
-    Global.Add("wovenffEnergySplit", "(",
+    Global.Add("wovenffPointEnergySplit", "(",
                new OneOperator5_<double, string *, KN<double> *, KN<double> *, double,
                                  KN<double> *>(ffEnergySplit));
-    Global.Add("wovenffMechNames", "(", new OneOperator1s_<string *, string *>(ffMechNames));
+    Global.Add("wovenffPointMechNames", "(", new OneOperator1s_<string *, string *>(ffMechNames));
     Global.Add("wovenffMaterialOverride", "(",
                new OneOperator3_<double, string *, string *, string *>(ffMaterialOverride));
 }
