@@ -1,6 +1,6 @@
 # strip.gp — load per width against nominal strain of the warp and weft strips
-# (cf. the paper's Fig. 5): the explicit strip as lines, the static one-point
-# solution as open markers on top.
+# (cf. the paper's Fig. 5): the explicit strip as coloured lines, the static
+# one-point solution as black open circles on top (every 10th sample).
 # gnuplot -e "warp='strip_warp.csv'; weft='strip_weft.csv'; out='strip.png'; material='x.txt'" \
 #         freefem_scripts/plots/strip.gp
 # warp, weft: the strip scene's CSVs ('' for a family not pulled).
@@ -12,6 +12,8 @@ set title sprintf("Strip tension, %s (cf. paper Fig. 5)", material) noenhanced
 set xlabel 'nominal strain (%)'
 set ylabel 'load per width (N/mm)'
 set grid
+set autoscale yfix
+set offsets 0, 0, graph 0.05, graph 0.05
 set key left top box opaque
 strain = '(column("strain") * 100)'
 files = warp.' '.weft
@@ -20,4 +22,4 @@ file(i) = word(files, i)
 plot for [i = 1:words(files)] file(i) using @strain:(column('load_per_width') * 1e-3) \
         with lines lw 3 lc i title word(names, i).', explicit strip', \
      for [i = 1:words(files)] file(i) using @strain:(column('load_static') * 1e-3) every 10 \
-        with points pt 6 ps 1.3 lw 1.5 lc i + 2 title word(names, i).', static point (GSL)'
+        with points pt 6 ps 1.8 lw 2 lc rgb 'black' dt 1 title word(names, i).', static point (GSL)'

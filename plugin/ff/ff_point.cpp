@@ -66,6 +66,36 @@ void require_finite(const char *fn, const char *name, double x)
     }
 }
 
+// The material of a function that fills `out` (refused without an out array).
+void material_for(const char *fn, string *material, KN<double> *out, wff_material *mat)
+{
+    if (!out)
+        wff_ff_fail(fn, "no output array");
+    wff_ff_material(fn, material, mat);
+}
+
+// The start of the static solvers: unstretched, amplitudes as made.
+wff_biaxial_state unstretched()
+{
+    wff_biaxial_state s = {};
+    s.stretch[0] = s.stretch[1] = 1;
+    return s;
+}
+
+// out = [l1, l2, dA1, dA2], with the resultants P11 P22 after them if asked.
+void put_state(KN<double> *out, const wff_biaxial_state &s, bool resultants)
+{
+    out->resize(resultants ? 6 : 4);
+    (*out)[0] = s.stretch[0];
+    (*out)[1] = s.stretch[1];
+    (*out)[2] = s.dA[0];
+    (*out)[3] = s.dA[1];
+    if (resultants) {
+        (*out)[4] = s.resultant[0];
+        (*out)[5] = s.resultant[1];
+    }
+}
+
 // Evaluate one point (dt > 0 advances gamma_f by the cell's flow rule) and fill
 // out with P, R, W and the diagnostics; extra entries are left for the caller.
 void point(const char *fn, string *material, KN<double> *Fv, KN<double> *dAv, double gamma_f,
@@ -81,10 +111,8 @@ void point(const char *fn, string *material, KN<double> *Fv, KN<double> *dAv, do
         snprintf(msg, sizeof msg, "dt = %g must be >= 0", dt);
         wff_ff_fail(fn, msg);
     }
-    if (!out)
-        wff_ff_fail(fn, "no output array");
     wff_material mat;
-    wff_ff_material(fn, material, &mat);
+    material_for(fn, material, out, &mat);
     if (wff_material_evaluate(&mat, F, dA, gamma_f, dt, r) != WFF_POINT_OK) {
         char msg[200 + sizeof mat.source];
         snprintf(msg, sizeof msg, "degenerate point (a yarn direction has zero length or the "
@@ -141,10 +169,8 @@ double ffEnergySplit(string *const &material, KN<double> *const &Fv, KN<double> 
     take(fn, "F", Fv, 6, kFLayout, F);
     take(fn, "dA", dAv, 2, kDALayout, dA);
     require_finite(fn, "gammaf", gamma_f);
-    if (!out)
-        wff_ff_fail(fn, "no output array");
     wff_material mat;
-    wff_ff_material(fn, material, &mat);
+    material_for(fn, material, out, &mat);
     const wff_cell_type *c = split_cell(fn, mat);
     double mech[WFF_MECH_MAX];
     c->energy_split(mat.params, F, dA, gamma_f, mech);
@@ -206,20 +232,13 @@ double ffPreload(string *const &material, const double &tension, KN<double> *con
 {
     const char *fn = "wovenffPreload";
     require_finite(fn, "yarnTension", tension);
-    if (!out)
-        wff_ff_fail(fn, "no output array");
     wff_material mat;
-    wff_ff_material(fn, material, &mat);
-    wff_biaxial_state s = {};
-    s.stretch[0] = s.stretch[1] = 1;
+    material_for(fn, material, out, &mat);
+    wff_biaxial_state s = unstretched();
     wff_error err;
     if (wff_preload_equal_force(&mat, tension, &s, &err))
         wff_ff_fail(fn, err);
-    out->resize(4);
-    (*out)[0] = s.stretch[0];
-    (*out)[1] = s.stretch[1];
-    (*out)[2] = s.dA[0];
-    (*out)[3] = s.dA[1];
+    put_state(out, s, false);
     return 0;
 }
 
@@ -244,22 +263,13 @@ double ffUniaxial(string *const &material, const long &family, const double &str
         snprintf(msg, sizeof msg, "family must be 0 (warp) or 1 (weft), got %ld", family);
         wff_ff_fail(fn, msg);
     }
-    if (!out)
-        wff_ff_fail(fn, "no output array");
     wff_material mat;
-    wff_ff_material(fn, material, &mat);
-    wff_biaxial_state s = {};
-    s.stretch[0] = s.stretch[1] = 1;
+    material_for(fn, material, out, &mat);
+    wff_biaxial_state s = unstretched();
     wff_error err;
     if (wff_uniaxial_static(&mat, (int)family, stretch, &s, &err))
         wff_ff_fail(fn, err);
-    out->resize(6);
-    (*out)[0] = s.stretch[0];
-    (*out)[1] = s.stretch[1];
-    (*out)[2] = s.dA[0];
-    (*out)[3] = s.dA[1];
-    (*out)[4] = s.resultant[0];
-    (*out)[5] = s.resultant[1];
+    put_state(out, s, true);
     return 0;
 }
 
