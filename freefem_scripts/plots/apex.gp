@@ -23,11 +23,11 @@ plot data using (t_ms(0)):(@apex_mm) with lines lw 3 lc rgb '#1f77b4' title 'fab
      '' using (t_ms(0)):(@nose_mm) every 8 with points pt 7 ps 0.6 lc rgb '#d62728' \
         title 'projectile nose tip (every 8th frame)'
 set origin 0, 0.02; set size 1, 0.33
-set offsets 0, 0, 0, 0
+set offsets 0, 0, graph 0.45, 0
 set format x '%g'
 set xlabel 'time (ms)'
 set ylabel 'apex - nose (nm)'
 set key left top box opaque
 plot data using (t_ms(0)):((@apex_mm - @nose_mm) * 1e6) with lines lw 2 lc rgb '#2ca02c' \
-        title 'fabric apex minus nose tip (> 0: the fabric is ahead of the projectile)'
+        title 'fabric apex minus nose tip (steps: the CSV keeps 10 digits)'
 unset multiplot

@@ -1,6 +1,6 @@
 # strip.gp — load per width against nominal strain of the warp and weft strips
 # (cf. the paper's Fig. 5): the explicit strip as coloured lines, the static
-# one-point solution as black open circles on top (every 10th sample).
+# one-point solution as black open markers on top (every 10th sample).
 # gnuplot -e "warp='strip_warp.csv'; weft='strip_weft.csv'; out='strip.png'; material='x.txt'" \
 #         freefem_scripts/plots/strip.gp
 # warp, weft: the strip scene's CSVs ('' for a family not pulled).
@@ -22,4 +22,4 @@ file(i) = word(files, i)
 plot for [i = 1:words(files)] file(i) using @strain:(column('load_per_width') * 1e-3) \
         with lines lw 3 lc i title word(names, i).', explicit strip', \
      for [i = 1:words(files)] file(i) using @strain:(column('load_static') * 1e-3) every 10 \
-        with points pt 6 ps 1.8 lw 2 lc rgb 'black' dt 1 title word(names, i).', static point (GSL)'
+        with points pt (i == 1 ? 6 : 4) ps 1.8 lw 2 lc rgb 'black' title word(names, i).', static point (GSL)'
