@@ -16,8 +16,13 @@ OPT      ?= -O2 -fno-math-errno
 KERNEL_ARCH ?= -march=native
 KERNEL_OPT  := -O3 $(KERNEL_ARCH) -fopenmp-simd
 CFLAGS   := -std=gnu11 $(OPT) -fopenmp -Wall -Wextra -Werror -fPIC
-CXXFLAGS := -std=c++14 -O2 -fPIC -DBAMG_LONG_LONG -DNCHECKPTR -Wno-deprecated-declarations \
-            -I/usr/include/freefem++ -Iinclude
+# The binding: our warnings are errors; FreeFEM's headers are -isystem (their
+# own warnings are not ours). -Wno-mismatched-new-delete: gcc 12 misreads
+# FreeFEM's CodeAlloc (a class operator new/delete pair) in every
+# `Global.Add(..., new OneOperatorN_<...>(f))` registration.
+CXXFLAGS := -std=c++14 -O2 -fPIC -Wall -Wextra -Werror -Wno-mismatched-new-delete \
+            -DBAMG_LONG_LONG -DNCHECKPTR -Wno-deprecated-declarations \
+            -isystem /usr/include/freefem++ -Iinclude
 LDLIBS   := -fopenmp -lgsl -lgslcblas -lgmsh -lmvec -lm
 # Include paths: the core sees its own headers only; test code also sees tests/c/lib.
 CORE_INC := -Iinclude -Iplugin

@@ -1,6 +1,6 @@
 // wovenff FreeFEM binding: the pointwise material API (one material point,
 // no mesh). Every function reads its material file afresh (no cache: see
-// docs/freefem_api.md for the cost) and reports failures with ExecError.
+// docs/freefem_api.md for the cost) and reports failures with wff_ff_fail.
 //
 //   real r = wovenffPoint(matFile, F, dA, gammaf, out);   // P, R, W, diagnostics
 //   wovenffBalance(matFile, F, dA);                        // dA: guess in, balance out
@@ -9,8 +9,9 @@
 //   wovenffUniaxial(matFile, family, stretch, out);        // [l1, l2, dA1, dA2, P11, P22]
 //   cout << wovenffCellInfo(matFile);                      // cell and out layout
 //   wovenffPointStep(matFile, F, dA, gammaf, dt, out);     // wovenffPoint's out + new gamma_f
-//   wovenffEnergySplit(matFile, F, dA, gammaf, out);       // energy per mechanism, J/m^2
-//   string names = wovenffMechNames(matFile);              // "yarn_stretch yarn_bending ..."
+//   wovenffPointEnergySplit(matFile, F, dA, gammaf, out);  // energy per mechanism, J/m^2
+//   string names = wovenffPointMechNames(matFile);         // "yarn_stretch yarn_bending ..."
+// (wovenffEnergySplit / wovenffMechNames are a model's: ff_solver.cpp)
 //
 // F is row-major 3x2 (F11 F12 F21 F22 F31 F32), dA = [dA1, dA2] in m; SI units.
 #include "ff++.hpp"
@@ -65,6 +66,36 @@ void require_finite(const char *fn, const char *name, double x)
     }
 }
 
+// The material of a function that fills `out` (refused without an out array).
+void material_for(const char *fn, string *material, KN<double> *out, wff_material *mat)
+{
+    if (!out)
+        wff_ff_fail(fn, "no output array");
+    wff_ff_material(fn, material, mat);
+}
+
+// The start of the static solvers: unstretched, amplitudes as made.
+wff_biaxial_state unstretched()
+{
+    wff_biaxial_state s = {};
+    s.stretch[0] = s.stretch[1] = 1;
+    return s;
+}
+
+// out = [l1, l2, dA1, dA2], with the resultants P11 P22 after them if asked.
+void put_state(KN<double> *out, const wff_biaxial_state &s, bool resultants)
+{
+    out->resize(resultants ? 6 : 4);
+    (*out)[0] = s.stretch[0];
+    (*out)[1] = s.stretch[1];
+    (*out)[2] = s.dA[0];
+    (*out)[3] = s.dA[1];
+    if (resultants) {
+        (*out)[4] = s.resultant[0];
+        (*out)[5] = s.resultant[1];
+    }
+}
+
 // Evaluate one point (dt > 0 advances gamma_f by the cell's flow rule) and fill
 // out with P, R, W and the diagnostics; extra entries are left for the caller.
 void point(const char *fn, string *material, KN<double> *Fv, KN<double> *dAv, double gamma_f,
@@ -80,10 +111,8 @@ void point(const char *fn, string *material, KN<double> *Fv, KN<double> *dAv, do
         snprintf(msg, sizeof msg, "dt = %g must be >= 0", dt);
         wff_ff_fail(fn, msg);
     }
-    if (!out)
-        wff_ff_fail(fn, "no output array");
     wff_material mat;
-    wff_ff_material(fn, material, &mat);
+    material_for(fn, material, out, &mat);
     if (wff_material_evaluate(&mat, F, dA, gamma_f, dt, r) != WFF_POINT_OK) {
         char msg[200 + sizeof mat.source];
         snprintf(msg, sizeof msg, "degenerate point (a yarn direction has zero length or the "
@@ -120,7 +149,7 @@ double ffPointStep(string *const &material, KN<double> *const &Fv, KN<double> *c
     return 0;
 }
 
-// The cell's energy_split, or ExecError naming the cell if it has none.
+// The cell's energy_split; fails naming the cell if it has none.
 const wff_cell_type *split_cell(const char *fn, const wff_material &mat)
 {
     const wff_cell_type *c = mat.cell;
@@ -135,15 +164,13 @@ const wff_cell_type *split_cell(const char *fn, const wff_material &mat)
 double ffEnergySplit(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv,
                      const double &gamma_f, KN<double> *const &out)
 {
-    const char *fn = "wovenffEnergySplit";
+    const char *fn = "wovenffPointEnergySplit";
     double F[6], dA[2];
     take(fn, "F", Fv, 6, kFLayout, F);
     take(fn, "dA", dAv, 2, kDALayout, dA);
     require_finite(fn, "gammaf", gamma_f);
-    if (!out)
-        wff_ff_fail(fn, "no output array");
     wff_material mat;
-    wff_ff_material(fn, material, &mat);
+    material_for(fn, material, out, &mat);
     const wff_cell_type *c = split_cell(fn, mat);
     double mech[WFF_MECH_MAX];
     c->energy_split(mat.params, F, dA, gamma_f, mech);
@@ -163,7 +190,7 @@ double ffEnergySplit(string *const &material, KN<double> *const &Fv, KN<double> 
 
 string *ffMechNames(Stack stack, string *const &material)
 {
-    const char *fn = "wovenffMechNames";
+    const char *fn = "wovenffPointMechNames";
     wff_material mat;
     wff_ff_material(fn, material, &mat);
     const wff_cell_type *c = split_cell(fn, mat);
@@ -205,20 +232,13 @@ double ffPreload(string *const &material, const double &tension, KN<double> *con
 {
     const char *fn = "wovenffPreload";
     require_finite(fn, "yarnTension", tension);
-    if (!out)
-        wff_ff_fail(fn, "no output array");
     wff_material mat;
-    wff_ff_material(fn, material, &mat);
-    wff_biaxial_state s = {};
-    s.stretch[0] = s.stretch[1] = 1;
+    material_for(fn, material, out, &mat);
+    wff_biaxial_state s = unstretched();
     wff_error err;
     if (wff_preload_equal_force(&mat, tension, &s, &err))
         wff_ff_fail(fn, err);
-    out->resize(4);
-    (*out)[0] = s.stretch[0];
-    (*out)[1] = s.stretch[1];
-    (*out)[2] = s.dA[0];
-    (*out)[3] = s.dA[1];
+    put_state(out, s, false);
     return 0;
 }
 
@@ -243,22 +263,13 @@ double ffUniaxial(string *const &material, const long &family, const double &str
         snprintf(msg, sizeof msg, "family must be 0 (warp) or 1 (weft), got %ld", family);
         wff_ff_fail(fn, msg);
     }
-    if (!out)
-        wff_ff_fail(fn, "no output array");
     wff_material mat;
-    wff_ff_material(fn, material, &mat);
-    wff_biaxial_state s = {};
-    s.stretch[0] = s.stretch[1] = 1;
+    material_for(fn, material, out, &mat);
+    wff_biaxial_state s = unstretched();
     wff_error err;
     if (wff_uniaxial_static(&mat, (int)family, stretch, &s, &err))
         wff_ff_fail(fn, err);
-    out->resize(6);
-    (*out)[0] = s.stretch[0];
-    (*out)[1] = s.stretch[1];
-    (*out)[2] = s.dA[0];
-    (*out)[3] = s.dA[1];
-    (*out)[4] = s.resultant[0];
-    (*out)[5] = s.resultant[1];
+    put_state(out, s, true);
     return 0;
 }
 
@@ -278,7 +289,7 @@ string *ffCellInfo(Stack stack, string *const &material)
         text += line;
     }
     if (c->energy_split && c->n_mech > 0) {
-        text += "wovenffEnergySplit out (J/m^2):";
+        text += "wovenffPointEnergySplit out (J/m^2):";
         for (int i = 0; i < c->n_mech; i++)
             text += std::string(" ") + c->mech_names[i];
         text += "\n";
@@ -306,10 +317,10 @@ void wff_ff_register_point()
     Global.Add("wovenffPointStep", "(",
                new OneOperator6_<double, string *, KN<double> *, KN<double> *, double, double,
                                  KN<double> *>(ffPointStep));
-    Global.Add("wovenffEnergySplit", "(",
+    Global.Add("wovenffPointEnergySplit", "(",
                new OneOperator5_<double, string *, KN<double> *, KN<double> *, double,
                                  KN<double> *>(ffEnergySplit));
-    Global.Add("wovenffMechNames", "(", new OneOperator1s_<string *, string *>(ffMechNames));
+    Global.Add("wovenffPointMechNames", "(", new OneOperator1s_<string *, string *>(ffMechNames));
     Global.Add("wovenffMaterialOverride", "(",
                new OneOperator3_<double, string *, string *, string *>(ffMaterialOverride));
 }

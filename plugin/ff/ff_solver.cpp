@@ -5,7 +5,8 @@
 //   mesh Th = wovenffMesh(md);            // triangles (quads split), same vertex numbering
 //   wovenffFix(md, "sym_x", 0);           // fix a DOF (0 ux, 1 uy, 2 uz, 3 dA1, 4 dA2)
 //   wovenffAdvance(md, tEnd);             // explicit steps until tEnd
-//   wovenffState(md, st);                 // time, energies, projectile ... (see kStateNames)
+//   real t = wovenffGet(md, "time");      // one state quantity by name (see kState)
+//   wovenffState(md, st);                 // all of them, kState order
 //   wovenffField(md, "uz", values);       // nodal values, P1 DOF order
 //   wovenffFree(md);
 //
@@ -21,9 +22,9 @@
 //   string msg = wovenffLastError(md)  // after try { } catch (...) { }: that model's last
 //                                      // error; md = -1: the last error of any function here
 //                                      // (e.g. wovenffModel, which has no handle yet)
-// Failures stop the script with ExecError (exit 8) and "function: message"
-// unless the script catches them (FreeFEM's try/catch takes ExecError, and
-// also exit(): never exit inside a try block).
+// Failures stop the script (exit 8) with "function: message" unless the script
+// catches them (wff_ff_fail; FreeFEM's try/catch also takes exit(): never exit
+// inside a try block).
 // Models live in a table owned by this binding (FreeFEM passes no user data
 // to functions); the C core itself keeps no global state.
 #include "ff++.hpp"
@@ -33,6 +34,8 @@
 #include <cstring>
 #include <string>
 #include <vector>
+
+#include "ff_wovenff.hpp"
 
 extern "C" {
 #include "wovenff/solver.h"
@@ -49,54 +52,82 @@ std::vector<wff_model *> &models()
     return table;
 }
 
-// The last error message of each model (same index as models()), and of any
-// function of this file: wovenffLastError reads them after a script's
-// try/catch caught the ExecError.
+// The last error message of each model (same index as models()):
+// wovenffLastError(md) reads it after a script's try/catch took the error.
 std::vector<std::string> &model_errors()
 {
     static std::vector<std::string> table;
     return table;
 }
 
-std::string &last_error()
+// wff_ff_fail, remembered also as model id's last error (if id is a model).
+[[noreturn]] void fail(const char *fn, const std::string &message, long id = -1)
 {
-    static std::string message;
-    return message;
+    if (id >= 0 && id < (long)model_errors().size())
+        model_errors()[id] = std::string(fn) + ": " + message;
+    wff_ff_fail(fn, message);
 }
 
-[[noreturn]] void fail_message(const std::string &msg, long id = -1)
+[[noreturn]] void fail(const char *fn, const wff_error &err, long id = -1)
 {
-    last_error() = msg;
-    if (id >= 0 && id < (long)model_errors().size())
-        model_errors()[id] = msg;
-    ExecError(msg.c_str());
-    std::abort(); // not reached: ExecError throws
+    fail(fn, std::string(err.message), id);
 }
 
 wff_model *model_of(long id, const char *fn)
 {
-    if (id < 0 || id >= (long)models().size() || !models()[id]) {
-        char msg[200];
-        snprintf(msg, sizeof msg, "%s: %ld is not a live wovenff model handle", fn, id);
-        fail_message(msg);
-    }
+    if (id < 0 || id >= (long)models().size() || !models()[id])
+        fail(fn, std::to_string(id) + " is not a live wovenff model handle");
     return models()[id];
 }
 
-// ExecError("fn: message"), remembered as the last error (of model id if >= 0).
-[[noreturn]] void fail(const char *fn, const wff_error &err, long id = -1)
+// The model's state quantities by name: wovenffGet(md, name) reads one,
+// wovenffState(md, v) all of them in this order, wovenffStateNames lists them.
+// `energy`: computed by wff_model_energies (a pass over the nodes), whole specimen.
+struct StateQuantity {
+    const char *name;
+    bool energy;
+};
+const StateQuantity kState[] = {
+    {"time", false},              {"step", false},
+    {"dt", false},                {"dt_stable", false},
+    {"projectile_tip", false},    {"projectile_velocity", false},
+    {"projectile_force", false},  {"max_penetration", false},
+    {"kinetic_inplane", true},    {"kinetic_transverse", true},
+    {"kinetic_amplitude", true},  {"kinetic_projectile", true},
+    {"internal_energy", true},    {"dissipated_shear", true},
+    {"dissipated_friction", true}, {"external_work", true},
+    {"energy_error", true},       {"element_steps", false},
+    {"elements", false},          {"nodes", false},
+    {"dt_worst_element", false}};
+const int kStateSize = sizeof kState / sizeof kState[0];
+
+std::string state_names()
 {
-    fail_message(std::string(fn) + ": " + err.message, id);
+    std::string names;
+    for (int i = 0; i < kStateSize; i++)
+        names += std::string(i ? " " : "") + kState[i].name;
+    return names;
 }
 
-// state vector layout, also printed by wovenffStateNames
-const char *const kStateNames[] = {
-    "time", "step", "dt", "dt_stable", "projectile_tip", "projectile_velocity",
-    "projectile_force", "max_penetration", "kinetic_inplane", "kinetic_transverse",
-    "kinetic_amplitude", "kinetic_projectile", "internal_energy", "dissipated_shear",
-    "dissipated_friction", "external_work", "energy_error", "element_steps", "elements",
-    "nodes", "dt_worst_element"};
-const int kStateSize = sizeof kStateNames / sizeof kStateNames[0];
+// Every state quantity in kState order; the energies only if with_energies
+// (else 0).
+void state_values(const wff_model *m, bool with_energies, double values[kStateSize])
+{
+    wff_energies e = {};
+    if (with_energies)
+        wff_model_energies(m, &e);
+    double s = m->symmetry_factor;
+    const double v[] = {m->time, (double)m->step, m->dt, m->dt_stable, m->projectile.tip,
+                        m->projectile.velocity, s * m->projectile.force,
+                        m->projectile.max_penetration, e.kinetic_inplane, e.kinetic_transverse,
+                        e.kinetic_amplitude, e.kinetic_projectile, e.internal, e.dissipated_shear,
+                        e.dissipated_friction, e.external_work, e.error, (double)m->element_steps,
+                        (double)(m->el.n_tris + m->el.n_quads), (double)m->n_nodes,
+                        (double)(m->dt_worst_element + 1)};
+    static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
+    for (int i = 0; i < kStateSize; i++)
+        values[i] = v[i];
+}
 
 long ffModel(string *const &meshFile, string *const &materialFile, string *const &settings)
 {
@@ -106,7 +137,7 @@ long ffModel(string *const &meshFile, string *const &materialFile, string *const
         fail("wovenffModel", err);
     wff_model *m = (wff_model *)calloc(1, sizeof(wff_model));
     if (!m)
-        fail_message("wovenffModel: out of memory");
+        fail("wovenffModel", "out of memory");
     if (wff_model_create(m, meshFile->c_str(), &opt, materialFile->c_str(), &err)) {
         free(m);
         fail("wovenffModel", err);
@@ -159,8 +190,7 @@ long ffSetPreload(const long &id, KN<double> *const &F, KN<double> *const &dA)
 {
     wff_model *m = model_of(id, "wovenffSetPreload");
     if (F->N() != 4 || dA->N() != 2)
-        fail_message("wovenffSetPreload: F_pre must have 4 entries (F11 F12 F21 F22) and dA0 2",
-                     id);
+        fail("wovenffSetPreload", "F_pre must have 4 entries (F11 F12 F21 F22) and dA0 2", id);
     double Fp[4] = {(*F)[0], (*F)[1], (*F)[2], (*F)[3]}, d[2] = {(*dA)[0], (*dA)[1]};
     wff_error err;
     if (wff_model_set_preload(m, Fp, d, &err))
@@ -229,30 +259,31 @@ long ffAdvance(const long &id, const double &t_end)
 long ffState(const long &id, KN<double> *const &out)
 {
     const wff_model *m = model_of(id, "wovenffState");
-    wff_energies e;
-    wff_model_energies(m, &e);
+    double values[kStateSize];
+    state_values(m, true, values);
     out->resize(kStateSize);
-    double s = m->symmetry_factor;
-    double values[] = {m->time, (double)m->step, m->dt, m->dt_stable, m->projectile.tip,
-                       m->projectile.velocity, s * m->projectile.force,
-                       m->projectile.max_penetration, e.kinetic_inplane, e.kinetic_transverse,
-                       e.kinetic_amplitude, e.kinetic_projectile, e.internal, e.dissipated_shear,
-                       e.dissipated_friction, e.external_work, e.error, (double)m->element_steps,
-                       (double)(m->el.n_tris + m->el.n_quads), (double)m->n_nodes,
-                       (double)(m->dt_worst_element + 1)};
-    static_assert(sizeof values / sizeof values[0] == kStateSize, "state layout");
     for (int i = 0; i < kStateSize; i++)
         (*out)[i] = values[i];
     return 0;
 }
 
+double ffGet(const long &id, string *const &name)
+{
+    const wff_model *m = model_of(id, "wovenffGet");
+    for (int i = 0; i < kStateSize; i++)
+        if (*name == kState[i].name) {
+            double values[kStateSize];
+            state_values(m, kState[i].energy, values);
+            return values[i];
+        }
+    fail("wovenffGet", "unknown state quantity '" + *name + "' (known: " + state_names() + ")",
+         id);
+}
+
 string *ffStateNames(Stack stack, const long &id)
 {
     (void)id;
-    std::string names;
-    for (int i = 0; i < kStateSize; i++)
-        names += std::string(i ? " " : "") + kStateNames[i];
-    return Add2StackOfPtr2Free(stack, new string(names));
+    return Add2StackOfPtr2Free(stack, new string(state_names()));
 }
 
 long ffField(const long &id, string *const &name, KN<double> *const &out)
@@ -331,7 +362,7 @@ string *ffMechNames(Stack stack, const long &id)
 
 string *ffLastError(Stack stack, const long &id)
 {
-    std::string msg = last_error();
+    std::string msg = wff_ff_last_error();
     if (id >= 0 && id < (long)model_errors().size())
         msg = model_errors()[id];
     return Add2StackOfPtr2Free(stack, new string(msg));
@@ -357,6 +388,7 @@ void wff_ff_register_solver()
     Global.Add("wovenffSet", "(", new OneOperator3_<long, long, string *, double>(ffSet));
     Global.Add("wovenffAdvance", "(", new OneOperator2_<long, long, double>(ffAdvance));
     Global.Add("wovenffState", "(", new OneOperator2_<long, long, KN<double> *>(ffState));
+    Global.Add("wovenffGet", "(", new OneOperator2_<double, long, string *>(ffGet));
     Global.Add("wovenffStateNames", "(", new OneOperator1s_<string *, long>(ffStateNames));
     Global.Add("wovenffField", "(",
                new OneOperator3_<long, long, string *, KN<double> *>(ffField));

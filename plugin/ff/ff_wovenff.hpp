@@ -1,13 +1,19 @@
 // wovenff FreeFEM binding: what the module's .cpp files share.
 //
 // Each binding file defines one wff_ff_register_*() that adds its functions
-// to FreeFEM; wovenff.cpp calls them all from the module's init(). The helpers
-// below turn C-core failures into FreeFEM ExecError (the script stops with
-// exit code 8 and the message). The binding is thin: no physics here.
+// to FreeFEM; wovenff.cpp calls them all from the module's init(). Every
+// failure of every function goes through wff_ff_fail: the message
+// ("function: what went wrong") is recorded as the last error
+// (wovenffLastError) and thrown as an error FreeFEM does not print when it is
+// raised: a script's try/catch prints it once (the scenes: "error: ..."),
+// uncaught FreeFEM prints it once and exits with code 8. The binding is thin:
+// no physics here.
 #ifndef WOVENFF_FF_WOVENFF_HPP
 #define WOVENFF_FF_WOVENFF_HPP
 
 #include "ff++.hpp"
+
+#include <string>
 
 extern "C" {
 #include "wovenff/cell.h"
@@ -20,16 +26,20 @@ void wff_ff_register_solver(); // ff_solver.cpp: models, meshes, explicit solver
 void wff_ff_register_fit();    // ff_fit.cpp: parameter identification
 void wff_ff_register_explore(); // ff_explore.cpp: one point along a load path (explorer)
 
-// ExecError("fn: message"). Never returns.
+// Record "fn: message" as the last error and stop the script (exit code 8
+// unless it catches the error). Never returns.
 [[noreturn]] void wff_ff_fail(const char *fn, const char *message);
-// ExecError("fn: err.message"). Never returns.
 [[noreturn]] void wff_ff_fail(const char *fn, const wff_error &err);
+[[noreturn]] void wff_ff_fail(const char *fn, const std::string &message);
+
+// The message of the last failure of any function of the module ("" if none).
+const std::string &wff_ff_last_error();
 
 // Load a material file (read afresh on every call: no cache). On failure
-// ExecError with the loader's message, which names the file, line and key.
+// wff_ff_fail with the loader's message, which names the file, line and key.
 void wff_ff_material(const char *fn, const string *path, wff_material *mat);
 
-// ExecError unless v has exactly n entries; `layout` says what they are,
+// wff_ff_fail unless v has exactly n entries; `layout` says what they are,
 // e.g. "F11 F12 F21 F22 F31 F32".
 void wff_ff_require_size(const char *fn, const char *name, const KN<double> *v, long n,
                          const char *layout);

@@ -19,15 +19,44 @@ extern "C" {
 
 using namespace Fem2D;
 
+namespace {
+
+// A module error. Code NONE: FreeFEM's Error constructor prints nothing (an
+// ExecError prints its message when raised, so a caught one was printed twice:
+// there and by the script's handler). Exit code 8 like ExecError.
+class ModuleError : public Error {
+public:
+    explicit ModuleError(const std::string &message) : Error(NONE, message.c_str(), nullptr) {}
+    int errcode() const override { return UNKNOWN; }
+};
+
+std::string &last_error()
+{
+    static std::string message; // binding-level: FreeFEM passes no user data
+    return message;
+}
+
+} // namespace
+
+const std::string &wff_ff_last_error()
+{
+    return last_error();
+}
+
+void wff_ff_fail(const char *fn, const std::string &message)
+{
+    last_error() = std::string(fn) + ": " + message;
+    throw ModuleError(last_error());
+}
+
 void wff_ff_fail(const char *fn, const char *message)
 {
-    ExecError(std::string(fn) + ": " + message);
-    std::abort(); // not reached: ExecError throws
+    wff_ff_fail(fn, std::string(message));
 }
 
 void wff_ff_fail(const char *fn, const wff_error &err)
 {
-    wff_ff_fail(fn, err.message);
+    wff_ff_fail(fn, std::string(err.message));
 }
 
 void wff_ff_material(const char *fn, const string *path, wff_material *mat)

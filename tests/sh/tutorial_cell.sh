@@ -3,8 +3,8 @@
 #  (a) every repository file it names exists;
 #  (b) its test binaries build (make) and pass;
 #  (c) its strip-scene command runs: taken from the tutorial line itself, with
-#      a tiny strain, a quick pull and the output moved to the test folder
-#      (FreeFEM's getARGV takes the last occurrence of an option). The strip of
+#      a tiny strain, a quick pull and its -out replaced by the test folder
+#      (an option given twice is an error). The strip of
 #      straight linear yarns has an analytic load: S_1 x strain per width,
 #      within 5 % at the end of the pull;
 #  (d) its bad-material commands (with /tmp/ replaced by the test folder) stop
@@ -51,6 +51,7 @@ done
 # (c) the tutorial's strip command, exactly as written, plus the quick options
 cmd=$(grep -m1 "^sh tools/ff.sh freefem_scripts/strip_tension.edp -material $material" "$doc")
 [ -n "$cmd" ] || { echo "$doc has no strip-scene command with $material"; exit 1; }
+cmd=$(printf '%s' "$cmd" | sed 's/ -out [^ ]*//')
 eval "$cmd -strain 0.003 -velocity 2 -ramp 4e-4 -plots 0 -out \"\$out/strip\"" \
     > "$out/strip.log" 2>&1
 rc=$?
