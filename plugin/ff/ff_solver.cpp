@@ -25,8 +25,7 @@
 // Failures stop the script (exit 8) with "function: message" unless the script
 // catches them (wff_ff_fail; FreeFEM's try/catch also takes exit(): never exit
 // inside a try block).
-// Models live in a table owned by this binding (FreeFEM passes no user data
-// to functions); the C core itself keeps no global state.
+// Models live in the binding's handle table (ff_models.cpp).
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 
@@ -46,38 +45,20 @@ using namespace Fem2D;
 
 namespace {
 
-std::vector<wff_model *> &models()
-{
-    static std::vector<wff_model *> table; // binding-level handle table
-    return table;
-}
-
-// The last error message of each model (same index as models()):
-// wovenffLastError(md) reads it after a script's try/catch took the error.
-std::vector<std::string> &model_errors()
-{
-    static std::vector<std::string> table;
-    return table;
-}
-
 // wff_ff_fail, remembered also as model id's last error (if id is a model).
 [[noreturn]] void fail(const char *fn, const std::string &message, long id = -1)
 {
-    if (id >= 0 && id < (long)model_errors().size())
-        model_errors()[id] = std::string(fn) + ": " + message;
-    wff_ff_fail(fn, message);
+    wff_ff_model_fail(fn, message, id);
 }
 
 [[noreturn]] void fail(const char *fn, const wff_error &err, long id = -1)
 {
-    fail(fn, std::string(err.message), id);
+    wff_ff_model_fail(fn, std::string(err.message), id);
 }
 
 wff_model *model_of(long id, const char *fn)
 {
-    if (id < 0 || id >= (long)models().size() || !models()[id])
-        fail(fn, std::to_string(id) + " is not a live wovenff model handle");
-    return models()[id];
+    return wff_ff_model(id, fn);
 }
 
 // The model's state quantities by name: wovenffGet(md, name) reads one,
@@ -142,17 +123,12 @@ long ffModel(string *const &meshFile, string *const &materialFile, string *const
         free(m);
         fail("wovenffModel", err);
     }
-    models().push_back(m);
-    model_errors().push_back(std::string());
-    return (long)models().size() - 1;
+    return wff_ff_model_add(m);
 }
 
 long ffFree(const long &id)
 {
-    wff_model *m = model_of(id, "wovenffFree");
-    wff_model_free(m);
-    free(m);
-    models()[id] = nullptr;
+    wff_ff_model_free(id, "wovenffFree");
     return 0;
 }
 
@@ -362,10 +338,7 @@ string *ffMechNames(Stack stack, const long &id)
 
 string *ffLastError(Stack stack, const long &id)
 {
-    std::string msg = wff_ff_last_error();
-    if (id >= 0 && id < (long)model_errors().size())
-        msg = model_errors()[id];
-    return Add2StackOfPtr2Free(stack, new string(msg));
+    return Add2StackOfPtr2Free(stack, new string(wff_ff_model_last_error(id)));
 }
 
 } // namespace

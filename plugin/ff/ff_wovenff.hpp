@@ -18,6 +18,7 @@
 extern "C" {
 #include "wovenff/cell.h"
 #include "wovenff/error.h"
+#include "wovenff/solver.h"
 }
 
 // Registration, one per binding file (wovenff.cpp lists them).
@@ -34,6 +35,20 @@ void wff_ff_register_explore(); // ff_explore.cpp: one point along a load path (
 
 // The message of the last failure of any function of the module ("" if none).
 const std::string &wff_ff_last_error();
+
+// The model handle table (ff_models.cpp). A script holds an integer handle;
+// FreeFEM passes no user data to functions, so the table is the binding's
+// (the C core keeps no global state).
+// Take ownership of a created model (calloc'd, wff_model_create'd); returns its handle.
+long wff_ff_model_add(wff_model *m);
+// The live model of handle id, or wff_ff_fail naming fn.
+wff_model *wff_ff_model(long id, const char *fn);
+// wff_model_free and release the handle (a later use of it is an error).
+void wff_ff_model_free(long id, const char *fn);
+// wff_ff_fail, the message also kept as model id's last error (id < 0: none).
+[[noreturn]] void wff_ff_model_fail(const char *fn, const std::string &message, long id);
+// Model id's last error; for id < 0 (or not a model) the module's last error.
+std::string wff_ff_model_last_error(long id);
 
 // Load a material file (read afresh on every call: no cache). On failure
 // wff_ff_fail with the loader's message, which names the file, line and key.
