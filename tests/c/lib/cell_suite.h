@@ -8,6 +8,7 @@
 #define WFF_TEST_CELL_SUITE_H
 
 #include "check.h"
+#include "wovenff/cell.h"
 
 typedef struct cell_case {
     const char *material;          /* material file (repository-relative) */
@@ -16,6 +17,15 @@ typedef struct cell_case {
     int energy_exact;              /* 1: stress and residual derive from W (check FD) */
 } cell_case;
 
+/* Load c->material, check the registry finds its cell, run cell_suite_check. */
 void cell_suite_run(check_state *st, const cell_case *c);
+
+/* Every check on a loaded material (also for a cell that is not registered;
+ * c->material is then only the label). */
+void cell_suite_check(check_state *st, const cell_case *c, const wff_material *mat);
+
+/* The stable-step check alone on a loaded material (also for a cell that is
+ * not registered); returns the number of its checks that failed. */
+int cell_suite_stable_step(check_state *st, const wff_material *mat, const char *label);
 
 #endif
