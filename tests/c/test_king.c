@@ -1,4 +1,4 @@
-/* King plain-weave cell: checks specific to its laws (MODEL.md §3–7, §10.5). */
+/* King plain-weave cell: checks specific to its laws (docs/model.md §3–7, §10). */
 #include "check.h"
 #include "wovenff/balance.h"
 #include "wovenff/material.h"
@@ -42,7 +42,7 @@ static void check_preload(check_state *st)
     CHECK_CLOSE(st, s.point.diag[T2], 1.0, 1e-9, 0, "T_2");
     CHECK(st, fabs(s.point.residual[0]) < 1e-6 && fabs(s.point.residual[1]) < 1e-6,
           "balanced: R = (%g, %g) N/m^2", s.point.residual[0], s.point.residual[1]);
-    /* MODEL.md §4: the weft spar is slightly engaged at preload, under 1 % of F_I */
+    /* docs/model.md §4: the weft spar is slightly engaged at preload, under 1 % of F_I */
     CHECK(st, s.point.diag[FL2] > 0 && s.point.diag[FL2] < 0.01 * s.point.diag[FI],
           "weft spar engaged but small: F_L2 %g, F_I %g", s.point.diag[FL2], s.point.diag[FI]);
 
@@ -59,7 +59,7 @@ static void check_preload(check_state *st)
     CHECK_CLOSE(st, tiny[0], s.dA[0], 1e-8, 0, "balance dA_1 from a tiny guess");
 }
 
-/* Pure extension along warp with no shear and idle spars (MODEL.md §6 hand check,
+/* Pure extension along warp with no shear and idle spars (docs/model.md §6 hand check,
  * with the bending term): P_11 = (T_1 cosβ_1 − M_b1 sinβ_1/L_1)/(2 p_2⁰). */
 static void check_hand_extension(check_state *st)
 {
@@ -174,7 +174,7 @@ static void check_compaction_guard(check_state *st)
           omega);
 }
 
-/* Stable-step estimate at rest is in the range MODEL.md §8 states. */
+/* Stable-step estimate at rest is in the range docs/model.md §12 states. */
 static void check_stable_step(check_state *st)
 {
     wff_material m = load(st, KEVLAR);

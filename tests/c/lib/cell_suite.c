@@ -465,16 +465,21 @@ int cell_suite_stable_step(check_state *st, const wff_material *mat, const char 
         double below = step_growth(mat, &patches[p], 0.9, &dt_unused);
         /* for the record: where the growth sets in (bisection between the two) */
         double lo = 0.9, hi = 1.1;
-        for (int it = 0; it < 7 && below <= STEP_BOUNDED && above >= STEP_GROWN; it++) {
+        int sought = below <= STEP_BOUNDED && above >= STEP_GROWN;
+        for (int it = 0; it < 7 && sought; it++) {
             double mid = 0.5 * (lo + hi);
             if (step_growth(mat, &patches[p], mid, &dt_unused) >= STEP_GROWN)
                 hi = mid;
             else
                 lo = mid;
         }
-        printf("  %-48s stable step (%s waves) %.3g s: energy x%.3g%s at 1.1x, x%.3g at "
-               "0.9x; grows past x%.0e from %.3fx\n", label, what[p], dt_est,
-               fmin(above, STEP_STOP), above >= STEP_STOP ? "+" : "", below, STEP_GROWN, hi);
+        char onset[64] = "";
+        if (sought)
+            snprintf(onset, sizeof onset, "; grows past x%.0e from %.3fx", STEP_GROWN, hi);
+        printf("  %-48s stable step (%s waves) %.3g s: energy x%.3g%s at 1.1x, x%.3g%s at "
+               "0.9x%s\n", label, what[p], dt_est, fmin(above, STEP_STOP),
+               above >= STEP_STOP ? "+" : "", fmin(below, STEP_STOP),
+               below >= STEP_STOP ? "+" : "", onset);
         CHECK(st, below >= 0 && above >= 0, "%s: stable-step patch could not be set up", label);
         CHECK(st, below <= STEP_BOUNDED,
               "%s: the stable-step bound is not an upper bound (%s waves): at 0.9x the "

@@ -1,8 +1,12 @@
-/* The consistency suite every unit cell passes (MODEL.md §10, checks 1–4):
- * P = ∂W/∂F and R = −∂W/∂ΔA by central differences at random states, zero
- * stress and residual at the reference state, objectivity, warp/weft swap
- * symmetry, energy split adding up, stable-step estimates finite, degenerate
- * input flagged. A new cell joins by adding one cell_case line to
+/* The consistency suite every unit cell passes (docs/model.md §10): the ops
+ * table's sizes against cell.h's limits, P = ∂W/∂F and R = −∂W/∂ΔA by
+ * central differences at random states, zero stress and residual at the
+ * reference state, objectivity, warp/weft swap symmetry, energy split adding
+ * up, fast paths equal to evaluate(), degenerate input flagged, and the
+ * stable-step estimates (docs/model.md §12) finite and upper bounds: an
+ * explicit run of a clamped strip at 0.9x the estimated step stays bounded,
+ * at 1.1x it grows (membrane and amplitude waves apart, each on a patch where
+ * the estimate is tight: growth sets in between 1.00x and 1.05x). A new cell joins by adding one cell_case line to
  * tests/c/test_cells.c. */
 #ifndef WFF_TEST_CELL_SUITE_H
 #define WFF_TEST_CELL_SUITE_H
