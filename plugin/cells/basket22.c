@@ -321,37 +321,13 @@ static int basket_parse(wff_kv *kv, wff_material *mat, wff_error *err)
 {
     basket_params *k = (basket_params *)mat->params;
     memset(k, 0, sizeof *k);
-    const wff_param_key required[] = {
-        {"p0_1", &k->pitch0[0]}, {"p0_2", &k->pitch0[1]},
-        {"A0_1", &k->amplitude0[0]}, {"A0_2", &k->amplitude0[1]},
-        {"EA_1", &k->axial_rigidity[0]}, {"EA_2", &k->axial_rigidity[1]},
-        {"kb_1", &k->bending_stiffness[0]}, {"kb_2", &k->bending_stiffness[1]},
-        {"K_I", &k->compaction_force}, {"a", &k->compaction_rate},
-        {"K_d", &k->locking_stiffness}, {"c", &k->locking_exponent},
-        {"K_s", &k->shear_stiffness}, {"M_0", &k->flow_moment},
-        {"gammadot_0", &k->flow_rate},
+    const wff_weave_params shared = {
+        k->pitch0, k->amplitude0, {"EA_1", "EA_2"}, k->axial_rigidity, k->bending_stiffness,
+        &k->compaction_force, &k->compaction_rate, &k->locking_stiffness,
+        &k->locking_exponent, &k->shear_stiffness, &k->flow_moment, &k->flow_rate,
+        &k->flow_exponent, &k->tension_only,
     };
-    const wff_param_key positive[] = {
-        {"p0_1", &k->pitch0[0]}, {"p0_2", &k->pitch0[1]},
-        {"A0_1", &k->amplitude0[0]}, {"A0_2", &k->amplitude0[1]},
-        {"EA_1", &k->axial_rigidity[0]}, {"EA_2", &k->axial_rigidity[1]},
-        {"K_I", &k->compaction_force}, {"a", &k->compaction_rate}, {"M_0", &k->flow_moment},
-    };
-    const wff_param_key nonnegative[] = {
-        {"kb_1", &k->bending_stiffness[0]}, {"kb_2", &k->bending_stiffness[1]},
-        {"K_d", &k->locking_stiffness}, {"K_s", &k->shear_stiffness},
-        {"gammadot_0", &k->flow_rate},
-    };
-    /* (the file's numbers are finite: wff_kv_number rejects inf and nan) */
-    if (wff_params_read(kv, required, sizeof required / sizeof required[0], err) ||
-        wff_kv_number_or(kv, "n", 1.0, &k->flow_exponent, err) ||
-        wff_kv_number_or(kv, "tension_only", 0.0, &k->tension_only, err))
-        return -1;
-    if (wff_params_positive(kv, positive, sizeof positive / sizeof positive[0], err) ||
-        wff_params_nonnegative(kv, nonnegative, sizeof nonnegative / sizeof nonnegative[0],
-                               err) ||
-        wff_params_exponents(kv, k->locking_exponent, k->flow_exponent, err) ||
-        wff_params_switch(kv, "tension_only", k->tension_only, err))
+    if (wff_weave_parse(kv, &shared, err))
         return -1;
     for (int f = 0; f < FAMILIES; f++)
         if (!(k->amplitude0[f] < k->pitch0[f]))
@@ -378,10 +354,7 @@ static int basket_parse(wff_kv *kv, wff_material *mat, wff_error *err)
 static void basket_reference_geometry(const void *params, double pitch0[2], double amplitude0[2])
 {
     const basket_params *k = params;
-    for (int f = 0; f < FAMILIES; f++) {
-        pitch0[f] = k->pitch0[f];
-        amplitude0[f] = k->amplitude0[f];
-    }
+    wff_reference_geometry_copy(k->pitch0, k->amplitude0, pitch0, amplitude0);
 }
 
 static const wff_cell_type basket_2x2 = {

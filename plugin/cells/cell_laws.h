@@ -240,11 +240,23 @@ static inline void wff_point_result_nan(wff_point_result *out, int n_diag)
         out->diag[i] = NAN;
 }
 
+/* reference_geometry() of a cell that keeps p_k⁰ and A_k⁰ (docs/model.md §2). */
+static inline void wff_reference_geometry_copy(const double pitch0[2], const double amplitude0[2],
+                                               double pitch_out[2], double amplitude_out[2])
+{
+    for (int f = 0; f < 2; f++) {
+        pitch_out[f] = pitch0[f];
+        amplitude_out[f] = amplitude0[f];
+    }
+}
+
 /* A parameter read from a material file into a cell's struct. */
 typedef struct wff_param_key {
     const char *key;
     double *value;
 } wff_param_key;
+
+#define WFF_KEYS(table) (table), sizeof(table) / sizeof((table)[0])
 
 /* parse() helpers (docs/model.md §9). Read every key (missing: an error),
  * then check signs; each returns 0 or -1 with err naming the key. */
@@ -274,25 +286,60 @@ static inline int wff_params_nonnegative(const wff_kv *kv, const wff_param_key *
     return 0;
 }
 
-/* The exponents of King-type cells: locking c ≥ 1, shear flow n ≥ 1. */
-static inline int wff_params_exponents(const wff_kv *kv, double locking_exponent,
-                                       double flow_exponent, wff_error *err)
+/* Where a truss-and-spring cell keeps the parameters King-type cells share
+ * (docs/model.md §9; arrays are per family). */
+typedef struct wff_weave_params {
+    double *pitch0, *amplitude0;       /* p0_k, A0_k, m */
+    const char *yarn_key[2];           /* the yarn stiffness's keys: "k_1" or "EA_1", ... */
+    double *yarn_stiffness;            /* under yarn_key */
+    double *bending_stiffness;         /* kb_k */
+    double *compaction_force, *compaction_rate;  /* K_I, a */
+    double *locking_stiffness, *locking_exponent; /* K_d, c */
+    double *shear_stiffness, *flow_moment, *flow_rate, *flow_exponent; /* K_s, M_0, gammadot_0, n */
+    double *tension_only;
+} wff_weave_params;
+
+/* Read and check them: every key but n (default 1) and tension_only
+ * (default 0) required; p0, A0, the yarn stiffness, K_I, a, M_0 > 0; kb, K_d,
+ * K_s, gammadot_0 >= 0; c >= 1, n >= 1; tension_only 0 or 1. (Numbers are
+ * finite: wff_kv_number rejects inf and nan.) */
+static inline int wff_weave_parse(wff_kv *kv, const wff_weave_params *w, wff_error *err)
 {
-    if (!(locking_exponent >= 1))
+    const wff_param_key required[] = {
+        {"p0_1", &w->pitch0[0]}, {"p0_2", &w->pitch0[1]},
+        {"A0_1", &w->amplitude0[0]}, {"A0_2", &w->amplitude0[1]},
+        {w->yarn_key[0], &w->yarn_stiffness[0]}, {w->yarn_key[1], &w->yarn_stiffness[1]},
+        {"kb_1", &w->bending_stiffness[0]}, {"kb_2", &w->bending_stiffness[1]},
+        {"K_I", w->compaction_force}, {"a", w->compaction_rate},
+        {"K_d", w->locking_stiffness}, {"c", w->locking_exponent},
+        {"K_s", w->shear_stiffness}, {"M_0", w->flow_moment},
+        {"gammadot_0", w->flow_rate},
+    };
+    const wff_param_key positive[] = {
+        {"p0_1", &w->pitch0[0]}, {"p0_2", &w->pitch0[1]},
+        {"A0_1", &w->amplitude0[0]}, {"A0_2", &w->amplitude0[1]},
+        {w->yarn_key[0], &w->yarn_stiffness[0]}, {w->yarn_key[1], &w->yarn_stiffness[1]},
+        {"K_I", w->compaction_force}, {"a", w->compaction_rate}, {"M_0", w->flow_moment},
+    };
+    const wff_param_key nonnegative[] = {
+        {"kb_1", &w->bending_stiffness[0]}, {"kb_2", &w->bending_stiffness[1]},
+        {"K_d", w->locking_stiffness}, {"K_s", w->shear_stiffness},
+        {"gammadot_0", w->flow_rate},
+    };
+    if (wff_params_read(kv, WFF_KEYS(required), err) ||
+        wff_kv_number_or(kv, "n", 1.0, w->flow_exponent, err) ||
+        wff_kv_number_or(kv, "tension_only", 0.0, w->tension_only, err) ||
+        wff_params_positive(kv, WFF_KEYS(positive), err) ||
+        wff_params_nonnegative(kv, WFF_KEYS(nonnegative), err))
+        return -1;
+    if (!(*w->locking_exponent >= 1))
         return wff_kv_reject(kv, "c", err, "locking exponent must be >= 1 "
                              "(below 1 the locking stiffness is infinite at contact)");
-    if (!(flow_exponent >= 1))
+    if (!(*w->flow_exponent >= 1))
         return wff_kv_reject(kv, "n", err, "shear-flow exponent must be >= 1 "
                              "(below 1 the flow rate is singular at rest)");
-    return 0;
-}
-
-/* A 0/1 switch such as tension_only. */
-static inline int wff_params_switch(const wff_kv *kv, const char *key, double value,
-                                    wff_error *err)
-{
-    if (value != 0 && value != 1)
-        return wff_kv_reject(kv, key, err, "must be 0 or 1");
+    if (*w->tension_only != 0 && *w->tension_only != 1)
+        return wff_kv_reject(kv, "tension_only", err, "must be 0 or 1");
     return 0;
 }
 
