@@ -37,6 +37,12 @@
  * using ∂J/∂g_k = p_l (ĝ_k − cosθ ĝ_l)/sinθ. The compaction law is continued
  * past exp(30) by a cubic in the exponent (same value, slope and curvature)
  * so that the energy stays finite and consistent when compaction is extreme.
+ *
+ * The model is written once: king_family_at (one yarn family at a point),
+ * king_point_at (a point: compaction, both families, shear flow, residuals,
+ * Q_k coefficients, W_cell) on the frame of wff_yarn_kinematics (cell_laws.h).
+ * evaluate, energy_split, wave_speeds, the shared-kinematics path and the
+ * blocked kernel's lane loop all call them (docs/model.md §11).
  */
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
