@@ -435,8 +435,8 @@ static double step_growth(const wff_material *mat, const step_patch *patch, doub
         double energy = kinetic + t.internal_energy - rest;
         if (start < 0)
             start = energy;
-        double grown = t.bad_element >= 0 ? INFINITY : energy / start;
-        growth = grown > growth || isnan(grown) ? grown : growth;
+        double grown = t.bad_element >= 0 || isnan(energy) ? INFINITY : energy / start;
+        growth = fmax(growth, grown);
         if (!(growth <= STEP_STOP))
             break;
         for (int d = 0; d < n; d++)
