@@ -197,7 +197,7 @@ static int basket_evaluate(const void *params, const double F[6], const double d
         return WFF_POINT_DEGENERATE;
     }
     const wff_shear_flow flow = wff_shear_flow_step(k->shear_stiffness, k->flow_moment,
-                                                    k->flow_rate, k->flow_exponent, dt);
+                                                    k->flow_rate, dt);
     double gamma_f_new = wff_shear_flow_update(&flow, k->flow_exponent, pt.fr.gamma, gamma_f);
     double shear_elastic = pt.fr.gamma - gamma_f_new;         /* γᵉ */
     double shear_moment = k->shear_stiffness * shear_elastic; /* M_s, one crossover */

@@ -141,20 +141,18 @@ WFF_INLINE wff_spar wff_spar_law(double stiffness, double exponent, double lengt
 typedef struct wff_shear_flow {
     double stiffness;  /* K_s, N·m/rad */
     double moment;     /* M₀, N·m */
-    double exponent;   /* n ≥ 1 */
     double step;       /* Δt γ̇₀, 0 when γᶠ is held (Δt ≤ 0, γ̇₀ = 0 or K_s = 0) */
     double ratio;      /* r = Δt γ̇₀ K_s/M₀ of the closed form for n = 1 */
     double inv_ratio1; /* 1/(1 + r) */
 } wff_shear_flow;
 
 WFF_INLINE wff_shear_flow wff_shear_flow_step(double stiffness, double moment, double rate,
-                                              double exponent, double dt)
+                                              double dt)
 {
     wff_shear_flow s;
     int flows = dt > 0 && rate != 0 && stiffness != 0;
     s.stiffness = stiffness;
     s.moment = moment;
-    s.exponent = exponent;
     s.step = flows ? dt * rate : 0;
     s.ratio = flows ? dt * rate * stiffness / moment : 0;
     s.inv_ratio1 = 1 / (1 + s.ratio);

@@ -200,8 +200,7 @@ WFF_INLINE void king_point_at(const king_params *k, const wff_yarn_frame *fr, co
 
 static wff_shear_flow king_flow(const king_params *k, double dt)
 {
-    return wff_shear_flow_step(k->shear_stiffness, k->flow_moment, k->flow_rate,
-                               k->flow_exponent, dt);
+    return wff_shear_flow_step(k->shear_stiffness, k->flow_moment, k->flow_rate, dt);
 }
 
 /* docs/model.md §1–7: one material point. P = (1/(4 p1⁰ p2⁰)) Σ_k Q_k ⊗ G_k,
