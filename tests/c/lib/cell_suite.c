@@ -296,9 +296,13 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
                     blk.gamma_f[q][j] = gf0[q][j] = gf;
                 }
             }
-            if (cell->evaluate_tri_block(mat.params, dt, &blk) != 0)
-                break;
-            block_used = 1;
+            /* declining depends on the parameters only, never on the state */
+            int handled = cell->evaluate_tri_block(mat.params, dt, &blk) == 0;
+            CHECK(st, s == 0 || handled == block_used,
+                  "%s: the blocked path declines some states and not others", c->material);
+            block_used = handled;
+            if (!handled)
+                continue;
             for (int j = 0; j < WFF_BLOCK; j++) {
                 double F[6], P[6] = {0}, W = 0, Dis = 0, e = 0;
                 for (int i = 0; i < 6; i++)
