@@ -179,7 +179,7 @@ static inline __attribute__((always_inline)) void preload_pull_add(const wff_ele
     }
 }
 
-/* 2 for a NaN or infinite state (F_eff, ΔA) or result, else the cell's status:
+/* WFF_POINT_NONFINITE for a NaN or infinite state (F_eff, ΔA) or result, else the cell's status:
  * a NaN state is not a degenerate one (cells report both as degenerate). */
 static int point_ok(int status, const double Fe[6], const double dA[2],
                     const wff_point_result *r)
@@ -188,13 +188,13 @@ static int point_ok(int status, const double Fe[6], const double dA[2],
     for (int i = 0; i < 6; i++)
         state += Fe[i];
     if (!isfinite(state))
-        return 2;
+        return WFF_POINT_NONFINITE;
     if (status != WFF_POINT_OK)
         return status;
     double sum = r->energy + r->residual[0] + r->residual[1];
     for (int i = 0; i < 6; i++)
         sum += r->stress[i];
-    return isfinite(sum) ? WFF_POINT_OK : 2;
+    return isfinite(sum) ? WFF_POINT_OK : WFF_POINT_NONFINITE;
 }
 
 static void note_bad(wff_force_totals *t, int e, int q, int status)
@@ -275,7 +275,7 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
     for (int i = 0; i < 6; i++)
         state += Fe[i];
     if (!isfinite(state)) {
-        note_bad_sums(sums, e, 0, 2);
+        note_bad_sums(sums, e, 0, WFF_POINT_NONFINITE);
         return;
     }
     if (mat->cell->evaluate_shared && !em->reference_path) {
@@ -286,7 +286,7 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
         for (int i = 0; i < 6; i++)
             sum += P[i];
         if (status == WFF_POINT_OK && !isfinite(sum))
-            status = 2;
+            status = WFF_POINT_NONFINITE;
         if (status != WFF_POINT_OK) {
             note_bad_sums(sums, e, bad, status);
             return;
@@ -386,7 +386,8 @@ static int tri_block_forces(const wff_elements *el, const wff_element_material *
     for (int j = 0; j < n; j++) {
         int e = e0 + j;
         if (!ok[j]) {
-            note_bad_sums(sums, e, 0, !finite[j] || !blk.degenerate[j] ? 2 : WFF_POINT_DEGENERATE);
+            note_bad_sums(sums, e, 0, !finite[j] || !blk.degenerate[j] ? WFF_POINT_NONFINITE
+                                                                     : WFF_POINT_DEGENERATE);
             continue;
         }
         const int *node = el->tri + 3 * e;

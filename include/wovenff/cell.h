@@ -9,11 +9,36 @@
  * A cell is a constant ops table (in the spirit of SUNDIALS' N_Vector):
  *
  *   required   parse, evaluate, wave_speeds
- *   optional   energy_split, evaluate_shared, evaluate_tri_block (NULL when absent)
+ *   optional   energy_split, evaluate_shared, evaluate_tri_block,
+ *              reference_geometry (NULL when absent)
  *
  * and registers itself by name in its own source file with
  * WFF_REGISTER_CELL(table). Nothing outside that file names a cell: the
  * material file's `cell = NAME` line selects it through wff_cell_find().
+ *
+ * The contract (docs/model.md §10 lists the checks; tests/c/lib/cell_suite.c
+ * runs them on every registered cell):
+ *   - Reentrant. The ops run inside OpenMP loops, many threads at once on
+ *     the same params: no static mutable state, nothing written but the
+ *     outputs given; params are read only after parse().
+ *   - Static names. diag_names, diag_units and mech_names (and name, summary)
+ *     live as long as the program: static storage, never freed or rewritten.
+ *   - Sizes. n_amplitudes is 0 or 2 (WFF_AMPLITUDES_MAX); n_diag <=
+ *     WFF_DIAG_MAX; n_mech <= WFF_MECH_MAX; parse()'s struct fits in
+ *     WFF_CELL_PARAMS_MAX doubles.
+ *   - Statuses. evaluate and evaluate_shared return WFF_POINT_OK or
+ *     WFF_POINT_DEGENERATE; the element code adds WFF_POINT_NONFINITE for a
+ *     NaN or infinite state or result (a cell need not check for it).
+ *   - Exact derivatives. With dt = 0, stress = dW/dF and residual = −dW/d(dA)
+ *     (central differences), zero at the reference state; objective; the
+ *     energy split adds up to the energy.
+ *   - Fast paths agree. evaluate_shared and evaluate_tri_block give
+ *     evaluate()'s results to round-off, state update included.
+ *     evaluate_tri_block may decline a block (return −1) depending on the
+ *     parameters only, never on the state: a caller asks once per pass.
+ *   - Stable step. wave_speeds returns upper bounds: an explicit run at 0.9
+ *     of the step they give stays bounded (and at 1.1, where the bound is
+ *     tight, grows).
  *
  * Conventions (all SI):
  *   F        row-major 3x2: F11 F12 F21 F22 F31 F32, F_iJ = dx_i/dX_J; X_1 is
@@ -89,10 +114,12 @@ typedef struct wff_point_result {
     double diag[WFF_DIAG_MAX];    /* cell-specific, named by diag_names */
 } wff_point_result;
 
-/* evaluate() status */
+/* Point statuses. */
 enum {
     WFF_POINT_OK = 0,
-    WFF_POINT_DEGENERATE = 1  /* a yarn direction has zero length or the yarns are parallel */
+    WFF_POINT_DEGENERATE = 1, /* a yarn direction has zero length or the yarns are parallel */
+    WFF_POINT_NONFINITE = 2   /* NaN or infinity in the state or the result (set by the
+                                 element code, not by cells) */
 };
 
 struct wff_cell_type {
@@ -154,8 +181,9 @@ struct wff_cell_type {
     /* Optional, faster still: a whole block of triangles at once, written so
      * the compiler vectorises across the lanes. Returns 0 when it handled the
      * block, −1 when these parameters need the general path (the caller then
-     * uses evaluate_shared or evaluate). Must agree with evaluate() to
-     * round-off (tested). */
+     * uses evaluate_shared or evaluate); the answer depends on params only,
+     * never on the block's state. Must agree with evaluate() to round-off
+     * (tested). */
     int (*evaluate_tri_block)(const void *params, double dt, wff_tri_block *block);
 
     /* Optional. The reference geometry of the crimped-yarn picture, for

@@ -71,7 +71,7 @@ typedef struct wff_force_totals {
     double dissipated;       /* shear-flow dissipation in this pass, J */
     int bad_element;         /* −1, or the first element whose point failed */
     int bad_point;           /* quadrature point of bad_element */
-    int bad_status;          /* WFF_POINT_DEGENERATE, or 2 for a non-finite result */
+    int bad_status;          /* WFF_POINT_DEGENERATE or WFF_POINT_NONFINITE */
 } wff_force_totals;
 
 /* Allocate and compute the reference geometry; -1 with the element named if

@@ -102,29 +102,27 @@ typedef struct basket_params {
 _Static_assert(sizeof(basket_params) <= sizeof(((wff_material *)0)->params),
                "basket_params must fit in wff_material.params");
 
+/* One yarn family k at one point. */
+typedef struct basket_family {
+    double amplitude;      /* A_k, m */
+    double length;         /* L_k, half the transition, m */
+    double sin_b, cos_b;   /* sinβ_k, cosβ_k */
+    double tension;        /* T_k, N */
+    double bend;           /* β_k − β_k⁰, rad */
+    double moment;         /* M_bk, N·m */
+    double spar;           /* s_k = J/p_k, m */
+    double spar_length;    /* d_k, m */
+    wff_spar lock;         /* F_Lk, one spar's energy, −∂F_Lk/∂d_k */
+    double pair_length;    /* e_k, m */
+    wff_spar pair;         /* F_Pk, one spar's energy, −∂F_Pk/∂e_k */
+    double energy_yarn, energy_bending, energy_locking; /* J, per cell */
+} basket_family;
+
 /* Everything one evaluation computes, kept for evaluate, energy_split and wave_speeds. */
 typedef struct basket_point {
-    double gh[FAMILIES][3];          /* ĝ_k */
-    double p[FAMILIES];              /* p_k */
-    double cos_t, sin_t;             /* cosθ, sinθ */
-    double gamma;                    /* γ, rad */
-    double amplitude[FAMILIES];      /* A_k */
-    double length[FAMILIES];         /* L_k, half the transition */
-    double path[FAMILIES];           /* ℓ_k */
-    double crimp[FAMILIES];          /* β_k */
-    double tension[FAMILIES];        /* T_k */
-    double moment[FAMILIES];         /* M_bk */
-    double interference;             /* I */
-    double compaction;               /* F_I */
-    double compaction_slope;         /* ∂F_I/∂I */
-    double spar[FAMILIES];           /* s_k */
-    double spar_length[FAMILIES];    /* d_k */
-    double locking[FAMILIES];        /* F_Lk */
-    double locking_slope[FAMILIES];  /* −∂F_Lk/∂d_k */
-    double pair_length[FAMILIES];    /* e_k */
-    double pair_locking[FAMILIES];   /* F_Pk */
-    double pair_slope[FAMILIES];     /* −∂F_Pk/∂e_k */
-    double energy_yarn, energy_bending, energy_compaction, energy_locking;
+    wff_yarn_frame fr;             /* g_k, p_k, θ, J, γ */
+    wff_compaction compaction;     /* F_I at I = −ΔA_1 − ΔA_2, one crossover */
+    basket_family yarn[FAMILIES];
 } basket_point;
 
 static const char *const basket_diag_names[] = {"T1",   "T2",   "beta1", "beta2", "F_I",
@@ -138,156 +136,113 @@ static const char *const basket_mech_names[] = {"yarn_stretch", "yarn_bending", 
                                                 "locking", "shear"};
 enum { MECH_YARN, MECH_BENDING, MECH_COMPACTION, MECH_LOCKING, MECH_SHEAR, MECH_COUNT };
 
-/* One spar of reference length length0 at length `length`: force (K_d gap^c
- * when shorter than length0, else 0), its stiffness −∂F/∂length, and the
- * energy K_d gap^(c+1)/(c+1) of one spar. */
-static double spar_law(const basket_params *k, double length0, double length, double *slope,
-                       double *energy)
-{
-    double gap = length0 - length;
-    if (!(gap > 0)) {
-        *slope = *energy = 0;
-        return 0;
-    }
-    double c = k->locking_exponent;
-    double power = wff_locking_power(gap, c);
-    *energy = k->locking_stiffness * power * gap / (c + 1);
-    *slope = k->locking_stiffness * c * wff_locking_power(gap, c - 1);
-    return k->locking_stiffness * power;
-}
-
-/* Kinematics, laws and energies (all but shear, which needs the flow update). */
+/* Kinematics, laws and energies (all but shear, which needs the flow update):
+ * the yarn path, T_k, M_bk and both spars of each family, as in the header. */
 static int basket_point_eval(const basket_params *k, const double F[6], const double dA[2],
                              basket_point *pt)
 {
-    double area; /* J */
-    if (wff_yarn_kinematics(k->pitch0, F, pt->gh, pt->p, &area, &pt->cos_t, &pt->sin_t) !=
-        WFF_POINT_OK)
+    if (wff_yarn_kinematics(k->pitch0, F, &pt->fr) != WFF_POINT_OK)
         return WFF_POINT_DEGENERATE;
-    pt->gamma = M_PI_2 - atan2(pt->sin_t, pt->cos_t);
-
-    pt->interference = -dA[0] - dA[1];
-    double x = k->compaction_rate * pt->interference, primitive, slope;
-    double e = wff_compaction_exp(x, &primitive, &slope);
-    pt->compaction = k->compaction_force * (e - 1);
-    pt->compaction_slope = k->compaction_force * k->compaction_rate * slope;
-    pt->energy_compaction = CROSSOVERS * (k->compaction_force / k->compaction_rate *
-                                              (primitive - 1) -
-                                          k->compaction_force * pt->interference);
-
-    for (int f = 0; f < FAMILIES; f++)
-        pt->amplitude[f] = k->amplitude0[f] + dA[f];
-    double stack = pt->amplitude[0] + pt->amplitude[1]; /* A_1 + A_2 */
-    pt->energy_yarn = pt->energy_bending = pt->energy_locking = 0;
+    pt->compaction = wff_compaction_law(k->compaction_force, k->compaction_rate, dA);
+    double stack = k->amplitude0[0] + dA[0] + k->amplitude0[1] + dA[1]; /* A_1 + A_2 */
     for (int f = 0; f < FAMILIES; f++) {
-        double A = pt->amplitude[f];
-        pt->length[f] = sqrt(pt->p[f] * pt->p[f] + A * A);
-        pt->path[f] = 2 * pt->p[f] + 2 * pt->length[f];
-        pt->crimp[f] = atan2(A, pt->p[f]);
-        double stretch = pt->path[f] - k->path0[f];
+        basket_family *y = &pt->yarn[f];
+        double p = pt->fr.p[f], p0 = k->pitch0[f], A0 = k->amplitude0[f];
+        double A = A0 + dA[f];
+        y->amplitude = A;
+        y->length = sqrt(p * p + A * A);
+        y->sin_b = A / y->length;
+        y->cos_b = p / y->length;
+        double stretch = 2 * p + 2 * y->length - k->path0[f]; /* ℓ_k − ℓ_k⁰ */
         if (k->tension_only != 0 && stretch < 0)
             stretch = 0;
-        pt->tension[f] = k->yarn_stiffness[f] * stretch;
-        pt->energy_yarn += YARNS_PER_FAMILY * 0.5 * k->yarn_stiffness[f] * stretch * stretch;
-        double bend = pt->crimp[f] - k->crimp_angle0[f];
-        pt->moment[f] = k->bending_stiffness[f] * bend;
+        y->tension = k->yarn_stiffness[f] * stretch;
+        y->energy_yarn = YARNS_PER_FAMILY * 0.5 * k->yarn_stiffness[f] * stretch * stretch;
+        y->bend = atan((A * p0 - A0 * p) / (p * p0 + A * A0)); /* β_k − β_k⁰ */
+        y->moment = k->bending_stiffness[f] * y->bend;
         /* two springs per yarn half-repeat, two yarns per family */
-        pt->energy_bending += 2 * k->bending_stiffness[f] * bend * bend;
+        y->energy_bending = 2 * k->bending_stiffness[f] * y->bend * y->bend;
 
-        double energy;
-        pt->spar[f] = area / pt->p[f];
-        pt->spar_length[f] = sqrt(pt->spar[f] * pt->spar[f] + A * A);
-        pt->locking[f] = spar_law(k, k->spar_length0[f], pt->spar_length[f],
-                                  &pt->locking_slope[f], &energy);
-        pt->energy_locking += CROSSOVERS * energy;
-        pt->pair_length[f] = sqrt(pt->spar[f] * pt->spar[f] + stack * stack);
-        pt->pair_locking[f] = spar_law(k, k->pair_spar_length0[f], pt->pair_length[f],
-                                       &pt->pair_slope[f], &energy);
-        pt->energy_locking += CROSSOVERS * energy;
+        y->spar = pt->fr.J * pt->fr.inv_p[f];
+        y->spar_length = sqrt(y->spar * y->spar + A * A);
+        y->lock = wff_spar_law(k->locking_stiffness, k->locking_exponent, k->spar_length0[f],
+                               y->spar_length);
+        y->pair_length = sqrt(y->spar * y->spar + stack * stack);
+        y->pair = wff_spar_law(k->locking_stiffness, k->locking_exponent,
+                               k->pair_spar_length0[f], y->pair_length);
+        y->energy_locking = CROSSOVERS * (y->lock.energy + y->pair.energy);
     }
     return WFF_POINT_OK;
 }
 
-static void fill_nan(wff_point_result *out)
+/* The basket's W_cell terms but shear, J per cell. */
+static double basket_energy_but_shear(const basket_point *pt)
 {
-    double nan = NAN;
-    for (int i = 0; i < 6; i++)
-        out->stress[i] = nan;
-    out->residual[0] = out->residual[1] = nan;
-    out->energy = out->dissipated = out->gamma_f = nan;
-    for (int i = 0; i < DIAG_COUNT; i++)
-        out->diag[i] = nan;
+    double W = CROSSOVERS * pt->compaction.energy;
+    for (int f = 0; f < FAMILIES; f++)
+        W += pt->yarn[f].energy_yarn + pt->yarn[f].energy_bending + pt->yarn[f].energy_locking;
+    return W;
 }
 
+/* One material point (header: residual, stress, energy): P = (1/(16 p1⁰ p2⁰))
+ * Σ_k Q_k ⊗ G_k with Q_k from wff_q_coefficients (yarn term 4 (T_k (1 + cosβ_k)
+ * − M_bk sinβ_k/L_k), four shear couples, spar pulls N_m); dt > 0 advances γᶠ. */
 static int basket_evaluate(const void *params, const double F[6], const double dA[2],
                            double gamma_f, double dt, wff_point_result *out)
 {
     const basket_params *k = params;
     basket_point pt;
     if (basket_point_eval(k, F, dA, &pt) != WFF_POINT_OK) {
-        fill_nan(out);
+        wff_point_result_nan(out, DIAG_COUNT);
         return WFF_POINT_DEGENERATE;
     }
-    double gamma_f_new = wff_shear_flow_update(k->shear_stiffness, k->flow_moment, k->flow_rate,
-                         k->flow_exponent, pt.gamma, gamma_f, dt);
-    double shear_elastic = pt.gamma - gamma_f_new;            /* γᵉ */
+    const wff_shear_flow flow = wff_shear_flow_step(k->shear_stiffness, k->flow_moment,
+                                                    k->flow_rate, dt);
+    double gamma_f_new = wff_shear_flow_update(&flow, k->flow_exponent, pt.fr.gamma, gamma_f);
+    double shear_elastic = pt.fr.gamma - gamma_f_new;         /* γᵉ */
     double shear_moment = k->shear_stiffness * shear_elastic; /* M_s, one crossover */
 
-    double cs = pt.cos_t, sn = pt.sin_t;
-    double stack = pt.amplitude[0] + pt.amplitude[1];
+    double stack = pt.yarn[0].amplitude + pt.yarn[1].amplitude;
     /* N_m: the spars' pull on the in-plane half-gap s_m, all spars of the cell */
     double spar_pull[FAMILIES];
     double pair_normal = 0; /* Σ_m F_Pm/e_m, times (A_1 + A_2) in F_k^N */
     for (int m = 0; m < FAMILIES; m++) {
-        spar_pull[m] = CROSSOVERS * pt.spar[m] *
-                       (pt.locking[m] / pt.spar_length[m] + pt.pair_locking[m] / pt.pair_length[m]);
-        pair_normal += pt.pair_locking[m] / pt.pair_length[m];
+        const basket_family *y = &pt.yarn[m];
+        spar_pull[m] = CROSSOVERS * y->spar *
+                       (y->lock.force / y->spar_length + y->pair.force / y->pair_length);
+        pair_normal += y->pair.force / y->pair_length;
     }
 
-    /* q[f][m]: component of Q_f along ĝ_m */
-    double q[FAMILIES][FAMILIES] = {{0, 0}, {0, 0}};
+    double q[FAMILIES][FAMILIES]; /* Q_f along ĝ_m */
     for (int f = 0; f < FAMILIES; f++) {
-        int l = 1 - f;
-        double L = pt.length[f];
-        double sin_b = pt.amplitude[f] / L, cos_b = pt.p[f] / L;
+        const basket_family *y = &pt.yarn[f];
         /* two yarns, each ∂ℓ/∂p = 2(1 + cosβ) and two springs with ∂β/∂p = −sinβ/L */
-        q[f][f] += YARNS_PER_FAMILY * 2 *
-                   (pt.tension[f] * (1 + cos_b) - pt.moment[f] * sin_b / L);
-        double couple = CROSSOVERS * shear_moment / (pt.p[f] * sn);
-        q[f][l] += couple;
-        q[f][f] -= couple * cs;
-        double c_own = spar_pull[f] * pt.p[l] * cs / (pt.p[f] * sn); /* s_f = J/p_f */
-        q[f][f] -= c_own * cs;
-        q[f][l] += c_own;
-        double other = spar_pull[l] / sn;                              /* s_l = J/p_l */
-        q[f][f] -= other;
-        q[f][l] += other * cs;
-
-        double normal = pt.tension[f] * sin_b + pt.moment[f] * cos_b / L -
-                        pt.locking[f] * pt.amplitude[f] / pt.spar_length[f] -
+        double yarn = YARNS_PER_FAMILY * 2 *
+                      (y->tension * (1 + y->cos_b) - y->moment * y->sin_b / y->length);
+        wff_q_coefficients(&pt.fr, f, yarn, CROSSOVERS * shear_moment, spar_pull, &q[f][f],
+                           &q[f][1 - f]);
+        double normal = y->tension * y->sin_b + y->moment * y->cos_b / y->length -
+                        y->lock.force * y->amplitude / y->spar_length -
                         pair_normal * stack; /* F_k^N, per crossover: each yarn
                                                 half-repeat bears on two crossovers */
-        out->residual[f] = CROSSOVERS * (pt.compaction - normal) / k->cell_area;
+        out->residual[f] = CROSSOVERS * (pt.compaction.force - normal) / k->cell_area;
     }
-    for (int i = 0; i < 3; i++)
-        for (int f = 0; f < FAMILIES; f++)
-            out->stress[2 * i + f] = k->pitch0[f] / k->cell_area *
-                                     (q[f][0] * pt.gh[0][i] + q[f][1] * pt.gh[1][i]);
+    const double scale[FAMILIES] = {k->pitch0[0] / k->cell_area, k->pitch0[1] / k->cell_area};
+    wff_stress_from_q(&pt.fr, q, scale, out->stress);
 
     double energy_shear = CROSSOVERS * 0.5 * k->shear_stiffness * shear_elastic * shear_elastic;
-    out->energy = (pt.energy_yarn + pt.energy_bending + pt.energy_compaction +
-                   pt.energy_locking + energy_shear) / k->cell_area;
+    out->energy = (basket_energy_but_shear(&pt) + energy_shear) / k->cell_area;
     out->gamma_f = gamma_f_new;
     out->dissipated = CROSSOVERS * shear_moment * (gamma_f_new - gamma_f) / k->cell_area;
-    out->diag[DIAG_T1] = pt.tension[0];
-    out->diag[DIAG_T2] = pt.tension[1];
-    out->diag[DIAG_BETA1] = pt.crimp[0];
-    out->diag[DIAG_BETA2] = pt.crimp[1];
-    out->diag[DIAG_FI] = pt.compaction;
-    out->diag[DIAG_FL1] = pt.locking[0];
-    out->diag[DIAG_FL2] = pt.locking[1];
-    out->diag[DIAG_FP1] = pt.pair_locking[0];
-    out->diag[DIAG_FP2] = pt.pair_locking[1];
+    out->diag[DIAG_T1] = pt.yarn[0].tension;
+    out->diag[DIAG_T2] = pt.yarn[1].tension;
+    out->diag[DIAG_BETA1] = k->crimp_angle0[0] + pt.yarn[0].bend;
+    out->diag[DIAG_BETA2] = k->crimp_angle0[1] + pt.yarn[1].bend;
+    out->diag[DIAG_FI] = pt.compaction.force;
+    out->diag[DIAG_FL1] = pt.yarn[0].lock.force;
+    out->diag[DIAG_FL2] = pt.yarn[1].lock.force;
+    out->diag[DIAG_FP1] = pt.yarn[0].pair.force;
+    out->diag[DIAG_FP2] = pt.yarn[1].pair.force;
     out->diag[DIAG_MS] = shear_moment;
     return WFF_POINT_OK;
 }
@@ -302,11 +257,11 @@ static void basket_energy_split(const void *params, const double F[6], const dou
             mech[i] = NAN;
         return;
     }
-    double shear_elastic = pt.gamma - gamma_f;
-    mech[MECH_YARN] = pt.energy_yarn / k->cell_area;
-    mech[MECH_BENDING] = pt.energy_bending / k->cell_area;
-    mech[MECH_COMPACTION] = pt.energy_compaction / k->cell_area;
-    mech[MECH_LOCKING] = pt.energy_locking / k->cell_area;
+    double shear_elastic = pt.fr.gamma - gamma_f;
+    mech[MECH_YARN] = (pt.yarn[0].energy_yarn + pt.yarn[1].energy_yarn) / k->cell_area;
+    mech[MECH_BENDING] = (pt.yarn[0].energy_bending + pt.yarn[1].energy_bending) / k->cell_area;
+    mech[MECH_COMPACTION] = CROSSOVERS * pt.compaction.energy / k->cell_area;
+    mech[MECH_LOCKING] = (pt.yarn[0].energy_locking + pt.yarn[1].energy_locking) / k->cell_area;
     mech[MECH_SHEAR] =
         CROSSOVERS * 0.5 * k->shear_stiffness * shear_elastic * shear_elastic / k->cell_area;
 }
@@ -327,84 +282,53 @@ static void basket_wave_speeds(const void *params, double areal_density, const d
         *membrane_speed = *amplitude_omega = INFINITY;
         return;
     }
-    double sn = fmax(pt.sin_t, SHEAR_SINE_FLOOR);
+    double sn = fmax(pt.fr.sin_t, SHEAR_SINE_FLOOR);
     double shear = CROSSOVERS * k->shear_stiffness / (sn * sn);
     double lock = 0, pair = 0; /* Σ spar stiffness bounds K' + F/length */
     for (int m = 0; m < FAMILIES; m++) {
-        lock += pt.locking_slope[m] + pt.locking[m] / pt.spar_length[m];
-        pair += pt.pair_slope[m] + pt.pair_locking[m] / pt.pair_length[m];
+        const basket_family *y = &pt.yarn[m];
+        lock += y->lock.stiffness + y->lock.force / y->spar_length;
+        pair += y->pair.stiffness + y->pair.force / y->pair_length;
     }
     double membrane = 0, amplitude = 0;
     for (int f = 0; f < FAMILIES; f++) {
         int l = 1 - f;
-        double L = pt.length[f];
-        double sin_b = pt.amplitude[f] / L, cos_b = pt.p[f] / L;
+        const basket_family *y = &pt.yarn[f];
+        double L = y->length, sin_b = y->sin_b, cos_b = y->cos_b;
         /* a slack yarn (tension_only) keeps its stiffness in the bound: it can pull
          * tight within one step */
         double EAl = k->yarn_stiffness[f]; /* EA/ℓ⁰ */
-        double bend = 4 * (k->bending_stiffness[f] + fabs(pt.moment[f])) / (L * L);
+        double bend = 4 * (k->bending_stiffness[f] + fabs(y->moment)) / (L * L);
         double axial = YARNS_PER_FAMILY * (4 * EAl * (1 + cos_b) * (1 + cos_b) +
-                                           2 * fabs(pt.tension[f]) / L) + bend;
+                                           2 * fabs(y->tension) / L) + bend;
         double s_f = (axial * k->pitch0[f] * k->pitch0[f] +
                       2 * CROSSOVERS * (lock + pair) * k->pitch0[l] * k->pitch0[l] + shear) /
                      k->cell_area;
         membrane = fmax(membrane, s_f);
         double own = YARNS_PER_FAMILY * (4 * EAl * sin_b * sin_b +
-                                         2 * fabs(pt.tension[f]) * cos_b * cos_b / L) +
-                     bend + CROSSOVERS * (pt.locking_slope[f] + pt.locking[f] / pt.spar_length[f]);
-        double shared = CROSSOVERS * (pt.compaction_slope + pair); /* on every entry */
+                                         2 * fabs(y->tension) * cos_b * cos_b / L) +
+                     bend + CROSSOVERS * (y->lock.stiffness + y->lock.force / y->spar_length);
+        double shared = CROSSOVERS * (pt.compaction.stiffness + pair); /* on every entry */
         amplitude = fmax(amplitude, own + 2 * shared);
     }
     *membrane_speed = sqrt(membrane / areal_density);
     *amplitude_omega = sqrt(amplitude / k->cell_area / (areal_density / 6));
 }
 
+/* The material file's keys, checked; derived reference quantities ℓ_k⁰,
+ * EA_k/ℓ_k⁰, β_k⁰, d_k⁰, e_k⁰ (orthogonal reference weave) and the cell area. */
 static int basket_parse(wff_kv *kv, wff_material *mat, wff_error *err)
 {
     basket_params *k = (basket_params *)mat->params;
     memset(k, 0, sizeof *k);
-    struct { const char *key; double *value; } required[] = {
-        {"p0_1", &k->pitch0[0]}, {"p0_2", &k->pitch0[1]},
-        {"A0_1", &k->amplitude0[0]}, {"A0_2", &k->amplitude0[1]},
-        {"EA_1", &k->axial_rigidity[0]}, {"EA_2", &k->axial_rigidity[1]},
-        {"kb_1", &k->bending_stiffness[0]}, {"kb_2", &k->bending_stiffness[1]},
-        {"K_I", &k->compaction_force}, {"a", &k->compaction_rate},
-        {"K_d", &k->locking_stiffness}, {"c", &k->locking_exponent},
-        {"K_s", &k->shear_stiffness}, {"M_0", &k->flow_moment},
-        {"gammadot_0", &k->flow_rate},
+    const wff_weave_params shared = {
+        k->pitch0, k->amplitude0, {"EA_1", "EA_2"}, k->axial_rigidity, k->bending_stiffness,
+        &k->compaction_force, &k->compaction_rate, &k->locking_stiffness,
+        &k->locking_exponent, &k->shear_stiffness, &k->flow_moment, &k->flow_rate,
+        &k->flow_exponent, &k->tension_only,
     };
-    for (size_t i = 0; i < sizeof required / sizeof required[0]; i++)
-        if (wff_kv_number(kv, required[i].key, required[i].value, err))
-            return -1;
-    if (wff_kv_number_or(kv, "n", 1.0, &k->flow_exponent, err) ||
-        wff_kv_number_or(kv, "tension_only", 0.0, &k->tension_only, err))
+    if (wff_weave_parse(kv, &shared, err))
         return -1;
-
-    const char *positive[] = {"p0_1", "p0_2", "A0_1", "A0_2", "EA_1", "EA_2",
-                              "K_I", "a", "M_0"};
-    double *positive_v[] = {&k->pitch0[0], &k->pitch0[1], &k->amplitude0[0],
-                            &k->amplitude0[1], &k->axial_rigidity[0], &k->axial_rigidity[1],
-                            &k->compaction_force, &k->compaction_rate, &k->flow_moment};
-    for (size_t i = 0; i < sizeof positive / sizeof positive[0]; i++)
-        if (!(*positive_v[i] > 0))
-            return wff_kv_reject(kv, positive[i], err, "must be > 0");
-    const char *nonneg[] = {"kb_1", "kb_2", "K_d", "K_s", "gammadot_0"};
-    double *nonneg_v[] = {&k->bending_stiffness[0], &k->bending_stiffness[1],
-                          &k->locking_stiffness, &k->shear_stiffness, &k->flow_rate};
-    for (size_t i = 0; i < sizeof nonneg / sizeof nonneg[0]; i++)
-        if (!(*nonneg_v[i] >= 0))
-            return wff_kv_reject(kv, nonneg[i], err, "must be >= 0");
-    for (size_t i = 0; i < sizeof required / sizeof required[0]; i++)
-        if (!isfinite(*required[i].value))
-            return wff_kv_reject(kv, required[i].key, err, "must be finite");
-    if (!(k->locking_exponent >= 1))
-        return wff_kv_reject(kv, "c", err, "locking exponent must be >= 1 "
-                             "(below 1 the locking stiffness is infinite at contact)");
-    if (!(k->flow_exponent >= 1) || !isfinite(k->flow_exponent))
-        return wff_kv_reject(kv, "n", err, "shear-flow exponent must be >= 1 and finite "
-                             "(below 1 the flow rate is singular at rest)");
-    if (k->tension_only != 0 && k->tension_only != 1)
-        return wff_kv_reject(kv, "tension_only", err, "must be 0 or 1");
     for (int f = 0; f < FAMILIES; f++)
         if (!(k->amplitude0[f] < k->pitch0[f]))
             return wff_kv_reject(kv, f == 0 ? "A0_1" : "A0_2", err,
@@ -430,10 +354,7 @@ static int basket_parse(wff_kv *kv, wff_material *mat, wff_error *err)
 static void basket_reference_geometry(const void *params, double pitch0[2], double amplitude0[2])
 {
     const basket_params *k = params;
-    for (int f = 0; f < FAMILIES; f++) {
-        pitch0[f] = k->pitch0[f];
-        amplitude0[f] = k->amplitude0[f];
-    }
+    wff_reference_geometry_copy(k->pitch0, k->amplitude0, pitch0, amplitude0);
 }
 
 static const wff_cell_type basket_2x2 = {

@@ -36,6 +36,7 @@
  */
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
+#include "cell_laws.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -60,11 +61,8 @@ _Static_assert(sizeof(linear_params) <= sizeof(((wff_material *)0)->params),
 
 /* What one evaluation computes, shared by evaluate, energy_split, wave_speeds. */
 typedef struct linear_point {
-    double gh[FAMILIES][3];     /* ĝ_k */
-    double stretch[FAMILIES];   /* λ_k */
+    wff_yarn_frame fr;          /* ĝ_k, λ_k (as p_k with p_k⁰ = 1), θ, γ */
     double force[FAMILIES];     /* N_k = S_k (λ_k − 1), clipped when tension_only, N/m */
-    double cos_t, sin_t;        /* cosθ, sinθ */
-    double gamma;               /* γ, rad */
     double energy_yarn, energy_shear;
 } linear_point;
 
@@ -74,50 +72,26 @@ enum { DIAG_T1, DIAG_T2, DIAG_LAMBDA1, DIAG_LAMBDA2, DIAG_COUNT };
 static const char *const linear_mech_names[] = {"yarn_stretch", "shear"};
 enum { MECH_YARN, MECH_SHEAR, MECH_COUNT };
 
+/* The kinematics with G_k = E_k (docs/model.md §1, p_k⁰ = 1), N_k and W. */
 static int linear_point_eval(const linear_params *c, const double F[6], linear_point *pt)
 {
-    double g[FAMILIES][3];
-    for (int f = 0; f < FAMILIES; f++) {
-        for (int i = 0; i < 3; i++)
-            g[f][i] = F[2 * i + f];
-        pt->stretch[f] = sqrt(g[f][0] * g[f][0] + g[f][1] * g[f][1] + g[f][2] * g[f][2]);
-        if (!(pt->stretch[f] > 0))
-            return WFF_POINT_DEGENERATE;
-        for (int i = 0; i < 3; i++)
-            pt->gh[f][i] = g[f][i] / pt->stretch[f];
-    }
-    double n0 = pt->gh[0][1] * pt->gh[1][2] - pt->gh[0][2] * pt->gh[1][1];
-    double n1 = pt->gh[0][2] * pt->gh[1][0] - pt->gh[0][0] * pt->gh[1][2];
-    double n2 = pt->gh[0][0] * pt->gh[1][1] - pt->gh[0][1] * pt->gh[1][0];
-    pt->sin_t = sqrt(n0 * n0 + n1 * n1 + n2 * n2);
-    pt->cos_t = pt->gh[0][0] * pt->gh[1][0] + pt->gh[0][1] * pt->gh[1][1] +
-                pt->gh[0][2] * pt->gh[1][2];
-    if (!(pt->sin_t > 0))
+    static const double unit_pitch[FAMILIES] = {1, 1};
+    if (wff_yarn_kinematics(unit_pitch, F, &pt->fr) != WFF_POINT_OK)
         return WFF_POINT_DEGENERATE;
-    pt->gamma = M_PI_2 - atan2(pt->sin_t, pt->cos_t);
-
     pt->energy_yarn = 0;
     for (int f = 0; f < FAMILIES; f++) {
-        double strain = pt->stretch[f] - 1;
+        double strain = pt->fr.p[f] - 1;
         if (c->tension_only != 0 && strain < 0)
             strain = 0;
         pt->force[f] = c->stiffness[f] * strain;
         pt->energy_yarn += 0.5 * c->stiffness[f] * strain * strain;
     }
-    pt->energy_shear = 0.5 * c->shear_stiffness * pt->gamma * pt->gamma;
+    pt->energy_shear = 0.5 * c->shear_stiffness * pt->fr.gamma * pt->fr.gamma;
     return WFF_POINT_OK;
 }
 
-static void fill_nan(wff_point_result *out)
-{
-    for (int i = 0; i < 6; i++)
-        out->stress[i] = NAN;
-    out->residual[0] = out->residual[1] = NAN;
-    out->energy = out->dissipated = out->gamma_f = NAN;
-    for (int i = 0; i < DIAG_COUNT; i++)
-        out->diag[i] = NAN;
-}
-
+/* P = Σ_k Q_k ⊗ E_k, Q_k = N_k ĝ_k + G γ/(λ_k sinθ) (ĝ_l − cosθ ĝ_k): the
+ * shared Q coefficients with the yarn term N_k, the couple G γ, no spars. */
 static int linear_evaluate(const void *params, const double F[6], const double dA[2],
                            double gamma_f, double dt, wff_point_result *out)
 {
@@ -126,29 +100,23 @@ static int linear_evaluate(const void *params, const double F[6], const double d
     const linear_params *c = params;
     linear_point pt;
     if (linear_point_eval(c, F, &pt) != WFF_POINT_OK) {
-        fill_nan(out);
+        wff_point_result_nan(out, DIAG_COUNT);
         return WFF_POINT_DEGENERATE;
     }
-    /* q[f][m]: component of Q_f along ĝ_m */
-    double q[FAMILIES][FAMILIES];
-    double shear = c->shear_stiffness * pt.gamma; /* G γ, N/m */
-    for (int f = 0; f < FAMILIES; f++) {
-        int l = 1 - f;
-        double couple = shear / (pt.stretch[f] * pt.sin_t);
-        q[f][f] = pt.force[f] - couple * pt.cos_t;
-        q[f][l] = couple;
-    }
-    for (int i = 0; i < 3; i++)
-        for (int f = 0; f < FAMILIES; f++)
-            out->stress[2 * i + f] = q[f][0] * pt.gh[0][i] + q[f][1] * pt.gh[1][i];
+    static const double no_spars[FAMILIES] = {0, 0}, unit_scale[FAMILIES] = {1, 1};
+    double q[FAMILIES][FAMILIES]; /* Q_f along ĝ_m */
+    double shear = c->shear_stiffness * pt.fr.gamma; /* G γ, N/m */
+    for (int f = 0; f < FAMILIES; f++)
+        wff_q_coefficients(&pt.fr, f, pt.force[f], shear, no_spars, &q[f][f], &q[f][1 - f]);
+    wff_stress_from_q(&pt.fr, q, unit_scale, out->stress);
     out->residual[0] = out->residual[1] = 0;
     out->energy = pt.energy_yarn + pt.energy_shear;
     out->gamma_f = gamma_f;
     out->dissipated = 0;
     out->diag[DIAG_T1] = pt.force[0] * c->yarn_spacing[0];
     out->diag[DIAG_T2] = pt.force[1] * c->yarn_spacing[1];
-    out->diag[DIAG_LAMBDA1] = pt.stretch[0];
-    out->diag[DIAG_LAMBDA2] = pt.stretch[1];
+    out->diag[DIAG_LAMBDA1] = pt.fr.p[0];
+    out->diag[DIAG_LAMBDA2] = pt.fr.p[1];
     return WFF_POINT_OK;
 }
 
@@ -213,15 +181,15 @@ static void linear_wave_speeds(const void *params, double areal_density, const d
         *membrane_speed = INFINITY;
         return;
     }
-    double sn = fmax(pt.sin_t, SHEAR_SINE_FLOOR);
-    double stretch_min = fmin(pt.stretch[0], pt.stretch[1]);
-    double shear = 2 * c->shear_stiffness * (1 + fabs(pt.gamma) * (1 + 1 / sn)) /
+    double sn = fmax(pt.fr.sin_t, SHEAR_SINE_FLOOR);
+    double stretch_min = fmin(pt.fr.p[0], pt.fr.p[1]);
+    double shear = 2 * c->shear_stiffness * (1 + fabs(pt.fr.gamma) * (1 + 1 / sn)) /
                    (stretch_min * stretch_min);
     double membrane = 0;
     for (int f = 0; f < FAMILIES; f++) {
         /* a slack yarn (tension_only) keeps its stiffness in the bound: it can pull
          * tight within one step */
-        double s_f = c->stiffness[f] + fabs(pt.force[f]) / pt.stretch[f] + shear;
+        double s_f = c->stiffness[f] + fabs(pt.force[f]) / pt.fr.p[f] + shear;
         membrane = fmax(membrane, s_f);
     }
     *membrane_speed = sqrt(membrane / areal_density);

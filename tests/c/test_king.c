@@ -1,4 +1,4 @@
-/* King plain-weave cell: checks specific to its laws (docs/model.md §3–7, and the preload of §13). */
+/* King plain-weave cell: checks specific to its laws (docs/model.md §3–7, §10, and the preload of §13). */
 #include "check.h"
 #include "wovenff/balance.h"
 #include "wovenff/material.h"

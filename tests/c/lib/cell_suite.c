@@ -1,11 +1,18 @@
 #include "cell_suite.h"
 #include "rng.h"
+#include "test_meshes.h"
+#include "wovenff/balance.h"
 #include "wovenff/material.h"
+#include "wovenff/membrane.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
+#define D WFF_DOFS_PER_NODE
+
 #define N_STATES 200
+
 
 static double max_abs(const double *v, int n)
 {
@@ -81,9 +88,43 @@ void cell_suite_run(check_state *st, const cell_case *c)
     CHECK(st, rc == 0, "%s: %s", c->material, err.message);
     if (rc)
         return;
+    CHECK(st, wff_cell_find(mat.cell->name) == mat.cell, "registry finds %s", mat.cell->name);
+    cell_suite_check(st, c, &mat);
+}
+
+/* The ops table's sizes and names (cell.h's contract). */
+static void check_table(check_state *st, const wff_cell_type *cell)
+{
+    CHECK(st, cell->n_amplitudes == 0 || cell->n_amplitudes == WFF_AMPLITUDES_MAX,
+          "%s: n_amplitudes %d is neither 0 nor %d", cell->name, cell->n_amplitudes,
+          WFF_AMPLITUDES_MAX);
+    CHECK(st, cell->n_diag >= 0 && cell->n_diag <= WFF_DIAG_MAX,
+          "%s: n_diag %d outside 0..%d", cell->name, cell->n_diag, WFF_DIAG_MAX);
+    CHECK(st, cell->n_mech >= 0 && cell->n_mech <= WFF_MECH_MAX,
+          "%s: n_mech %d outside 0..%d", cell->name, cell->n_mech, WFF_MECH_MAX);
+    for (int i = 0; i < cell->n_diag && i < WFF_DIAG_MAX; i++)
+        CHECK(st, cell->diag_names && cell->diag_names[i] && cell->diag_units &&
+                      cell->diag_units[i],
+              "%s: diagnostic %d has no name or unit", cell->name, i);
+    for (int i = 0; i < cell->n_mech && i < WFF_MECH_MAX; i++)
+        CHECK(st, cell->mech_names && cell->mech_names[i], "%s: mechanism %d has no name",
+              cell->name, i);
+    for (int k = 0; k < 2; k++)
+        CHECK(st, cell->yarn_tension_diag[k] >= -1 && cell->yarn_tension_diag[k] < cell->n_diag,
+              "%s: yarn_tension_diag[%d] = %d", cell->name, k, cell->yarn_tension_diag[k]);
+    CHECK(st, cell->parse && cell->evaluate && cell->wave_speeds, "%s: a required op is NULL",
+          cell->name);
+}
+
+void cell_suite_check(check_state *st, const cell_case *c, const wff_material *material)
+{
+    wff_material mat = *material;
+    wff_error err;
+    int rc;
     const wff_cell_type *cell = mat.cell;
-    CHECK(st, wff_cell_find(cell->name) == cell, "registry finds %s", cell->name);
-    CHECK(st, cell->n_diag <= WFF_DIAG_MAX && cell->n_mech <= WFF_MECH_MAX, "table sizes");
+    check_table(st, cell);
+    if (cell->n_diag > WFF_DIAG_MAX || cell->n_mech > WFF_MECH_MAX)
+        return; /* the checks below would overrun their arrays */
     rng r = {0x9E3779B97F4A7C15ULL};
     wff_point_result out, out2;
 
@@ -255,9 +296,13 @@ void cell_suite_run(check_state *st, const cell_case *c)
                     blk.gamma_f[q][j] = gf0[q][j] = gf;
                 }
             }
-            if (cell->evaluate_tri_block(mat.params, dt, &blk) != 0)
-                break;
-            block_used = 1;
+            /* declining depends on the parameters only, never on the state */
+            int handled = cell->evaluate_tri_block(mat.params, dt, &blk) == 0;
+            CHECK(st, s == 0 || handled == block_used,
+                  "%s: the blocked path declines some states and not others", c->material);
+            block_used = handled;
+            if (!handled)
+                continue;
             for (int j = 0; j < WFF_BLOCK; j++) {
                 double F[6], P[6] = {0}, W = 0, Dis = 0, e = 0;
                 for (int i = 0; i < 6; i++)
@@ -307,4 +352,157 @@ void cell_suite_run(check_state *st, const cell_case *c)
     rc = wff_material_evaluate(&mat, F_bad, zero, 0, 0, &out);
     CHECK(st, rc == WFF_POINT_DEGENERATE && isnan(out.stress[0]),
           "%s: parallel yarns flagged degenerate", c->material);
+    cell_suite_stable_step(st, &mat, c->material);
+}
+
+/* ---- stable step (docs/model.md §12) ----------------------------------- */
+
+/* Central differences on a clamped strip: nx × ny cells of dx × dy, split
+ * into triangles (one diagonal direction), prestretched uniformly to
+ * λ = STEP_PRESTRETCH in both directions with the amplitudes balanced, so the
+ * unperturbed state is an equilibrium (and tension-only yarns stay taut); the
+ * displacement DOFs of the edge nodes are held.
+ *
+ * Why the estimate is tight here (so 1.1x grows, where on a real mesh it is
+ * ~25 % conservative): membrane waves on cells with dy = 10 dx, where each row
+ * of nodes is a chain along the warp of spacing dx, whose fastest mode
+ * (neighbours in opposition) has dt = dx/c exactly, and the triangles'
+ * smallest altitude is 0.995 dx; amplitude masses × 1e6 keep the amplitude
+ * oscillator out of the estimate. Amplitude waves on 50 mm cells: with the
+ * membrane held by its mass, each node's amplitudes are the cell's own
+ * oscillator (stiffness ∂²W/∂ΔA², mass ρ_A/6 per area), whose Gershgorin
+ * bound is nearly exact; membrane waves there are ~40 times slower. */
+#define STEP_PRESTRETCH 1.003
+#define STEP_NX 12
+#define STEP_NY 3
+#define STEP_STEPS 400
+#define STEP_GROWN 1e6   /* energy growth taken as instability */
+#define STEP_BOUNDED 10  /* energy growth allowed below the bound (the discrete energy of
+                            a mode near the limit swings by a few times) */
+#define STEP_STOP 1e30   /* a run stops once grown this much */
+
+typedef struct step_patch {
+    double dx, dy;         /* cell size, m */
+    double mass_factor;    /* amplitude masses × this (wff_element_material) */
+} step_patch;
+
+/* Runs the patch at `ratio` × the cell's own stable-step estimate from a
+ * perturbed state; returns the largest (kinetic + stored − stored at rest)
+ * energy over the run divided by its start (huge or infinite when it blows
+ * up), *dt_est the estimate. -1 on set-up failure. */
+static double step_growth(const wff_material *mat, const step_patch *patch, double ratio,
+                          double *dt_est)
+{
+    test_rect r = {0, STEP_NX * patch->dx, 0, STEP_NY * patch->dy, STEP_NX, STEP_NY,
+                   TEST_MESH_TRI, 0, 0, 0};
+    wff_mesh mesh;
+    wff_elements el;
+    wff_error err;
+    if (test_mesh_rect(&r, &mesh))
+        return -1;
+    if (wff_elements_init(&el, mesh.xy, mesh.n_tris, mesh.tri, 0, NULL, &err)) {
+        wff_mesh_free(&mesh);
+        return -1;
+    }
+    const int nn = mesh.n_nodes, n = D * nn;
+    wff_element_material em = {mat, {1, 0, 0, 1}, 1, 0, patch->mass_factor, 0};
+    double *u = calloc((size_t)n, sizeof(double)), *v = calloc((size_t)n, sizeof(double));
+    double *f = calloc((size_t)n, sizeof(double)), *mass = calloc((size_t)n, sizeof(double));
+    double *gamma_f = calloc((size_t)3 * mesh.n_tris, sizeof(double));
+    unsigned char *held = calloc((size_t)n, 1);
+    double growth = -1;
+    if (!u || !v || !f || !mass || !gamma_f || !held)
+        goto done;
+    double F[6] = {STEP_PRESTRETCH, 0, 0, STEP_PRESTRETCH, 0, 0}, dA[2] = {0, 0};
+    if (mat->cell->n_amplitudes && wff_balance_amplitudes(mat, F, 0, dA, &err))
+        goto done;
+    rng g = {0x2545F4914F6CDD1DULL};
+    for (int a = 0; a < nn; a++) {
+        int i = a % (STEP_NX + 1), j = a / (STEP_NX + 1);
+        int edge = i == 0 || i == STEP_NX || j == 0 || j == STEP_NY;
+        for (int c = 0; c < 2; c++)
+            u[D * a + c] = (STEP_PRESTRETCH - 1) * mesh.xy[2 * a + c];
+        for (int k = 0; k < 2; k++)
+            u[D * a + 3 + k] = dA[k];
+        for (int c = 0; c < 3; c++)
+            held[D * a + c] = edge;
+    }
+    wff_elements_masses(&el, &em, nn, mass);
+    wff_force_totals t;
+    wff_elements_forces(&el, &em, mesh.xy, u, gamma_f, 0, f, &t);
+    double rest = t.internal_energy; /* stored energy of the unperturbed state */
+    /* perturbation: strains of ~1e-6, amplitude changes of ~1e-12 m */
+    for (int d = 0; d < n; d++)
+        if (!held[d])
+            u[d] += (d % D < 3 ? 1e-6 * patch->dx : 1e-12) * rng_uniform(&g, -1, 1);
+    int worst;
+    *dt_est = wff_elements_stable_step(&el, &em, mesh.xy, u, &worst);
+    const double dt = ratio * *dt_est;
+    double start = -1;
+    growth = 0;
+    for (int s = 0; s <= STEP_STEPS; s++) {
+        memset(f, 0, sizeof(double) * (size_t)n);
+        wff_elements_forces(&el, &em, mesh.xy, u, gamma_f, 0, f, &t);
+        double kinetic = 0;
+        for (int d = 0; d < n; d++)
+            kinetic += 0.5 * mass[d] * v[d] * v[d];
+        double energy = kinetic + t.internal_energy - rest;
+        if (start < 0)
+            start = energy;
+        double grown = t.bad_element >= 0 || isnan(energy) ? INFINITY : energy / start;
+        growth = fmax(growth, grown);
+        if (!(growth <= STEP_STOP))
+            break;
+        for (int d = 0; d < n; d++)
+            if (!held[d] && mass[d] > 0) {
+                v[d] += dt * f[d] / mass[d];
+                u[d] += dt * v[d];
+            }
+    }
+done:
+    free(u), free(v), free(f), free(mass), free(gamma_f), free(held);
+    wff_elements_free(&el);
+    wff_mesh_free(&mesh);
+    return growth;
+}
+
+int cell_suite_stable_step(check_state *st, const wff_material *mat, const char *label)
+{
+    /* membrane waves: 1 mm cells, amplitude masses × 1e6 (their step 1000 times
+     * longer); amplitudes: 50 mm cells (membrane step ~40 times longer) */
+    const step_patch patches[2] = {{1e-3, 10e-3, 1e6}, {50e-3, 50e-3, 1}};
+    const char *what[2] = {"membrane", "amplitude"};
+    int failures = st->failures;
+    for (int p = 0; p < (mat->cell->n_amplitudes ? 2 : 1); p++) {
+        double dt_est = 0, dt_unused;
+        double above = step_growth(mat, &patches[p], 1.1, &dt_est);
+        double below = step_growth(mat, &patches[p], 0.9, &dt_unused);
+        /* for the record: where the growth sets in (bisection between the two) */
+        double lo = 0.9, hi = 1.1;
+        int sought = below <= STEP_BOUNDED && above >= STEP_GROWN;
+        for (int it = 0; it < 7 && sought; it++) {
+            double mid = 0.5 * (lo + hi);
+            if (step_growth(mat, &patches[p], mid, &dt_unused) >= STEP_GROWN)
+                hi = mid;
+            else
+                lo = mid;
+        }
+        char onset[64] = "";
+        if (sought)
+            snprintf(onset, sizeof onset, "; grows past x%.0e from %.3fx", STEP_GROWN, hi);
+        printf("  %-48s stable step (%s waves) %.3g s: energy x%.3g%s at 1.1x, x%.3g%s at "
+               "0.9x%s\n", label, what[p], dt_est, fmin(above, STEP_STOP),
+               above >= STEP_STOP ? "+" : "", fmin(below, STEP_STOP),
+               below >= STEP_STOP ? "+" : "", onset);
+        CHECK(st, below >= 0 && above >= 0, "%s: stable-step patch could not be set up", label);
+        CHECK(st, below <= STEP_BOUNDED,
+              "%s: the stable-step bound is not an upper bound (%s waves): at 0.9x the "
+              "estimated step %.3g s the energy grows %.3g times in %d steps",
+              label, what[p], dt_est, below, STEP_STEPS);
+        CHECK(st, above >= STEP_GROWN,
+              "%s: the stable-step check is not discriminating (%s waves): at 1.1x the "
+              "estimated step %.3g s the energy grows only %.3g times",
+              label, what[p], dt_est, above);
+    }
+    return st->failures - failures;
 }
