@@ -1,4 +1,4 @@
-/* wovenff — membrane elements with crimp-amplitude DOFs (paper §2.2, MODEL.md §8).
+/* wovenff — membrane elements with crimp-amplitude DOFs (paper §2.2, docs/model.md §8).
  *
  * Each node carries five DOFs, interleaved node-major: u_x, u_y, u_z, ΔA1, ΔA2
  * (the layout of FreeFEM's fespace [P1,P1,P1,P1,P1]). Two element types:
