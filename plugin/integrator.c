@@ -135,9 +135,12 @@ static void update_velocities(wff_model *m, double dt_mid, double dt_done)
         double speed = hypot(free_x ? vn[0] : 0, free_y ? vn[1] : 0);
         if (speed == 0)
             continue;
+        /* both faces press with N_a; an out-of-plane load R_z adds to one */
+        double pressed = 2 * m->clamp.normal_force[c];
+        if (m->clamp.edge_reaction)
+            pressed += fabs(m->reaction[D * n + WFF_UZ]);
         double impulse = friction_impulse(m->mass[D * n], speed,
-                                          2 * m->clamp.mu * m->clamp.normal_force[c] * dt_mid,
-                                          &dissipated);
+                                          m->clamp.mu * pressed * dt_mid, &dissipated);
         double scale = 1 - impulse / (m->mass[D * n] * speed);
         if (free_x)
             vn[0] *= scale;

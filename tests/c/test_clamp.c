@@ -20,6 +20,7 @@
 #include "wovenff/solver.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define KEVLAR "freefem_scripts/materials/kevlar_s706.txt"
@@ -115,9 +116,172 @@ static void check_symmetry_line(check_state *st)
           2 * mu * N_slip);
 }
 
+
+/* 2. The strip (16 x 2 cells, diagonals all one way, 3.125 mm square cells)
+ * with its right half x >= 25 mm made a second physical surface "clamp": a
+ * node inside it is a corner of 6 triangles (area h²), a node on its boundary
+ * x = 25 mm inside the strip of 3 of them (h²/2), whatever the free fabric
+ * beside it adds to its lumped mass. */
+static void check_force_sharing(check_state *st)
+{
+    const int nx = 16, ny = 2;
+    const double length = 0.05, width = 0.00625, h = length / nx, N = 10, mu = 0.3;
+    test_rect r = {0, length, 0, width, nx, ny, TEST_MESH_TRI, 0, 0, 0};
+    wff_mesh mesh;
+    wff_model m;
+    wff_error err;
+    if (test_mesh_rect(&r, &mesh)) {
+        CHECK(st, 0, "test mesh");
+        return;
+    }
+    for (int e = 0; e < mesh.n_tris; e++) {
+        const int *t = mesh.tri + 3 * e;
+        double xc = (mesh.xy[2 * t[0]] + mesh.xy[2 * t[1]] + mesh.xy[2 * t[2]]) / 3;
+        if (xc > 0.5 * length)
+            mesh.tri_region[e] = 20;
+    }
+    wff_mesh_group *g = realloc(mesh.groups, sizeof *g * (size_t)(mesh.n_groups + 1));
+    if (!g) {
+        wff_mesh_free(&mesh);
+        CHECK(st, 0, "out of memory");
+        return;
+    }
+    mesh.groups = g;
+    g[mesh.n_groups] = (wff_mesh_group){.dim = 2, .tag = 20};
+    snprintf(g[mesh.n_groups].name, sizeof g[0].name, "clamp");
+    mesh.n_groups++;
+    if (wff_model_create_from_mesh(&m, &mesh, KEVLAR, &err)) {
+        CHECK(st, 0, "%s", err.message);
+        return;
+    }
+    int n = wff_model_clamp_friction(&m, "clamp", N, mu, &err);
+    CHECK(st, n == (nx / 2 + 1) * (ny + 1), "clamped nodes: %d: %s", n, err.message);
+    const int boundary = 1 * (nx + 1) + nx / 2;  /* node (8, 1): x = 25 mm, mid-width */
+    const int inside = 1 * (nx + 1) + nx / 2 + 2; /* node (10, 1) */
+    double share[2] = {0, 0}, sum = 0;
+    for (int i = 0; i < m.clamp.n; i++) {
+        sum += m.clamp.normal_force[i];
+        if (m.clamp.node[i] == boundary)
+            share[0] = m.clamp.normal_force[i];
+        if (m.clamp.node[i] == inside)
+            share[1] = m.clamp.normal_force[i];
+    }
+    const double area = 0.5 * length * width; /* the clamp's area */
+    printf("2. force shared by the clamp's area: %d nodes, boundary node %.6g N (want %.6g), "
+           "inside %.6g N (want %.6g), sum %.12g N\n", n, share[0], N * 0.5 * h * h / area,
+           share[1], N * h * h / area, sum);
+    CHECK(st, fabs(sum - N) <= 1e-12 * N, "force sum %.17g vs %g", sum, N);
+    CHECK_CLOSE(st, share[1], N * h * h / area, 1e-12, 0, "inside node: N h^2 / area");
+    CHECK_CLOSE(st, share[0], N * 0.5 * h * h / area, 1e-12, 0,
+                "boundary node: half an inside node (its free side does not count)");
+    /* pressed only within 40 mm of (0, 0): the sum stays N, nodes beyond get
+     * none, those within keep their proportions (one common factor) */
+    double *before = malloc(sizeof(double) * (size_t)m.clamp.n);
+    if (!before) {
+        CHECK(st, 0, "out of memory");
+        wff_model_free(&m);
+        return;
+    }
+    memcpy(before, m.clamp.normal_force, sizeof(double) * (size_t)m.clamp.n);
+    int rc = wff_model_set_option(&m, "clamp_radius", 0.04, &err);
+    CHECK(st, rc == 0, "clamp_radius: %s", rc ? err.message : "");
+    double inner = 0, outer = 0, factor = 0, worst = 0;
+    int n_inner = 0;
+    for (int i = 0; i < m.clamp.n; i++) {
+        const double *p = m.mesh.xy + 2 * m.clamp.node[i];
+        if (hypot(p[0], p[1]) > 0.04) {
+            outer += fabs(m.clamp.normal_force[i]);
+            continue;
+        }
+        inner += m.clamp.normal_force[i];
+        n_inner++;
+        double f = m.clamp.normal_force[i] / before[i];
+        if (factor == 0)
+            factor = f;
+        worst = fmax(worst, fabs(f / factor - 1));
+    }
+    free(before);
+    CHECK(st, fabs(inner - N) <= 1e-12 * N && outer == 0 && n_inner == 5 * (ny + 1),
+          "within the radius (%d nodes): %.17g N, beyond %g N", n_inner, inner, outer);
+    CHECK(st, factor > 1 && worst < 1e-12, "one factor %g for the nodes within (spread %g)",
+          factor, worst);
+    rc = wff_model_set_option(&m, "clamp_radius", 0.001, &err);
+    CHECK(st, rc != 0, "a radius with no clamped node inside is an error");
+    double after = 0;
+    for (int i = 0; i < m.clamp.n; i++)
+        after += m.clamp.normal_force[i];
+    CHECK(st, fabs(after - N) <= 1e-12 * N, "the failed setting left the force as it was: %g",
+          after);
+    wff_model_free(&m);
+}
+
+/* 3. The strip turned rigidly by 45° about its clamped end (u_x = X (cos θ − 1),
+ * u_z = X sin θ: no strain) and pulled along itself: the clamp holds the
+ * strip's tension T against u_z with R_z = T sin θ, so it slides when
+ * T cos θ = μ (2N + T sin θ), i.e. at an x load 2 μ N / (1 − μ) with
+ * clamp_edge_reaction 1, and at 2 μ N without. */
+static double tilted_sliding_load(check_state *st, double N, double mu, int edge_reaction)
+{
+    const double length = 0.05, theta = M_PI / 4, pull = 0.5e-3;
+    test_rect r = {0, length, 0, 0.01, 16, 2, TEST_MESH_TRI, 1, 0, 0};
+    wff_model m;
+    wff_error err;
+    if (test_model_rect(&m, &r, KEVLAR, &err)) {
+        CHECK(st, 0, "%s", err.message);
+        return 0;
+    }
+    int rc = wff_model_clamp_friction(&m, "left", N, mu, &err) != 3 ||
+             wff_model_set_option(&m, "clamp_edge_reaction", edge_reaction, &err);
+    CHECK(st, rc == 0, "set-up: %s", err.message);
+    for (int n = 0; n < m.n_nodes; n++) {
+        double X = m.mesh.xy[2 * n];
+        m.u[D * n + WFF_UX] = X * (cos(theta) - 1);
+        m.u[D * n + WFF_UZ] = X * sin(theta);
+    }
+    const double V = 0.75, t_ramp = 0.1e-3, block = 5e-6, t_cruise = pull / V - t_ramp;
+    double load = 0, prev_slip = 0;
+    int n_slip = 0;
+    while (rc == 0 && m.time < t_ramp + t_cruise) {
+        double t = m.time + 0.5 * block, v = test_ramp_velocity(t, V, t_ramp, t_cruise);
+        rc = wff_model_prescribe_group(&m, "right", WFF_UX, v * cos(theta), &err) < 0 ||
+             wff_model_prescribe_group(&m, "right", WFF_UZ, v * sin(theta), &err) < 0 ||
+             wff_model_advance(&m, m.time + block, 10000000, &err);
+        CHECK(st, rc == 0, "tilted pull: %s", rc ? err.message : "");
+        if (rc)
+            break;
+        double slip = 0, rx;
+        for (int i = 0; i < m.clamp.n; i++)
+            slip = fmax(slip, fabs(m.u[D * m.clamp.node[i]]));
+        wff_model_group_reaction(&m, "right", WFF_UX, &rx, &err);
+        if (t > t_ramp && slip > prev_slip + 0.5 * V * cos(theta) * block) {
+            load += rx;
+            n_slip++;
+        }
+        prev_slip = slip;
+    }
+    CHECK(st, n_slip > 10, "the tilted strip slid in the clamp (%d blocks)", n_slip);
+    wff_model_free(&m);
+    return n_slip ? load / n_slip : 0;
+}
+
+static void check_edge_reaction(check_state *st)
+{
+    const double N = 5, mu = 0.3;
+    double with = tilted_sliding_load(st, N, mu, 1), without = tilted_sliding_load(st, N, mu, 0);
+    printf("3. strip at 45 deg pulled along itself: x load while sliding %.3f N with "
+           "clamp_edge_reaction (2 mu N / (1 - mu) = %.3f N), %.3f N without (2 mu N = %.3f N)\n",
+           with, 2 * mu * N / (1 - mu), without, 2 * mu * N);
+    CHECK(st, fabs(with / (2 * mu * N / (1 - mu)) - 1) < 0.1,
+          "with the reaction: %g N vs 2 mu N / (1 - mu) = %g N", with, 2 * mu * N / (1 - mu));
+    CHECK(st, fabs(without / (2 * mu * N) - 1) < 0.1, "without: %g N vs 2 mu N = %g N", without,
+          2 * mu * N);
+}
+
 int main(void)
 {
     check_state st = {0, 0};
     check_symmetry_line(&st);
+    check_force_sharing(&st);
+    check_edge_reaction(&st);
     return check_summary(&st, "test_clamp");
 }
