@@ -10,7 +10,9 @@
  *      clamp's boundary gets no force for the area of the free fabric next to
  *      it), and only inside the plates' bounds (wff_model_clamp_bounds);
  *   3. the out-of-plane reaction of a clamped node presses it on one face
- *      (clamp_edge_reaction 1): the friction limit grows by mu |R_z|.
+ *      (clamp_edge_reaction 1): the friction limit grows by mu |R_z|;
+ *   4. the ballistic mesh's frame (plates' extent, staple line) and h_clamp
+ *      (clamp-region size) parameters.
  * Each check can fail: it compares against a force or a slip computed by hand. */
 #include "check.h"
 #include "test_meshes.h"
@@ -277,11 +279,101 @@ static void check_edge_reaction(check_state *st)
           2 * mu * N);
 }
 
+/* 4. meshes/ballistic_quarter.geo with frame = 0.1525 (coarse): the clamp is
+ * the fabric under the frames (R <= r, |x|, |y| <= frame), the margin the rest
+ * of the square, the staple line the frame's outer edge; the clamp's area is
+ * frame² − π R² / 4 to the mesh's chordal error. With h_clamp the clamp region
+ * is finer (the opening's triangles change only along the arc). */
+static double region_area(const wff_mesh *mesh, int tag)
+{
+    double area = 0;
+    for (int e = 0; e < mesh->n_tris; e++) {
+        if (mesh->tri_region[e] != tag)
+            continue;
+        const int *t = mesh->tri + 3 * e;
+        const double *a = mesh->xy + 2 * t[0], *b = mesh->xy + 2 * t[1], *c = mesh->xy + 2 * t[2];
+        area += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+    }
+    return area;
+}
+
+static void check_frame_mesh(check_state *st)
+{
+    const double R = 0.127, L = 0.2, frame = 0.1525;
+    wff_mesh_options o = {.n_settings = 1, .size_factor = 2};
+    snprintf(o.settings[0].name, sizeof o.settings[0].name, "frame");
+    o.settings[0].value = frame;
+    wff_mesh mesh;
+    wff_error err;
+    if (wff_mesh_load("meshes/ballistic_quarter.geo", &o, &mesh, &err)) {
+        CHECK(st, 0, "%s", err.message);
+        return;
+    }
+    int clamp = wff_mesh_group_tag(&mesh, 2, "clamp"), margin = wff_mesh_group_tag(&mesh, 2, "margin");
+    int staples = wff_mesh_group_tag(&mesh, 1, "staples");
+    CHECK(st, clamp >= 0 && margin >= 0 && staples >= 0, "groups clamp %d, margin %d, staples %d",
+          clamp, margin, staples);
+    double a_clamp = region_area(&mesh, clamp), a_margin = region_area(&mesh, margin);
+    double want_clamp = frame * frame - M_PI * R * R / 4, want_margin = L * L - frame * frame;
+    int n_staple_edges = 0, off_line = 0;
+    for (int e = 0; e < mesh.n_edges; e++) {
+        if (mesh.edge_label[e] != staples)
+            continue;
+        n_staple_edges++;
+        for (int k = 0; k < 2; k++) {
+            const double *p = mesh.xy + 2 * mesh.edge[2 * e + k];
+            off_line += fabs(fmax(p[0], p[1]) - frame) > 1e-12;
+        }
+    }
+    printf("4. frame mesh (coarse, frame %.4f m): %d triangles, clamp %.6g m^2 (want %.6g), "
+           "margin %.6g m^2 (want %.6g), %d staple edges\n", frame, mesh.n_tris, a_clamp,
+           want_clamp, a_margin, want_margin, n_staple_edges);
+    /* the opening's polygon is inside the arc (~13 chords): 0.3 % more clamp */
+    double a_fabric = region_area(&mesh, wff_mesh_group_tag(&mesh, 2, "fabric"));
+    CHECK(st, fabs(a_clamp / want_clamp - 1) < 5e-3, "clamp area %g vs %g", a_clamp, want_clamp);
+    CHECK(st, fabs((a_clamp + a_fabric) / (frame * frame) - 1) < 1e-12,
+          "opening and clamp fill the frame's square: %.15g vs %.15g", a_clamp + a_fabric,
+          frame * frame);
+    CHECK(st, fabs(a_margin / want_margin - 1) < 1e-12, "margin area %g vs %g", a_margin,
+          want_margin);
+    CHECK(st, n_staple_edges >= 4 && off_line == 0, "staple line: %d edges, %d nodes off it",
+          n_staple_edges, off_line);
+    int n_plain = mesh.n_tris;
+    wff_mesh_free(&mesh);
+    /* h_clamp: more triangles, only in the clamp region */
+    wff_mesh_options h = {.n_settings = 1, .size_factor = 2};
+    snprintf(h.settings[0].name, sizeof h.settings[0].name, "h_clamp");
+    h.settings[0].value = 0.004;
+    wff_mesh fine, plain;
+    wff_mesh_options none = {.size_factor = 2};
+    if (wff_mesh_load("meshes/ballistic_quarter.geo", &h, &fine, &err) ||
+        wff_mesh_load("meshes/ballistic_quarter.geo", &none, &plain, &err)) {
+        CHECK(st, 0, "%s", err.message);
+        return;
+    }
+    int fab_f = wff_mesh_group_tag(&fine, 2, "fabric"), fab_p = wff_mesh_group_tag(&plain, 2, "fabric");
+    int n_fab[2] = {0, 0}, n_all[2] = {fine.n_tris, plain.n_tris};
+    for (int e = 0; e < fine.n_tris; e++)
+        n_fab[0] += fine.tri_region[e] == fab_f;
+    for (int e = 0; e < plain.n_tris; e++)
+        n_fab[1] += plain.tri_region[e] == fab_p;
+    printf("   h_clamp 0.004 (x 2): %d triangles (%d in the opening) vs %d (%d); with the frame "
+           "%d\n", n_all[0], n_fab[0], n_all[1], n_fab[1], n_plain);
+    CHECK(st, n_all[0] - n_fab[0] > 3 * (n_all[1] - n_fab[1]),
+          "the clamp region is refined: %d vs %d triangles", n_all[0] - n_fab[0],
+          n_all[1] - n_fab[1]);
+    CHECK(st, abs(n_fab[0] - n_fab[1]) <= n_fab[1] / 10, "the opening hardly: %d vs %d",
+          n_fab[0], n_fab[1]);
+    wff_mesh_free(&fine);
+    wff_mesh_free(&plain);
+}
+
 int main(void)
 {
     check_state st = {0, 0};
     check_symmetry_line(&st);
     check_force_sharing(&st);
     check_edge_reaction(&st);
+    check_frame_mesh(&st);
     return check_summary(&st, "test_clamp");
 }
