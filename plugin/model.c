@@ -244,8 +244,9 @@ static int share_clamp_force(wff_model *m, wff_error *err)
             if (m->mesh.tri_region[e] != c->region)
                 continue;
             const int *t = m->mesh.tri + 3 * e;
-            double a = 0.5 * fabs((xy[2 * t[1]] - xy[2 * t[0]]) * (xy[2 * t[2] + 1] - xy[2 * t[0] + 1]) -
-                                  (xy[2 * t[2]] - xy[2 * t[0]]) * (xy[2 * t[1] + 1] - xy[2 * t[0] + 1]));
+            const double *p0 = xy + 2 * t[0], *p1 = xy + 2 * t[1], *p2 = xy + 2 * t[2];
+            double a = 0.5 * fabs((p1[0] - p0[0]) * (p2[1] - p0[1]) -
+                                  (p2[0] - p0[0]) * (p1[1] - p0[1]));
             for (int k = 0; k < 3; k++)
                 area[t[k]] += a / 3;
         }
@@ -380,30 +381,32 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
             return wff_fail(err, "reference_path = %g: must be 0 (cell fast path where there "
                             "is one) or 1 (plain evaluate)", value);
         m->em.reference_path = (int)value;
-    } else if (strcmp(key, "clamp_radius") == 0 || strcmp(key, "clamp_edge_reaction") == 0) {
+    } else if (strcmp(key, "clamp_radius") == 0) {
         if (m->clamp.n == 0)
-            return wff_fail(err, "%s: no friction clamp yet (set it with the clamp first)", key);
-        if (key[6] == 'r') {
-            if (!(value >= 0) || !isfinite(value))
-                return wff_fail(err, "clamp_radius = %g: must be >= 0 m (0: the whole clamp)",
-                                value);
-            double before = m->clamp.radius;
-            m->clamp.radius = value;
-            if (share_clamp_force(m, err)) {
-                m->clamp.radius = before;
-                share_clamp_force(m, err);
-                return -1;
-            }
-        } else {
-            if (value != 0 && value != 1)
-                return wff_fail(err, "clamp_edge_reaction = %g: must be 0 (friction from the "
-                                "clamping force only) or 1 (also mu |R_z|)", value);
-            m->clamp.edge_reaction = (int)value;
+            return wff_fail(err, "clamp_radius: no friction clamp yet (set the clamp first)");
+        if (!(value >= 0) || !isfinite(value))
+            return wff_fail(err, "clamp_radius = %g: must be >= 0 m (0: the whole clamp)", value);
+        double before = m->clamp.radius;
+        m->clamp.radius = value;
+        if (share_clamp_force(m, err)) { /* no node within: keep the force as it was */
+            wff_error ignored;
+            m->clamp.radius = before;
+            share_clamp_force(m, &ignored);
+            return -1;
         }
+    } else if (strcmp(key, "clamp_edge_reaction") == 0) {
+        if (m->clamp.n == 0)
+            return wff_fail(err, "clamp_edge_reaction: no friction clamp yet (set the clamp "
+                            "first)");
+        if (value != 0 && value != 1)
+            return wff_fail(err, "clamp_edge_reaction = %g: must be 0 (friction from the "
+                            "clamping force only) or 1 (also mu |R_z|)", value);
+        m->clamp.edge_reaction = (int)value;
     } else {
         return wff_fail(err, "unknown solver setting '%s' (known: dtfactor, dtinterval, "
-                        "symmetry, reference_path, threads, amplitude_mass_factor, static_amplitudes, "
-                        "contact_search, clamp_radius, clamp_edge_reaction)", key);
+                        "symmetry, reference_path, threads, amplitude_mass_factor, "
+                        "static_amplitudes, contact_search, clamp_radius, clamp_edge_reaction)",
+                        key);
     }
     return 0;
 }

@@ -291,7 +291,8 @@ static double region_area(const wff_mesh *mesh, int tag)
         if (mesh->tri_region[e] != tag)
             continue;
         const int *t = mesh->tri + 3 * e;
-        const double *a = mesh->xy + 2 * t[0], *b = mesh->xy + 2 * t[1], *c = mesh->xy + 2 * t[2];
+        const double *a = mesh->xy + 2 * t[0], *b = mesh->xy + 2 * t[1];
+        const double *c = mesh->xy + 2 * t[2];
         area += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
     }
     return area;
@@ -309,7 +310,8 @@ static void check_frame_mesh(check_state *st)
         CHECK(st, 0, "%s", err.message);
         return;
     }
-    int clamp = wff_mesh_group_tag(&mesh, 2, "clamp"), margin = wff_mesh_group_tag(&mesh, 2, "margin");
+    int clamp = wff_mesh_group_tag(&mesh, 2, "clamp");
+    int margin = wff_mesh_group_tag(&mesh, 2, "margin");
     int staples = wff_mesh_group_tag(&mesh, 1, "staples");
     CHECK(st, clamp >= 0 && margin >= 0 && staples >= 0, "groups clamp %d, margin %d, staples %d",
           clamp, margin, staples);
@@ -351,7 +353,8 @@ static void check_frame_mesh(check_state *st)
         CHECK(st, 0, "%s", err.message);
         return;
     }
-    int fab_f = wff_mesh_group_tag(&fine, 2, "fabric"), fab_p = wff_mesh_group_tag(&plain, 2, "fabric");
+    int fab_f = wff_mesh_group_tag(&fine, 2, "fabric");
+    int fab_p = wff_mesh_group_tag(&plain, 2, "fabric");
     int n_fab[2] = {0, 0}, n_all[2] = {fine.n_tris, plain.n_tris};
     for (int e = 0; e < fine.n_tris; e++)
         n_fab[0] += fine.tri_region[e] == fab_f;
