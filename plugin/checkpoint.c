@@ -78,6 +78,7 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     g = fnv1a(g, m->clamp.node, sizeof(int) * (size_t)m->clamp.n);
     g = fnv1a(g, m->clamp.normal_force, sizeof(double) * (size_t)m->clamp.n);
     g = fnv1a(g, &m->clamp.mu, sizeof(double));
+    g = fnv1a(g, &m->clamp.edge_reaction, sizeof(int));
     h->bc_hash = g;
     /* settings that change the numbers: preload, amplitude treatment, contact search,
      * threads (the force sums' order) */

@@ -124,21 +124,28 @@ static void update_velocities(wff_model *m, double dt_mid, double dt_done)
         }
     }
     double dissipated = 0;
-    /* friction clamp: in-plane, two faces */
+    /* friction clamp: in-plane, two faces, on the node's free in-plane
+     * components (a node on a symmetry line slides along it and is held by
+     * friction there too) */
     for (int c = 0; c < m->clamp.n; c++) {
         int n = m->clamp.node[c];
         double *vn = m->v + D * n;
-        if (m->dof_kind[D * n] != WFF_DOF_FREE || m->dof_kind[D * n + 1] != WFF_DOF_FREE)
-            continue;
-        double speed = hypot(vn[0], vn[1]);
+        int free_x = m->dof_kind[D * n + WFF_UX] == WFF_DOF_FREE;
+        int free_y = m->dof_kind[D * n + WFF_UY] == WFF_DOF_FREE;
+        double speed = hypot(free_x ? vn[0] : 0, free_y ? vn[1] : 0);
         if (speed == 0)
             continue;
+        /* both faces press with N_a; an out-of-plane load R_z adds to one */
+        double pressed = 2 * m->clamp.normal_force[c];
+        if (m->clamp.edge_reaction)
+            pressed += fabs(m->reaction[D * n + WFF_UZ]);
         double impulse = friction_impulse(m->mass[D * n], speed,
-                                          2 * m->clamp.mu * m->clamp.normal_force[c] * dt_mid,
-                                          &dissipated);
+                                          m->clamp.mu * pressed * dt_mid, &dissipated);
         double scale = 1 - impulse / (m->mass[D * n] * speed);
-        vn[0] *= scale;
-        vn[1] *= scale;
+        if (free_x)
+            vn[0] *= scale;
+        if (free_y)
+            vn[1] *= scale;
     }
     m->dissipated_friction += dissipated;
 }

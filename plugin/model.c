@@ -225,6 +225,65 @@ static void add_clamp_node(wff_model *m, int node, void *data)
     m->v[D * node + WFF_UZ] = 0;
 }
 
+/* The clamping force shared among the clamp's nodes: by the area of the
+ * elements of the clamp's surface (a third of a triangle, a quarter of a
+ * quadrilateral, at each corner) or, for a curve group, by lumped mass; only
+ * nodes within clamp.radius of (0, 0) when it is set. */
+static int share_clamp_force(wff_model *m, wff_error *err)
+{
+    wff_clamp *c = &m->clamp;
+    double *share = c->normal_force;
+    for (int i = 0; i < c->n; i++)
+        share[i] = 0;
+    if (c->region >= 0) { /* node area by element, gathered per clamp node below */
+        double *area = calloc((size_t)m->n_nodes, sizeof(double));
+        if (!area)
+            return wff_fail(err, "out of memory");
+        const double *xy = m->mesh.xy;
+        for (int e = 0; e < m->mesh.n_tris; e++) {
+            if (m->mesh.tri_region[e] != c->region)
+                continue;
+            const int *t = m->mesh.tri + 3 * e;
+            const double *p0 = xy + 2 * t[0], *p1 = xy + 2 * t[1], *p2 = xy + 2 * t[2];
+            double a = 0.5 * fabs((p1[0] - p0[0]) * (p2[1] - p0[1]) -
+                                  (p2[0] - p0[0]) * (p1[1] - p0[1]));
+            for (int k = 0; k < 3; k++)
+                area[t[k]] += a / 3;
+        }
+        for (int e = 0; e < m->mesh.n_quads; e++) {
+            if (m->mesh.quad_region[e] != c->region)
+                continue;
+            const int *q = m->mesh.quad + 4 * e;
+            double a = 0; /* shoelace */
+            for (int k = 0; k < 4; k++) {
+                int p = q[k], r = q[(k + 1) % 4];
+                a += xy[2 * p] * xy[2 * r + 1] - xy[2 * r] * xy[2 * p + 1];
+            }
+            for (int k = 0; k < 4; k++)
+                area[q[k]] += 0.25 * fabs(0.5 * a);
+        }
+        for (int i = 0; i < c->n; i++)
+            share[i] = area[c->node[i]];
+        free(area);
+    } else {
+        for (int i = 0; i < c->n; i++)
+            share[i] = m->mass[D * c->node[i]];
+    }
+    double total = 0;
+    for (int i = 0; i < c->n; i++) {
+        const double *p = m->mesh.xy + 2 * c->node[i];
+        if (c->radius > 0 && hypot(p[0], p[1]) > c->radius)
+            share[i] = 0;
+        total += share[i];
+    }
+    if (!(total > 0))
+        return wff_fail(err, "friction clamp: no clamped node within clamp_radius %g m of (0, 0)",
+                        c->radius);
+    for (int i = 0; i < c->n; i++)
+        share[i] *= c->total_force / total;
+    return 0;
+}
+
 int wff_model_clamp_friction(wff_model *m, const char *group, double normal_force, double mu,
                              wff_error *err)
 {
@@ -241,13 +300,13 @@ int wff_model_clamp_friction(wff_model *m, const char *group, double normal_forc
     int count = for_group_nodes(m, group, err, add_clamp_node, NULL);
     if (count < 0)
         return -1;
-    /* share the force by lumped (displacement) mass, i.e. by nodal area */
-    double total = 0;
-    for (int i = 0; i < m->clamp.n; i++)
-        total += m->mass[D * m->clamp.node[i]];
-    for (int i = 0; i < m->clamp.n; i++)
-        m->clamp.normal_force[i] = normal_force * m->mass[D * m->clamp.node[i]] / total;
     m->clamp.mu = mu;
+    m->clamp.total_force = normal_force;
+    m->clamp.region = wff_mesh_group_tag(&m->mesh, 2, group);
+    m->clamp.radius = 0;
+    m->clamp.edge_reaction = 0;
+    if (share_clamp_force(m, err))
+        return -1;
     return count;
 }
 
@@ -322,10 +381,32 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
             return wff_fail(err, "reference_path = %g: must be 0 (cell fast path where there "
                             "is one) or 1 (plain evaluate)", value);
         m->em.reference_path = (int)value;
+    } else if (strcmp(key, "clamp_radius") == 0) {
+        if (m->clamp.n == 0)
+            return wff_fail(err, "clamp_radius: no friction clamp yet (set the clamp first)");
+        if (!(value >= 0) || !isfinite(value))
+            return wff_fail(err, "clamp_radius = %g: must be >= 0 m (0: the whole clamp)", value);
+        double before = m->clamp.radius;
+        m->clamp.radius = value;
+        if (share_clamp_force(m, err)) { /* no node within: keep the force as it was */
+            wff_error ignored;
+            m->clamp.radius = before;
+            share_clamp_force(m, &ignored);
+            return -1;
+        }
+    } else if (strcmp(key, "clamp_edge_reaction") == 0) {
+        if (m->clamp.n == 0)
+            return wff_fail(err, "clamp_edge_reaction: no friction clamp yet (set the clamp "
+                            "first)");
+        if (value != 0 && value != 1)
+            return wff_fail(err, "clamp_edge_reaction = %g: must be 0 (friction from the "
+                            "clamping force only) or 1 (also mu |R_z|)", value);
+        m->clamp.edge_reaction = (int)value;
     } else {
         return wff_fail(err, "unknown solver setting '%s' (known: dtfactor, dtinterval, "
-                        "symmetry, reference_path, threads, amplitude_mass_factor, static_amplitudes, "
-                        "contact_search)", key);
+                        "symmetry, reference_path, threads, amplitude_mass_factor, "
+                        "static_amplitudes, contact_search, clamp_radius, clamp_edge_reaction)",
+                        key);
     }
     return 0;
 }

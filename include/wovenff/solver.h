@@ -56,6 +56,14 @@ typedef struct wff_clamp {
     int *node;
     double *normal_force; /* clamping force on each node, N */
     double mu;            /* Coulomb friction, each of two faces */
+    double total_force;   /* the clamping force shared among the nodes, N (model part) */
+    int region;           /* physical surface tag the force is shared over by area (-1: a
+                             curve group, shared by lumped mass) */
+    double radius;        /* the plates press only within this distance of (0, 0), m
+                             (0: everywhere; setting clamp_radius) */
+    int edge_reaction;    /* 1: the out-of-plane reaction of a node presses it on one face
+                             and adds mu |R_z| to its friction limit (setting
+                             clamp_edge_reaction) */
 } wff_clamp;
 
 typedef struct wff_energies {
@@ -132,8 +140,14 @@ int wff_model_fix_group(wff_model *m, const char *group, int component, wff_erro
 int wff_model_prescribe_group(wff_model *m, const char *group, int component, double velocity,
                               wff_error *err);
 
-/* Friction clamp on the nodes of a group: total clamping force `normal_force`
- * (N, on the modelled part) shared by nodal area, friction μ on each face. */
+/* Friction clamp on the nodes of a group (docs/clamp.md): pressed flat
+ * (u_z = 0), total clamping force `normal_force` (N, on the modelled part)
+ * shared by the group's own nodal area (a physical surface: the area of its
+ * elements only, not of the free fabric next to its boundary; a curve: by
+ * lumped mass), Coulomb friction μ on each face on the node's free in-plane
+ * components: a node sticks while |f| < 2 μ N_a. The settings clamp_radius and
+ * clamp_edge_reaction (wff_model_set_option, after this call) change where the
+ * force acts and the limit. */
 int wff_model_clamp_friction(wff_model *m, const char *group, double normal_force, double mu,
                              wff_error *err);
 
@@ -166,7 +180,13 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
  * round-off), threads (force pass and stable-step scan), amplitude_mass_factor
  * (>= 1: heavier amplitudes, longer steps), static_amplitudes (1: balanced at
  * every point instead of dynamic DOFs), contact_search (1: only nodes the
- * projectile can reach; 0: every node). */
+ * projectile can reach; 0: every node); for a friction clamp (set first):
+ * clamp_radius (m, >= 0: the clamping force is shared only over the clamp's
+ * nodes within this distance of (0, 0), e.g. a ring at the opening's edge;
+ * the others stay flat without friction; 0: all of them, the default) and
+ * clamp_edge_reaction (1: a node's out-of-plane reaction R_z, e.g. where the
+ * fabric bends over the plates' edge at the opening, adds mu |R_z| to its
+ * friction limit; 0: the default). */
 int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err);
 
 /* Energies now (whole specimen: model part × symmetry_factor). */
