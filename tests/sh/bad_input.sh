@@ -85,6 +85,10 @@ grep -q '"steps": [1-9]' "$tmp/unstable/summary.json" || { echo "unstable: summa
 
 expect strip_unknown "$strip" 2 "strip_tension: unknown option '-tend'" -- -tend 1
 expect strip_negative "$strip" 2 "error: strip_tension: -velocity -2: must be > 0 (grip speed, m/s)" -- -velocity -2
+expect clampmu_fixed "$ballistic" 2 "are settings of -clamp friction" -- $short -clampmu 0.2
+expect plates_too_big "$ballistic" 2 "-plates 0.3: must be 0 or between the opening radius" -- $short -plates 0.3
+expect staples_alone "$ballistic" 2 "-staples 1 needs -plates S" -- $short -staples 1
+expect clampforce_negative "$ballistic" 2 "-clampforce -5: must be > 0" -- $short -clamp friction -clampforce -5
 expect strip_not_a_number "$strip" 2 "error: strip_tension: -strain '4%' is not a number" -- -strain 4%
 expect strip_missing_value "$strip" 2 "error: strip_tension: option -family needs a value" -- -strain 0.003 -family
 expect strip_bad_family "$strip" 2 "-family 'wrap': must be one of warp|weft|both" -- -family wrap
