@@ -1,5 +1,6 @@
-// Quarter model of the ballistic specimen (fabric square 0.4 m x 0.4 m,
-// clamped at radius >= R, impact at the centre): x, y >= 0, lengths in m.
+// Quarter model of the ballistic specimen (fabric square side x side,
+// clamped at radius >= radius, impact at the centre): x, y >= 0, lengths in m.
+// (meshes/ballistic_full.geo: the whole square, for an impact off the centre.)
 // The free fabric is the quarter disk r < R; the clamped rest of the square
 // is a second surface sharing the arc r = R.
 //
@@ -7,20 +8,27 @@
 // only sees as ONELAB numbers: hence the `Name` attribute on each):
 //   h_min  element size at the impact point (0, 0)
 //   h_max  element size from the arc outwards (arc and clamp region)
+//   radius clamp opening radius R, m (0.127)
+//   side   side of the square specimen, m (0.4)
 // The size grows linearly with the distance to (0, 0), from h_min at 0 to
 // h_max at r = R; Mesh.MeshSizeFactor scales both. The defaults give 2288
 // triangles (1259 in the fabric) with gmsh 4.8.4; the paper's quarter model
 // had 2308.
 DefineConstant[
   h_min = {0.0015, Name "h_min"},
-  h_max = {0.008, Name "h_max"}
+  h_max = {0.008, Name "h_max"},
+  radius = {0.127, Name "radius"},
+  side = {0.4, Name "side"}
 ];
 If (h_min <= 0 || h_max < h_min)
   Error("ballistic_quarter.geo: need 0 < h_min <= h_max (h_min = %g, h_max = %g)", h_min, h_max);
 EndIf
 
-R = 0.127;  // clamp radius
-L = 0.2;    // half side of the square specimen
+If (radius <= 0 || side <= 2 * radius)
+  Error("ballistic_quarter.geo: need 0 < radius < side / 2 (radius = %g, side = %g)", radius, side);
+EndIf
+R = radius;    // clamp radius
+L = side / 2;  // half side of the square specimen
 
 Point(1) = {0, 0, 0};
 Point(2) = {R, 0, 0};
