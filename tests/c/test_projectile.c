@@ -10,6 +10,7 @@
 #include "check.h"
 #include "rng.h"
 #include "test_meshes.h"
+#include "test_tmp.h"
 #include "wovenff/solver.h"
 
 #include <math.h>
@@ -372,6 +373,39 @@ static void check_contracts(check_state *st)
     }
 }
 
+/* A checkpoint of a flat nose off the centre loads into the same model and is
+ * refused, saying the nose or impact point differs, by another. */
+static void check_checkpoint(check_state *st)
+{
+    char dir[512], path[600];
+    if (test_tmp_dir("projectile", dir, sizeof dir))
+        return;
+    test_tmp_path(dir, "flat.ckpt", path, sizeof path);
+    wff_model m[3];
+    const int nose[3] = {WFF_NOSE_FLAT, WFF_NOSE_FLAT, WFF_NOSE_FLAT};
+    const double x[3] = {0.004, 0.004, 0.003};
+    wff_error err;
+    for (int k = 0; k < 3; k++) {
+        if (clamped_square(st, &m[k], 0.02, 10, TEST_MESH_TRI, KEVLAR))
+            return;
+        int rc = wff_model_set_projectile_shape(&m[k], nose[k], R_EDGE, &err) ||
+                 wff_model_set_impact_point(&m[k], x[k], 0, &err) ||
+                 wff_model_set_projectile(&m[k], R_NOSE, 0.01, 20, 0.3, &err);
+        CHECK(st, rc == 0, "%s", err.message);
+    }
+    int rc = wff_model_advance(&m[0], 1, 30, &err) || wff_model_save(&m[0], path, &err);
+    CHECK(st, rc == 0, "%s", err.message);
+    CHECK(st, wff_model_load_state(&m[1], path, &err) == 0 && m[1].step == 30 &&
+          memcmp(m[1].u, m[0].u, sizeof(double) * (size_t)m[0].n_dofs) == 0,
+          "the same model loads the checkpoint: %s", err.message);
+    rc = wff_model_load_state(&m[2], path, &err);
+    CHECK(st, rc != 0 && strstr(err.message, "impact point"),
+          "another impact point refused: %s", rc ? err.message : "loaded");
+    for (int k = 0; k < 3; k++)
+        wff_model_free(&m[k]);
+    test_tmp_remove(dir);
+}
+
 int main(void)
 {
     check_state st = {0, 0};
@@ -380,5 +414,6 @@ int main(void)
     check_energy(&st);
     check_symmetry(&st);
     check_contracts(&st);
+    check_checkpoint(&st);
     return check_summary(&st, "test_projectile");
 }
