@@ -147,16 +147,19 @@ static void check_flat_first_contact(check_state *st)
             return;
         }
         int under = 0, moved = 0, wrong = 0, far_moved = 0;
+        double fabric_pz = 0, vz_min = INFINITY, vz_max = 0;
         double a = nose == WFF_NOSE_FLAT ? R_NOSE - R_EDGE : 0;
         for (int k = 0; k < m.n_nodes; k++) {
             double rho = hypot(m.mesh.xy[2 * k] - X, m.mesh.xy[2 * k + 1] - Y);
             double vz = m.v[D * k + 2];
+            fabric_pz += m.mass[D * k + 2] * vz;
             if (vz > 0.5 * V)
                 moved++;
             if (nose == WFF_NOSE_FLAT ? rho < a : rho < 1e-9) {
                 under++;
                 if (!(vz > 0.5 * V))
                     wrong++;
+                vz_min = fmin(vz_min, vz), vz_max = fmax(vz_max, vz);
             } else if (rho > R_NOSE + 1e-3 && fabs(vz) > 1e-6 * V) {
                 far_moved++;
             }
@@ -168,6 +171,14 @@ static void check_flat_first_contact(check_state *st)
               wff_nose_name(nose), wrong, under);
         CHECK(st, far_moved == 0, "%s: %d nodes beyond the nose moved", wff_nose_name(nose),
               far_moved);
+        /* the pattern: the impulses move the face's nodes with the projectile, all
+         * at its speed (within the few m/s·kg it loses node by node), and the
+         * fabric's momentum is what the projectile lost */
+        CHECK_CLOSE(st, fabric_pz, 0.01 * (V - m.projectile.velocity), 1e-9, 1e-12,
+                    "first contact: fabric momentum = projectile's loss");
+        CHECK(st, vz_max - vz_min <= 0.01 * V && vz_min >= m.projectile.velocity * (1 - 1e-9),
+              "%s: face nodes at the projectile's speed: %g..%g m/s (projectile %g)",
+              wff_nose_name(nose), vz_min, vz_max, m.projectile.velocity);
         if (nose == WFF_NOSE_FLAT)
             CHECK(st, under > 20 && moved >= under && moved < under + 40,
                   "flat: the face's %d nodes and few more (%d) move", under, moved);
