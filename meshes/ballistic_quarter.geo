@@ -1,5 +1,6 @@
-// Quarter model of the ballistic specimen (fabric square 0.4 m x 0.4 m,
-// clamped at radius >= R, impact at the centre): x, y >= 0, lengths in m.
+// Quarter model of the ballistic specimen (fabric square side x side,
+// clamped at radius >= radius, impact at the centre): x, y >= 0, lengths in m.
+// (meshes/ballistic_full.geo: the whole square, for an impact off the centre.)
 // The free fabric is the quarter disk r < R; the clamped rest of the square
 // is a second surface sharing the arc r = R.
 //
@@ -9,6 +10,8 @@
 //   h_max    element size from the arc outwards (arc and clamp region)
 //   h_clamp  element size in the clamp region (0: h_max; < h_max refines the
 //            clamp region only, from the arc outwards)
+//   radius   clamp opening radius R, m (0.127)
+//   side     side of the square specimen, m (0.4)
 //   frame    half side of the clamping frames (the experiment's 30.5 cm
 //            wooden frame and aluminium plates: 0.1525); 0: none (the
 //            default). With R < frame < L the clamp region is split at the
@@ -24,7 +27,9 @@ DefineConstant[
   h_min = {0.0015, Name "h_min"},
   h_max = {0.008, Name "h_max"},
   h_clamp = {0, Name "h_clamp"},
-  frame = {0, Name "frame"}
+  frame = {0, Name "frame"},
+  radius = {0.127, Name "radius"},
+  side = {0.4, Name "side"}
 ];
 If (h_min <= 0 || h_max < h_min)
   Error("ballistic_quarter.geo: need 0 < h_min <= h_max (h_min = %g, h_max = %g)", h_min, h_max);
@@ -33,8 +38,11 @@ If (h_clamp < 0 || h_clamp > h_max)
   Error("ballistic_quarter.geo: need 0 <= h_clamp <= h_max (h_clamp = %g, h_max = %g)", h_clamp, h_max);
 EndIf
 
-R = 0.127;  // clamp radius
-L = 0.2;    // half side of the square specimen
+If (radius <= 0 || side <= 2 * radius)
+  Error("ballistic_quarter.geo: need 0 < radius < side / 2 (radius = %g, side = %g)", radius, side);
+EndIf
+R = radius;    // clamp radius
+L = side / 2;  // half side of the square specimen
 
 Point(1) = {0, 0, 0};
 Point(2) = {R, 0, 0};

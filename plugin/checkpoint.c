@@ -87,6 +87,14 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     g = fnv1a(g, &m->em.static_amplitudes, sizeof(int));
     g = fnv1a(g, &m->projectile.search_all, sizeof(int));
     g = fnv1a(g, &m->el.n_threads, sizeof(int));
+    /* the projectile's nose and axis, when not the default (older checkpoints of a
+     * hemisphere at the origin still load) */
+    const wff_projectile *p = &m->projectile;
+    if (p->nose != WFF_NOSE_HEMISPHERE || p->axis[0] != 0 || p->axis[1] != 0) {
+        g = fnv1a(g, &p->nose, sizeof(int));
+        g = fnv1a(g, &p->edge_radius, sizeof(double));
+        g = fnv1a(g, p->axis, sizeof p->axis);
+    }
     h->settings_hash = g;
     h->dt_factor = m->dt_factor;
     h->symmetry_factor = m->symmetry_factor;
@@ -178,7 +186,7 @@ static const char *hash_mismatch(const checkpoint_header *a, const checkpoint_he
         return "the boundary conditions differ (fixed or prescribed DOFs, friction clamp)";
     if (a->settings_hash != b->settings_hash)
         return "the solver settings differ (preload F_pre, amplitude mass factor, static "
-               "amplitudes, contact search or threads)";
+               "amplitudes, contact search, threads, or the projectile's nose or impact point)";
     return NULL;
 }
 

@@ -1,5 +1,7 @@
-/* contact.c: the rigid projectile (a cylinder with a hemispherical nose
- * moving along +z; docs/model.md §16): its set-up and placement, the search
+/* contact.c: the rigid projectile (moving along +z with its axis at (x, y):
+ * a cylinder with a hemispherical nose, a flat-faced cylinder with an edge
+ * radius, or a sphere; docs/model.md §16): its shapes, set-up and placement,
+ * the whole-specimen mass against the symmetry factor, the search
  * for nodes that may touch it, and the kinematic (hard, inelastic) contact
  * with Coulomb friction as velocity impulses each step. Knows the model's
  * arrays; nothing of cells, elements, the friction clamp or FreeFEM. */
@@ -15,9 +17,11 @@
  * less than this). */
 #define RUNAWAY_PENETRATION 0.5
 
-/* Penetration δ and outward normal of a point against the nose (sphere of the
- * nose radius centred a radius behind the tip) or the shank behind it. */
-static double penetration(const wff_projectile *p, const double x[3], double normal[3])
+/* Penetration δ and outward normal of a point against the hemispherical nose
+ * (sphere of the shank radius centred a radius behind the tip) or the shank
+ * behind it. The default shape: kept as it was, so runs stay bit for bit. */
+static double penetration_hemisphere(const wff_projectile *p, const double x[3],
+                                     double normal[3])
 {
     double c[3] = {p->axis[0], p->axis[1], p->tip - p->radius};
     double d[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
@@ -36,12 +40,124 @@ static double penetration(const wff_projectile *p, const double x[3], double nor
     return p->radius - r;
 }
 
+/* A sphere of radius r whose front point is the tip. */
+static double penetration_sphere(const wff_projectile *p, const double x[3], double normal[3])
+{
+    double d[3] = {x[0] - p->axis[0], x[1] - p->axis[1], x[2] - (p->tip - p->radius)};
+    double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (r >= p->radius || r == 0)
+        return 0;
+    for (int i = 0; i < 3; i++)
+        normal[i] = d[i] / r;
+    return p->radius - r;
+}
+
+/* The flat nose: the set of points within r_e of the core cylinder
+ * {ρ <= a, z <= z_c} (a = r − r_e, z_c = tip − r_e), i.e. a flat face of
+ * radius a at z = tip, a torus of tube radius r_e round its edge and the
+ * shank of radius r behind. Inside the core the depth is r_e plus the depth
+ * in the core (to its face or its side); outside, r_e minus the distance to
+ * the nearest core point, along the line to it. */
+static double penetration_flat(const wff_projectile *p, const double x[3], double normal[3])
+{
+    const double re = p->edge_radius, a = p->radius - re, zc = p->tip - re;
+    double dx = x[0] - p->axis[0], dy = x[1] - p->axis[1], dz = x[2] - zc;
+    double rho = hypot(dx, dy);
+    if (rho <= a && dz <= 0) { /* inside the core */
+        double to_side = a - rho, to_face = -dz;
+        if (to_face <= to_side || rho == 0) {
+            normal[0] = normal[1] = 0, normal[2] = 1;
+            return re + to_face;
+        }
+        normal[0] = dx / rho, normal[1] = dy / rho, normal[2] = 0;
+        return re + to_side;
+    }
+    double out_r = rho > a ? rho - a : 0, out_z = dz > 0 ? dz : 0;
+    double dist = hypot(out_r, out_z);
+    if (dist >= re || dist == 0)
+        return 0;
+    /* radial unit vector (rho > a >= 0 whenever out_r > 0) */
+    double er[2] = {out_r > 0 ? dx / rho : 0, out_r > 0 ? dy / rho : 0};
+    normal[0] = er[0] * out_r / dist, normal[1] = er[1] * out_r / dist;
+    normal[2] = out_z / dist;
+    return re - dist;
+}
+
+double wff_projectile_penetration(const wff_projectile *p, const double x[3], double normal[3])
+{
+    switch (p->nose) {
+    case WFF_NOSE_FLAT:
+        return penetration_flat(p, x, normal);
+    case WFF_NOSE_SPHERE:
+        return penetration_sphere(p, x, normal);
+    default:
+        return penetration_hemisphere(p, x, normal);
+    }
+}
+
+static double penetration(const wff_projectile *p, const double x[3], double normal[3])
+{
+    return wff_projectile_penetration(p, x, normal);
+}
+
+static const char *const nose_names[] = {"hemisphere", "flat", "sphere"};
+
+const char *wff_nose_name(int nose)
+{
+    return nose >= 0 && nose < 3 ? nose_names[nose] : "unknown";
+}
+
+int wff_nose_from_name(const char *name, wff_error *err)
+{
+    for (int k = 0; k < 3; k++)
+        if (strcmp(name, nose_names[k]) == 0)
+            return k;
+    return wff_fail(err, "unknown nose shape '%s' (known: hemisphere, flat, sphere)", name);
+}
+
+static int started(const wff_model *m)
+{
+    return m->step > 0 || m->v_half_valid;
+}
+
+/* Is (x, y) on the symmetry planes a model with this factor has? */
+static int axis_check(double symmetry, const double axis[2], wff_error *err)
+{
+    const double tol = 1e-12; /* m */
+    int on_x = fabs(axis[0]) <= tol, on_y = fabs(axis[1]) <= tol;
+    if (symmetry == 4 && !(on_x && on_y))
+        return wff_fail(err, "projectile axis at (%g, %g) m is off the symmetry planes x = 0 "
+                        "and y = 0 of a quarter model (symmetry 4): a symmetric model can be "
+                        "struck only on its symmetry planes (model the full specimen, "
+                        "symmetry 1, for an impact off them)", axis[0], axis[1]);
+    if (symmetry == 2 && !on_x && !on_y)
+        return wff_fail(err, "projectile axis at (%g, %g) m is off both x = 0 and y = 0: a half "
+                        "model (symmetry 2) can be struck only on its symmetry plane (model "
+                        "the full specimen, symmetry 1, for an impact off it)", axis[0],
+                        axis[1]);
+    return 0;
+}
+
+int wff_contact_symmetry_changed(wff_model *m, wff_error *err)
+{
+    wff_projectile *p = &m->projectile;
+    if (axis_check(m->symmetry_factor, p->axis, err))
+        return -1;
+    if (p->active)
+        p->mass = p->mass_whole / m->symmetry_factor;
+    return 0;
+}
+
 int wff_model_set_projectile(wff_model *m, double radius, double mass, double velocity,
                              double mu, wff_error *err)
 {
-    if (!(radius > 0))
+    if (m->projectile.active)
+        return wff_fail(err, "a second projectile: this model has one already (radius %g m, "
+                        "mass %g kg); one projectile per model", m->projectile.radius,
+                        m->projectile.mass_whole);
+    if (!(radius > 0) || !isfinite(radius))
         return wff_fail(err, "projectile radius %g m must be > 0", radius);
-    if (!(mass > 0))
+    if (!(mass > 0) || !isfinite(mass))
         return wff_fail(err, "projectile mass %g kg must be > 0", mass);
     if (!(velocity >= 0) || !isfinite(velocity))
         return wff_fail(err, "projectile velocity %g m/s must be >= 0 (it moves along +z)",
@@ -49,6 +165,11 @@ int wff_model_set_projectile(wff_model *m, double radius, double mass, double ve
     if (!(mu >= 0))
         return wff_fail(err, "projectile friction coefficient %g must be >= 0", mu);
     wff_projectile *p = &m->projectile;
+    if (p->nose == WFF_NOSE_FLAT && !(p->edge_radius <= radius))
+        return wff_fail(err, "projectile radius %g m is smaller than the flat nose's edge "
+                        "radius %g m", radius, p->edge_radius);
+    if (axis_check(m->symmetry_factor, p->axis, err))
+        return -1;
     free(p->candidates);
     free(p->contact_node);
     free(p->impulse);
@@ -57,17 +178,69 @@ int wff_model_set_projectile(wff_model *m, double radius, double mass, double ve
     p->impulse = malloc(3 * sizeof(double) * (size_t)m->n_nodes);
     if (!p->candidates || !p->contact_node || !p->impulse)
         return wff_fail(err, "out of memory");
-    p->active = 1;
     p->radius = radius;
-    p->mass = mass;
+    p->mass_whole = mass;
+    p->mass = mass / m->symmetry_factor;
     p->velocity = velocity;
     p->mu = mu;
-    p->axis[0] = p->axis[1] = 0;
     p->n_candidates = 0;
     p->max_penetration = 0;
     p->force = 0;
     /* nose tip touching the fabric plane z = 0 */
-    return wff_model_place_projectile(m, 0, err);
+    p->active = 1;
+    if (wff_model_place_projectile(m, 0, err)) {
+        p->active = 0;
+        return -1;
+    }
+    return 0;
+}
+
+int wff_model_set_projectile_shape(wff_model *m, int nose, double edge_radius, wff_error *err)
+{
+    wff_projectile *p = &m->projectile;
+    if (started(m))
+        return wff_fail(err, "projectile shape: the run has started (step %ld); set the nose "
+                        "before the first step", m->step);
+    if (nose < 0 || nose > 2)
+        return wff_fail(err, "nose shape %d: must be %d (hemisphere), %d (flat) or %d (sphere)",
+                        nose, WFF_NOSE_HEMISPHERE, WFF_NOSE_FLAT, WFF_NOSE_SPHERE);
+    if (nose != WFF_NOSE_FLAT)
+        edge_radius = 0;
+    if (!(edge_radius >= 0) || !isfinite(edge_radius))
+        return wff_fail(err, "flat nose edge radius %g m must be >= 0", edge_radius);
+    if (p->active && edge_radius > p->radius)
+        return wff_fail(err, "flat nose edge radius %g m is larger than the projectile radius "
+                        "%g m (at most equal: that is the hemisphere)", edge_radius, p->radius);
+    int old_nose = p->nose;
+    double old_edge = p->edge_radius;
+    p->nose = nose;
+    p->edge_radius = edge_radius;
+    if (p->active && wff_model_place_projectile(m, p->tip, err)) {
+        p->nose = old_nose;
+        p->edge_radius = old_edge;
+        return -1;
+    }
+    return 0;
+}
+
+int wff_model_set_impact_point(wff_model *m, double x, double y, wff_error *err)
+{
+    wff_projectile *p = &m->projectile;
+    if (started(m))
+        return wff_fail(err, "impact point: the run has started (step %ld); set it before the "
+                        "first step", m->step);
+    if (!isfinite(x) || !isfinite(y))
+        return wff_fail(err, "impact point (%g, %g) m must be finite", x, y);
+    double axis[2] = {x, y};
+    if (axis_check(m->symmetry_factor, axis, err))
+        return -1;
+    double old[2] = {p->axis[0], p->axis[1]};
+    p->axis[0] = x, p->axis[1] = y;
+    if (p->active && wff_model_place_projectile(m, p->tip, err)) {
+        p->axis[0] = old[0], p->axis[1] = old[1];
+        return -1;
+    }
+    return 0;
 }
 
 int wff_model_place_projectile(wff_model *m, double tip, wff_error *err)

@@ -226,6 +226,11 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
 
 int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err)
 {
+    if (!isfinite(t_end))
+        return wff_fail(err, "advance to t_end = %g s: must be a finite time", t_end);
+    if (t_end < m->time)
+        return wff_fail(err, "advance to t_end = %.9g s: before the model's time %.9g s "
+                        "(step %ld): a model cannot go back", t_end, m->time, m->step);
     if (m->step == 0 && !m->v_half_valid) {
         /* start: forces at u⁰, energy reference */
         if (update_time_step(m, err))

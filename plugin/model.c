@@ -53,6 +53,9 @@ static void sum_fabric_mass(wff_model *m)
         m->fabric_mass += m->mass[D * n];
 }
 
+static void set_dof(wff_model *m, int node, void *data);
+static int share_clamp_force(wff_model *m, wff_error *err);
+
 /* Before the first step: the stored energy of the state as set up (e.g. the
  * preload), so that energies read before any step are complete. A force pass
  * with γᶠ held; its forces are recomputed when the run starts, and a bad
@@ -118,6 +121,9 @@ int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *materia
 int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[2],
                           wff_error *err)
 {
+    if (m->step > 0 || m->v_half_valid)
+        return wff_fail(err, "preload: the run has started (t = %g s, step %ld); a preload is "
+                        "the initial state: set it before the first step", m->time, m->step);
     double det = F_pre[0] * F_pre[3] - F_pre[1] * F_pre[2];
     if (!(det > 0))
         return wff_fail(err, "preload F_pre = [%g %g; %g %g] has det %g: must be > 0", F_pre[0],
@@ -126,6 +132,8 @@ int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[
     m->em.J_pre = det;
     wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
     sum_fabric_mass(m);
+    if (m->clamp.n && share_clamp_force(m, err)) /* the new masses: order of calls free */
+        return -1;
     if (m->mat.cell->n_amplitudes)
         for (int n = 0; n < m->n_nodes; n++) {
             m->u[D * n + 3] = dA0[0];
@@ -180,7 +188,42 @@ static int for_group_nodes(wff_model *m, const char *group, wff_error *err,
     return count;
 }
 
-typedef struct dof_setting { int component, kind; double velocity; } dof_setting;
+typedef struct dof_setting { int component, kind; double velocity; int conflict; } dof_setting;
+
+/* The first node (conflict, from 0; -1: none) whose DOF is already of the
+ * other kind (fixed against prescribed). */
+static void check_dof(wff_model *m, int node, void *data)
+{
+    dof_setting *s = data;
+    int kind = m->dof_kind[D * node + s->component];
+    if (s->conflict < 0 && kind != WFF_DOF_FREE && kind != s->kind)
+        s->conflict = node;
+}
+
+static const char *const dof_names[] = {"ux", "uy", "uz", "dA1", "dA2"};
+
+/* Apply s to the group's nodes unless one of them has that DOF of the other
+ * kind already (an error naming it: nothing changed). */
+static int set_group_dofs(wff_model *m, const char *group, dof_setting *s, const char *what,
+                          wff_error *err)
+{
+    s->conflict = -1;
+    if (for_group_nodes(m, group, err, check_dof, s) < 0)
+        return -1;
+    if (s->conflict >= 0) {
+        int n = s->conflict;
+        const char *was = s->kind == WFF_DOF_FIXED ? "prescribed" : "fixed";
+        return wff_fail(err, "%s '%s' %s: node %d at (%g, %g) m has %s %s already (a DOF is "
+                        "free, fixed or prescribed, once)%s", what, group,
+                        dof_names[s->component], n + 1, m->mesh.xy[2 * n],
+                        m->mesh.xy[2 * n + 1], dof_names[s->component], was,
+                        s->component >= 3 && m->mat.cell->n_amplitudes == 0
+                            ? " (the cell has no amplitudes: they are fixed)"
+                        : s->component == WFF_UZ && m->clamp.n
+                            ? " (a friction clamp fixes u_z of its nodes)" : "");
+    }
+    return for_group_nodes(m, group, err, set_dof, s);
+}
 
 static void set_dof(wff_model *m, int node, void *data)
 {
@@ -202,8 +245,8 @@ int wff_model_fix_group(wff_model *m, const char *group, int component, wff_erro
 {
     if (check_component(component, err))
         return -1;
-    dof_setting s = {component, WFF_DOF_FIXED, 0};
-    return for_group_nodes(m, group, err, set_dof, &s);
+    dof_setting s = {component, WFF_DOF_FIXED, 0, -1};
+    return set_group_dofs(m, group, &s, "fix", err);
 }
 
 int wff_model_prescribe_group(wff_model *m, const char *group, int component, double velocity,
@@ -213,9 +256,12 @@ int wff_model_prescribe_group(wff_model *m, const char *group, int component, do
         return -1;
     if (!isfinite(velocity))
         return wff_fail(err, "prescribed velocity of '%s' is not finite", group);
-    dof_setting s = {component, WFF_DOF_PRESCRIBED, velocity};
-    return for_group_nodes(m, group, err, set_dof, &s);
+    dof_setting s = {component, WFF_DOF_PRESCRIBED, velocity, -1};
+    return set_group_dofs(m, group, &s, "prescribe", err);
 }
+
+/* The modelled part's clamping force (whole / symmetry_factor), shared by
+ * lumped (displacement) mass, i.e. by nodal area. */
 
 static void add_clamp_node(wff_model *m, int node, void *data)
 {
@@ -280,16 +326,22 @@ static int share_clamp_force(wff_model *m, wff_error *err)
         return wff_fail(err, "friction clamp: no clamped node within clamp_radius %g m of (0, 0)",
                         c->radius);
     for (int i = 0; i < c->n; i++)
-        share[i] *= c->total_force / total;
+        share[i] *= c->force_whole / m->symmetry_factor / total; /* modelled part */
     return 0;
 }
 
 int wff_model_clamp_friction(wff_model *m, const char *group, double normal_force, double mu,
                              wff_error *err)
 {
-    if (!(normal_force > 0) || !(mu >= 0))
+    if (!(normal_force > 0) || !(mu >= 0) || !isfinite(normal_force) || !isfinite(mu))
         return wff_fail(err, "friction clamp '%s': normal force %g N must be > 0 and mu %g >= 0",
                         group, normal_force, mu);
+    dof_setting uz = {WFF_UZ, WFF_DOF_FIXED, 0, -1};
+    if (for_group_nodes(m, group, err, check_dof, &uz) < 0)
+        return -1;
+    if (uz.conflict >= 0)
+        return wff_fail(err, "friction clamp '%s': node %d has u_z prescribed: the clamp presses "
+                        "its nodes flat (u_z fixed)", group, uz.conflict + 1);
     free(m->clamp.node);
     free(m->clamp.normal_force);
     m->clamp.n = 0;
@@ -301,7 +353,7 @@ int wff_model_clamp_friction(wff_model *m, const char *group, double normal_forc
     if (count < 0)
         return -1;
     m->clamp.mu = mu;
-    m->clamp.total_force = normal_force;
+    m->clamp.force_whole = normal_force;
     m->clamp.region = wff_mesh_group_tag(&m->mesh, 2, group);
     m->clamp.radius = 0;
     m->clamp.edge_reaction = 0;
@@ -346,7 +398,22 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
         if (value != 1 && value != 2 && value != 4)
             return wff_fail(err, "symmetry = %g: must be 1 (full), 2 (half) or 4 (quarter)",
                             value);
+        if ((m->step > 0 || m->v_half_valid) && value != m->symmetry_factor)
+            return wff_fail(err, "symmetry = %g: the run has started (step %ld); set the "
+                            "symmetry before the first step", value, m->step);
+        double old = m->symmetry_factor;
         m->symmetry_factor = value;
+        if (wff_contact_symmetry_changed(m, err)) {
+            m->symmetry_factor = old;
+            return -1;
+        }
+        if (m->clamp.n && share_clamp_force(m, err)) {
+            wff_error ignored;
+            m->symmetry_factor = old;
+            wff_contact_symmetry_changed(m, &ignored);
+            share_clamp_force(m, &ignored);
+            return -1;
+        }
     } else if (strcmp(key, "threads") == 0) {
         if (value != floor(value) || wff_elements_set_threads(&m->el, (int)value, err))
             return value != floor(value) ? wff_fail(err, "threads = %g: a whole number", value)

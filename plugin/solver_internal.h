@@ -17,4 +17,9 @@ void wff_contact_refresh_candidates(wff_model *m);
  * through the fabric. */
 int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
 
+/* contact.c: the symmetry factor changed (or the axis did): the projectile's
+ * modelled mass follows; -1 (err set) if its axis is off the symmetry
+ * planes. */
+int wff_contact_symmetry_changed(wff_model *m, wff_error *err);
+
 #endif

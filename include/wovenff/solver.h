@@ -9,13 +9,16 @@
  * Boundary conditions are per DOF: free, fixed (held at its value) or moved
  * at a prescribed velocity (its reaction does external work). A friction
  * clamp presses chosen nodes flat (u_z = 0) and resists in-plane motion by
- * Coulomb friction up to μ N_a on each face. A rigid projectile (cylinder
- * with a hemispherical nose, moving along +z) touches the fabric by
- * kinematic (hard, inelastic) contact with Coulomb friction: a velocity
- * predictor–corrector that keeps nodes on its surface.
+ * Coulomb friction up to μ N_a on each face. A rigid projectile moving along
+ * +z with its axis at (x, y) (a cylinder with a hemispherical nose by
+ * default; also a flat-faced cylinder with an edge radius, or a sphere)
+ * touches the fabric by kinematic (hard, inelastic) contact with Coulomb
+ * friction: a velocity predictor–corrector that keeps nodes on its surface.
  *
- * Energies are those of the modelled part multiplied by symmetry_factor
- * (4 for a quarter model), so they read as the whole specimen's.
+ * Whole-specimen convention: every mass, force and energy passed in or read
+ * out is the whole specimen's. The model stores the whole values and derives
+ * the modelled part's (whole / symmetry_factor, 4 for a quarter model) where
+ * it uses them, so the order of the calls does not matter.
  *
  * Implemented by plugin/model.c (set-up, boundary conditions, settings),
  * contact.c (the projectile), integrator.c (the step, energies), fields.c
@@ -32,11 +35,19 @@ extern "C" {
 
 enum { WFF_DOF_FREE = 0, WFF_DOF_FIXED = 1, WFF_DOF_PRESCRIBED = 2 };
 enum { WFF_UX = 0, WFF_UY = 1, WFF_UZ = 2, WFF_DA1 = 3, WFF_DA2 = 4 };
+/* Nose shapes (docs/model.md §16): a cylinder of radius r with a
+ * hemispherical nose; a flat-faced cylinder, face of radius r − r_e joined to
+ * the shank by a torus of tube radius r_e (the fragment-simulating
+ * projectile); a sphere of radius r. */
+enum { WFF_NOSE_HEMISPHERE = 0, WFF_NOSE_FLAT = 1, WFF_NOSE_SPHERE = 2 };
 
 typedef struct wff_projectile {
     int active;
-    double radius;        /* nose and shank radius, m */
-    double mass;          /* of the modelled part (whole mass / symmetry_factor), kg */
+    double radius;        /* shank radius r (sphere: its radius), m */
+    int nose;             /* WFF_NOSE_* (0, the hemisphere, by default) */
+    double edge_radius;   /* flat nose: edge (torus tube) radius r_e, 0 <= r_e <= r, m */
+    double mass_whole;    /* as given: the whole projectile's, kg */
+    double mass;          /* of the modelled part (mass_whole / symmetry_factor), kg */
     double tip;           /* z of the nose tip, m */
     double velocity;      /* along +z, m/s */
     double mu;            /* Coulomb friction with the fabric */
@@ -54,9 +65,9 @@ typedef struct wff_projectile {
 typedef struct wff_clamp {
     int n;                /* nodes held between the clamp faces */
     int *node;
-    double *normal_force; /* clamping force on each node, N */
+    double *normal_force; /* clamping force on each node, N (modelled part) */
+    double force_whole;   /* total clamping force as given, whole specimen, N */
     double mu;            /* Coulomb friction, each of two faces */
-    double total_force;   /* the clamping force shared among the nodes, N (model part) */
     int region;           /* physical surface tag the force is shared over by area (-1: a
                              curve group, shared by lumped mass) */
     double radius;        /* the plates press only within this distance of (0, 0), m
@@ -127,13 +138,18 @@ void wff_model_free(wff_model *m);
 
 /* Preload: F_pre (row-major 2×2, det > 0) applied at every material point
  * (the masses follow it) and uniform initial amplitude changes dA0 (m; not
- * used by a cell without amplitudes). */
+ * used by a cell without amplitudes). Before the first step only (an error
+ * after it). */
 int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[2],
                           wff_error *err);
 
 /* Fix DOF `component` (WFF_UX..WFF_DA2) of every node on the physical curve
  * named `curve` (dim 1) or in the physical surface (dim 2) named so. Returns
- * the number of nodes, or -1 if no group has that name (an error). */
+ * the number of nodes, or -1 if no group has that name (an error). Fixing a
+ * fixed DOF again does nothing; fixing a prescribed one is an error (naming
+ * the node), as is prescribing a fixed one (the clamp's u_z and the
+ * amplitudes of a cell without any are fixed); prescribing a prescribed DOF
+ * again sets its new velocity. Nothing is changed when it fails. */
 int wff_model_fix_group(wff_model *m, const char *group, int component, wff_error *err);
 
 /* Move DOF `component` of the group's nodes at velocity `velocity` (m/s). */
@@ -141,24 +157,51 @@ int wff_model_prescribe_group(wff_model *m, const char *group, int component, do
                               wff_error *err);
 
 /* Friction clamp on the nodes of a group (docs/clamp.md): pressed flat
- * (u_z = 0), total clamping force `normal_force` (N, on the modelled part)
- * shared by the group's own nodal area (a physical surface: the area of its
- * elements only, not of the free fabric next to its boundary; a curve: by
- * lumped mass), Coulomb friction μ on each face on the node's free in-plane
- * components: a node sticks while |f| < 2 μ N_a. The settings clamp_radius and
+ * (u_z = 0), total clamping force `normal_force` (N, the whole specimen's: the
+ * modelled part takes normal_force / symmetry_factor) shared by the group's
+ * own nodal area (a physical surface: the area of its elements only, not of
+ * the free fabric next to its boundary; a curve: by lumped mass), Coulomb
+ * friction μ on each face on the node's free in-plane components: a node
+ * sticks while |f| < 2 μ N_a. The settings clamp_radius and
  * clamp_edge_reaction (wff_model_set_option, after this call) change where the
  * force acts and the limit. */
 int wff_model_clamp_friction(wff_model *m, const char *group, double normal_force, double mu,
                              wff_error *err);
 
-/* Rigid projectile of nose and shank radius `radius` (m), moving along +z at
+/* Rigid projectile of shank radius `radius` (m), moving along +z at
  * `velocity` (m/s, >= 0) with Coulomb friction mu against the fabric, placed
  * with its nose tip at z = 0 touching the fabric plane (move it with
- * wff_model_place_projectile). mass (kg) is the modelled part's. */
+ * wff_model_place_projectile). mass (kg) is the whole projectile's. Its shape
+ * (wff_model_set_projectile_shape) and axis (wff_model_set_impact_point) may
+ * be set before or after. One projectile per model: a second call is an
+ * error. */
 int wff_model_set_projectile(wff_model *m, double radius, double mass, double velocity,
                              double mu, wff_error *err);
 
-/* Advance until time >= t_end (or max_steps). Stops with -1 and a message
+/* Nose shape (WFF_NOSE_*) and, for the flat nose, its edge radius r_e (m,
+ * 0 <= r_e <= radius; ignored, and 0 accepted, for the others). Before the
+ * first step; with a projectile set, refused (naming the node) if the fabric
+ * would be inside the new shape. */
+int wff_model_set_projectile_shape(wff_model *m, int nose, double edge_radius, wff_error *err);
+/* WFF_NOSE_* for "hemisphere", "flat" or "sphere"; -1 (err set, listing them)
+ * otherwise. */
+int wff_nose_from_name(const char *name, wff_error *err);
+const char *wff_nose_name(int nose);
+
+/* Projectile axis at (x, y) (m, reference configuration; 0, 0 by default).
+ * Before the first step. A symmetric model (symmetry 2 or 4) can only be
+ * struck on its symmetry planes x = 0 (and) y = 0: an axis off them is an
+ * error here or when the symmetry is set, whichever comes second. */
+int wff_model_set_impact_point(wff_model *m, double x, double y, wff_error *err);
+
+/* Penetration δ (m, > 0 inside, 0 outside) of point x (current position, m)
+ * into the projectile as it is now, and the outward surface normal at the
+ * nearest surface point (set only when δ > 0). */
+double wff_projectile_penetration(const wff_projectile *p, const double x[3], double normal[3]);
+
+/* Advance until time >= t_end (or max_steps). t_end must be finite and not
+ * before the current time (an error otherwise; t_end == time does nothing).
+ * Stops with -1 and a message
  * naming what, where and when on NaN, a degenerate element, an unstable
  * step or a projectile that passes through the fabric. The instability check
  * (every step: energy created > 50 % of the reference energy on 3 steps in a
@@ -174,8 +217,10 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
                              wff_error *err);
 
 /* Solver settings by name: dtfactor (0, 2], dtinterval (steps between
- * stable-step updates, >= 1), symmetry (1, 2 or 4: energies and projectile
- * force reported for the whole specimen), reference_path (1: the cell's plain
+ * stable-step updates, >= 1), symmetry (1, 2 or 4, before the first step:
+ * the modelled part is 1/symmetry of the specimen; masses and forces given
+ * are divided by it, energies and the projectile force read are multiplied
+ * by it; an impact point off the symmetry planes is an error), reference_path (1: the cell's plain
  * evaluate() everywhere, 0: its fast path where it has one; results agree to
  * round-off), threads (force pass and stable-step scan), amplitude_mass_factor
  * (>= 1: heavier amplitudes, longer steps), static_amplitudes (1: balanced at

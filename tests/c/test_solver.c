@@ -204,7 +204,7 @@ static void check_quarter(check_state *st)
              wff_model_fix_group(&quarter, "bottom", WFF_UY, &err) < 0 ||
              wff_model_set_option(&quarter, "symmetry", 4, &err) ||
              wff_model_set_projectile(&full, NOSE_RADIUS, M, V, mu, &err) ||
-             wff_model_set_projectile(&quarter, NOSE_RADIUS, M / 4, V, mu, &err);
+             wff_model_set_projectile(&quarter, NOSE_RADIUS, M, V, mu, &err); /* whole mass */
     CHECK(st, rc == 0, "quarter/full setup: %s", err.message);
     int af = wff_model_nearest_node(&full, 0, 0), aq = wff_model_nearest_node(&quarter, 0, 0);
     CHECK(st, full.mesh.xy[2 * af] == 0 && full.mesh.xy[2 * af + 1] == 0 && aq == 0,
