@@ -34,6 +34,23 @@ using namespace Fem2D;
 
 namespace {
 
+// A model taking over mesh (emptied); its handle.
+long model_of_mesh(wff_mesh *mesh, const string *mat)
+{
+    const char *fn = "wovenffModel";
+    wff_error err;
+    wff_model *m = (wff_model *)calloc(1, sizeof(wff_model));
+    if (!m) {
+        wff_mesh_free(mesh);
+        wff_ff_fail(fn, "out of memory");
+    }
+    if (wff_model_create_from_mesh(m, mesh, mat->c_str(), &err)) {
+        free(m);
+        wff_ff_fail(fn, err);
+    }
+    return wff_ff_model_add(m);
+}
+
 long model_from_mesh(const Mesh *th, const string *mat, const char *settings)
 {
     const char *fn = "wovenffModel";
@@ -65,17 +82,21 @@ long model_from_mesh(const Mesh *th, const string *mat, const char *settings)
     wff_error err;
     if (wff_mesh_from_arrays(&in, settings, &mesh, &err))
         wff_ff_fail(fn, std::string("FreeFEM mesh: ") + err.message);
-    wff_model *m = (wff_model *)calloc(1, sizeof(wff_model));
-    if (!m) {
-        wff_mesh_free(&mesh);
-        wff_ff_fail(fn, "out of memory");
-    }
-    if (wff_model_create_from_mesh(m, &mesh, mat->c_str(), &err)) {
-        free(m);
-        wff_ff_fail(fn, err);
-    }
-    return wff_ff_model_add(m);
+    return model_of_mesh(&mesh, mat);
 }
+
+} // namespace
+
+long wff_ff_model_from_freefem_msh(const char *path, const string *mat, const string *settings)
+{
+    wff_mesh mesh;
+    wff_error err;
+    if (wff_mesh_load_freefem(path, settings->c_str(), &mesh, &err))
+        wff_ff_fail("wovenffModel", err);
+    return model_of_mesh(&mesh, mat);
+}
+
+namespace {
 
 long ffModelMesh(const Mesh *const &th, string *const &mat)
 {

@@ -51,6 +51,10 @@ void wff_ff_model_free(long id, const char *fn);
 // Model id's last error; for id < 0 (or not a model) the module's last error.
 std::string wff_ff_model_last_error(long id);
 
+// A model from a FreeFEM-format .msh file, its labels named by settings
+// ("names=1:clamp regions=0:ply"); its handle (ff_femesh.cpp).
+long wff_ff_model_from_freefem_msh(const char *path, const string *mat, const string *settings);
+
 // Load a material file (read afresh on every call: no cache). On failure
 // wff_ff_fail with the loader's message, which names the file, line and key.
 void wff_ff_material(const char *fn, const string *path, wff_material *mat);
