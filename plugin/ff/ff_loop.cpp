@@ -29,10 +29,21 @@ namespace {
 
 const char *kLayout = "5 per vertex: ux uy uz dA1 dA2";
 
-// The array's entries, after checking it has exactly the model's DOF count.
-double *dofs(const char *fn, const char *name, const wff_model *m, KN<double> *v)
+// wff_ff_model_fail (the message kept as model id's last error) unless v has
+// exactly n entries.
+void require_size(const char *fn, const char *name, const KN<double> *v, long n,
+                  const char *layout, long id)
 {
-    wff_ff_require_size(fn, name, v, m->n_dofs, kLayout);
+    if (!v || v->N() != n)
+        wff_ff_model_fail(fn, std::string(name) + " must have " + std::to_string(n) +
+                          " entries (" + layout + "), got " +
+                          std::to_string(v ? (long)v->N() : 0L), id);
+}
+
+// The array's entries, after checking it has exactly model id's DOF count.
+double *dofs(const char *fn, const char *name, const wff_model *m, KN<double> *v, long id)
+{
+    require_size(fn, name, v, m->n_dofs, kLayout, id);
     return &(*v)[0];
 }
 
@@ -48,7 +59,7 @@ double forces(long id, KN<double> *U, KN<double> *R, double dt)
 {
     const char *fn = "wovenffForces";
     wff_model *m = wff_ff_model(id, fn);
-    const double *u = dofs(fn, "U", m, U);
+    const double *u = dofs(fn, "U", m, U, id);
     if ((void *)U == (void *)R)
         wff_ff_model_fail(fn, "U and R must be different arrays", id);
     double energy = 0;
@@ -95,8 +106,8 @@ double ffStableStep(const long &id)
 
 double ffStableStepAt(const long &id, KN<double> *const &U)
 {
-    return stable_step(id, dofs("wovenffStableStep", "U", wff_ff_model(id, "wovenffStableStep"),
-                                U));
+    const char *fn = "wovenffStableStep";
+    return stable_step(id, dofs(fn, "U", wff_ff_model(id, fn), U, id));
 }
 
 double ffStep(const long &id)
@@ -129,7 +140,7 @@ long ffContactSearch(const long &id, KN<double> *const &U)
     wff_model *m = wff_ff_model(id, fn);
     if (!m->projectile.active)
         wff_ff_model_fail(fn, "no projectile: set one with wovenffProjectile first", id);
-    return wff_model_contact_search(m, dofs(fn, "U", m, U));
+    return wff_model_contact_search(m, dofs(fn, "U", m, U, id));
 }
 
 double ffContact(const long &id, KN<double> *const &U, KN<double> *const &V,
@@ -138,9 +149,9 @@ double ffContact(const long &id, KN<double> *const &U, KN<double> *const &V,
 {
     const char *fn = "wovenffContact";
     wff_model *m = wff_ff_model(id, fn);
-    const double *u = dofs(fn, "U", m, U);
-    double *v = dofs(fn, "V", m, V), *r = dofs(fn, "R", m, R);
-    wff_ff_require_size(fn, "P", P, 2, "projectile nose tip z (m), velocity along +z (m/s)");
+    const double *u = dofs(fn, "U", m, U, id);
+    double *v = dofs(fn, "V", m, V, id), *r = dofs(fn, "R", m, R, id);
+    require_size(fn, "P", P, 2, "projectile nose tip z (m), velocity along +z (m/s)", id);
     double tip[2] = {(*P)[0], (*P)[1]}, dissipated = 0;
     wff_error err;
     if (wff_model_contact(m, u, v, r, tip, dt, dtmid, &dissipated, &err))
@@ -153,7 +164,7 @@ double ffClampCorrect(const long &id, KN<double> *const &V, const double &dtmid)
 {
     const char *fn = "wovenffClampCorrect";
     wff_model *m = wff_ff_model(id, fn);
-    double *v = dofs(fn, "V", m, V);
+    double *v = dofs(fn, "V", m, V, id);
     if (!(dtmid > 0))
         wff_ff_model_fail(fn, "dtmid = " + std::to_string(dtmid) + " s: must be > 0", id);
     return wff_model_clamp_correct(m, v, dtmid);
