@@ -5,6 +5,8 @@
 #      beside a bare linear CST membrane kernel of our own (the floor);
 #   2. the pure-.edp alternative: a linear membrane whose forces come from a
 #      varf re-assembled every step;
+#   2c. the scripted explicit loop against the built-in one at ~5k and ~50k
+#      elements, and the µs per call of each loop operator (bench/loop.sh);
 #   3. the ballistic scene with every knob against a reference run (finest
 #      mesh, small step factor, full physics): accuracy and cost.
 # Writes results/bench/: speed.json, kernel.jsonl, tradeoff.csv, tradeoff.md,
@@ -51,6 +53,9 @@ t0=$(now)
 ff freefem_scripts/ballistic_impact.edp -out "$out/runs/scene_default" > "$out/runs/scene_default.log" 2>&1
 scene_wall=$(elapsed "$t0")
 echo "scene_default $scene_wall s"
+
+echo "== 2c. the scripted explicit loop against the built-in one (bench/loop.sh)"
+sh bench/loop.sh || echo "bench/loop.sh failed"
 
 echo "== 3. speed vs accuracy on the ballistic scene"
 scene() { # name, then scene options
@@ -194,6 +199,8 @@ ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (a > 0 && b > 0) printf "%.2f", a 
     echo "  \"edp_varf\": $edp,"
     echo "  \"king_default_mesh\": $king_default,"
     echo "  \"scene_default_wall_seconds\": $scene_wall,"
+    # the scripted loop's rows (bench/loop.sh): scripted_loop_ns_5k, builtin_ns_5k, ...
+    [ -s "$out/loop.json" ] && sed -n 's/^    \("[a-z_0-9]*": .*\),$/  \1,/p' "$out/loop.json"
     echo "  \"ratios\": {"
     echo "    \"king_over_linear_membrane_50k_1thread\": $(ratio "$(num "$k50_1" ns_per_element_step)" "$(num "$k50_1" linear_membrane_ns)"),"
     echo "    \"edp_varf_over_king_default_mesh\": $(ratio "$edp_ns" "$king_ns"),"

@@ -53,13 +53,20 @@ static int fail_unstable(const wff_model *m, const char *what, wff_error *err)
                     m->dt_stable, name, suggested * m->dt_stable, suggested);
 }
 
-/* Internal and contact forces at the current u; returns 0 or -1 (err set). */
-static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
+/* The element force pass (internal forces only) at displacement u into f
+ * (zeroed first), γᶠ advanced by dt_flow in gamma_f; with `accumulate` the
+ * model's stored energy, shear dissipation and element-step count follow it;
+ * the pass's stored energy (J, model part) into *energy unless NULL.
+ * Returns 0 or -1 (err set, naming the element and quadrature point). Shared
+ * with operators.c (solver_internal.h). */
+int wff_force_pass(wff_model *m, const double *u, double *f, double *gamma_f, double dt_flow,
+                   int accumulate, double *energy, wff_error *err)
 {
-    memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
+    memset(f, 0, sizeof(double) * (size_t)m->n_dofs);
     wff_force_totals t;
-    wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, dt_flow, m->f, &t);
-    m->element_steps += m->el.n_tris + m->el.n_quads;
+    wff_elements_forces(&m->el, &m->em, m->mesh.xy, u, gamma_f, dt_flow, f, &t);
+    if (accumulate)
+        m->element_steps += m->el.n_tris + m->el.n_quads;
     if (t.bad_element >= 0) {
         char name[96];
         element_name(m, t.bad_element, name, sizeof name);
@@ -81,10 +88,20 @@ static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
         return wff_fail(err, "t = %.6g s (step %ld): %s, quadrature point %d: %s%s", m->time,
                         m->step, name, t.bad_point + 1, quantity, hint);
     }
-    m->internal_energy = t.internal_energy;
-    m->dissipated_shear += t.dissipated;
-
+    if (energy)
+        *energy = t.internal_energy;
+    if (accumulate) {
+        m->internal_energy = t.internal_energy;
+        m->dissipated_shear += t.dissipated;
+    }
     return 0;
+}
+
+/* Internal forces at the current u (contact forces are added after the
+ * velocity update); returns 0 or -1 (err set). */
+static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
+{
+    return wff_force_pass(m, m->u, m->f, m->gamma_f, dt_flow, 1, NULL, err);
 }
 
 /* Coulomb friction as a velocity correction: an impulse up to `limit`
@@ -123,13 +140,18 @@ static void update_velocities(wff_model *m, double dt_mid, double dt_done)
             break;
         }
     }
+    m->dissipated_friction += wff_clamp_correct(m, m->v, dt_mid);
+}
+
+double wff_clamp_correct(const wff_model *m, double *v, double dt_mid)
+{
     double dissipated = 0;
     /* friction clamp: in-plane, two faces, on the node's free in-plane
      * components (a node on a symmetry line slides along it and is held by
      * friction there too) */
     for (int c = 0; c < m->clamp.n; c++) {
         int n = m->clamp.node[c];
-        double *vn = m->v + D * n;
+        double *vn = v + D * n;
         int free_x = m->dof_kind[D * n + WFF_UX] == WFF_DOF_FREE;
         int free_y = m->dof_kind[D * n + WFF_UY] == WFF_DOF_FREE;
         double speed = hypot(free_x ? vn[0] : 0, free_y ? vn[1] : 0);
@@ -147,7 +169,7 @@ static void update_velocities(wff_model *m, double dt_mid, double dt_done)
         if (free_y)
             vn[1] *= scale;
     }
-    m->dissipated_friction += dissipated;
+    return dissipated;
 }
 
 static int update_time_step(wff_model *m, wff_error *err)

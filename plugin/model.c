@@ -27,6 +27,7 @@ void wff_model_free(wff_model *m)
     free(m->projectile.impulse);
     free(m->clamp.node);
     free(m->clamp.normal_force);
+    free(m->operator_scratch);
     wff_elements_free(&m->el);
     wff_mesh_free(&m->mesh);
     memset(m, 0, sizeof *m);

@@ -1,6 +1,7 @@
 /* solver_internal.h: what the solver's files (model.c, contact.c,
- * integrator.c, fields.c, checkpoint.c) share and nobody else sees: the DOF
- * stride and the contact calls the integrator makes once a step. The public
+ * integrator.c, fields.c, checkpoint.c, operators.c) share and nobody else sees: the DOF
+ * stride, the contact calls the integrator makes once a step, and the force
+ * pass and clamp correction operators.c reuses. The public
  * API is include/wovenff/solver.h. */
 #ifndef WFF_SOLVER_INTERNAL_H
 #define WFF_SOLVER_INTERNAL_H
@@ -21,5 +22,16 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
  * modelled mass follows; -1 (err set) if its axis is off the symmetry
  * planes. */
 int wff_contact_symmetry_changed(wff_model *m, wff_error *err);
+/* integrator.c: the element force pass at u into f (zeroed first), γᶠ
+ * advanced by dt_flow in gamma_f (0: held); accumulate 1: the model's stored
+ * energy, shear dissipation and element-step count updated as a step does.
+ * The pass's stored energy into *energy (J, model part; NULL: not wanted).
+ * -1 (err set, naming the element) on a bad point. */
+int wff_force_pass(wff_model *m, const double *u, double *f, double *gamma_f, double dt_flow,
+                   int accumulate, double *energy, wff_error *err);
+/* integrator.c: the friction clamp's Coulomb correction of the in-plane
+ * velocities v (5 per node) of the clamped nodes over dt_mid; returns the
+ * energy it dissipates, J (model part). */
+double wff_clamp_correct(const wff_model *m, double *v, double dt_mid);
 
 #endif

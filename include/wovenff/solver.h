@@ -122,6 +122,8 @@ typedef struct wff_model {
     int blowup_steps;         /* consecutive steps with more than half the reference
                                  energy created (instability detector) */
     double last_error;        /* energy balance error at the last step */
+    double *operator_scratch; /* operators.c's copy of γᶠ and the static amplitudes for a
+                                 force pass without side effect (allocated on first use) */
 } wff_model;
 
 /* Create a model from a mesh file (.geo or .msh, see mesh.h; mesh_options
@@ -285,6 +287,53 @@ int wff_model_nearest_node(const wff_model *m, double x, double y);
  * area-weighted mean over the elements around the node).
  * Returns -1 for an unknown name (listing the known ones). */
 int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff_error *err);
+
+/* Element operators for a caller's own explicit loop (plugin/operators.c).
+ * Arrays of states and forces have 5 entries per node, node-major
+ * (ux uy uz dA1 dA2: FreeFEM's [P1,P1,P1,P1,P1]); forces in N, states in m.
+ *
+ * wff_model_forces: internal nodal forces and amplitude residual forces
+ * (f_a^u = −∫ P ∇N_a, f_a^A = ∫ R N_a; the force the built-in step divides by
+ * the mass) at displacement U into R. dt = 0: γᶠ held and nothing in the
+ * model changes. dt > 0: γᶠ flows over dt and the model's stored energy,
+ * shear dissipation and element-step count advance, exactly as the force pass
+ * of a built-in step of length dt (the model's u is not touched). *energy:
+ * the stored energy at U, J, whole specimen (× symmetry; NULL: not wanted). */
+int wff_model_forces(wff_model *m, const double *U, double *R, double dt, double *energy,
+                     wff_error *err);
+/* The lumped mass of every DOF (kg; amplitude DOFs 1/6 of the nodal mass ×
+ * amplitude_mass_factor, in kg as the amplitude equation of motion uses it). */
+void wff_model_masses(const wff_model *m, double *M);
+/* The stable explicit step (s, factor 1) at displacement U (NULL: the model's
+ * u); *worst (may be NULL) the element that sets it. -1 with err if it is not
+ * positive (degenerate or NaN state). No side effect. */
+int wff_model_stable_step(const wff_model *m, const double *U, double *dt, int *worst,
+                          wff_error *err);
+/* One built-in step (wff_model_advance by exactly one step); *dt_taken the
+ * step length, s. */
+int wff_model_step(wff_model *m, double *dt_taken, wff_error *err);
+/* DOF kinds (WFF_DOF_FREE 0, FIXED 1, PRESCRIBED 2) into kind and the
+ * prescribed velocities (m/s, 0 elsewhere) into v_prescribed (NULL: not wanted). */
+void wff_model_dof_kinds(const wff_model *m, double *kind, double *v_prescribed);
+/* The projectile's candidate nodes refreshed at displacement U, as the
+ * built-in step does every dtinterval steps; returns their number (0 without
+ * a projectile). */
+int wff_model_contact_search(wff_model *m, const double *U);
+/* The projectile's kinematic contact and friction (the built-in correction)
+ * on a caller's state: the projectile put at tip[0] (nose tip z, m) moving at
+ * tip[1] (m/s, along +z); nodes predicted at U + dt V inside it get impulses:
+ * V is corrected in place, the impulses enter R as forces impulse/dt_mid
+ * (N), the projectile's velocity is updated in tip[1] and in the model, and
+ * its mean force over the step is the model's projectile force. *dissipated:
+ * the energy the contact dissipates, J, whole specimen (added to the model's
+ * dissipated_friction too). -1 (err set) if the projectile has passed through
+ * the fabric or there is no projectile. */
+int wff_model_contact(wff_model *m, const double *U, double *V, double *R, double tip[2],
+                      double dt, double dt_mid, double *dissipated, wff_error *err);
+/* The friction clamp's Coulomb correction on a caller's velocities V over
+ * dt_mid; returns the energy dissipated, J, whole specimen (added to the
+ * model's dissipated_friction too). No-op (0) without a friction clamp. */
+double wff_model_clamp_correct(wff_model *m, double *V, double dt_mid);
 
 #ifdef __cplusplus
 }

@@ -27,6 +27,7 @@ void wff_ff_register_solver(); // ff_solver.cpp: models, meshes, explicit solver
 void wff_ff_register_fit();    // ff_fit.cpp: parameter identification
 void wff_ff_register_explore(); // ff_explore.cpp: one point along a load path (explorer)
 void wff_ff_register_projectile(); // ff_projectile.cpp: nose shape, impact point
+void wff_ff_register_loop();   // ff_loop.cpp: element operators for a script's own loop
 void wff_ff_register_femesh(); // ff_femesh.cpp: models from FreeFEM meshes, labels as groups
 void wff_ff_register_state();  // ff_state.cpp: state vectors in and out, element fields
 

@@ -83,6 +83,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_fit,
     wff_ff_register_explore,
     wff_ff_register_projectile,
+    wff_ff_register_loop,
     wff_ff_register_femesh,
     wff_ff_register_state,
 };

@@ -1,0 +1,147 @@
+/* operators.c: the element operators a caller's own explicit loop needs
+ * (docs/freefem_api.md "Your own loop"): internal and amplitude residual
+ * forces at a given state (with or without advancing γᶠ), the lumped masses,
+ * the stable step at a state, one built-in step, the DOF kinds, and the
+ * projectile's contact and the friction clamp's correction applied to a
+ * caller's arrays. Each reuses the built-in step's own code (integrator.c's
+ * force pass and clamp correction, contact.c's search and correction), so a
+ * scripted loop that calls them in the built-in order gives the built-in's
+ * numbers. Knows the model; nothing of cells by name, of output fields, of
+ * checkpoints or of FreeFEM. */
+#include "solver_internal.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Quadrature points of the mesh (γᶠ entries). */
+static size_t n_points(const wff_model *m)
+{
+    return (size_t)(WFF_TRI_POINTS * m->el.n_tris + WFF_QUAD_POINTS * m->el.n_quads);
+}
+
+/* The scratch copy of γᶠ (n_points) followed by room for the static
+ * amplitudes (2 per point), allocated once. */
+static double *scratch(wff_model *m, wff_error *err)
+{
+    if (!m->operator_scratch) {
+        size_t nq = n_points(m);
+        m->operator_scratch = malloc(3 * sizeof(double) * (nq ? nq : 1));
+        if (!m->operator_scratch)
+            wff_fail(err, "out of memory for the force operator's workspace");
+    }
+    return m->operator_scratch;
+}
+
+int wff_model_forces(wff_model *m, const double *U, double *R, double dt, double *energy,
+                     wff_error *err)
+{
+    if (!(dt >= 0) || !isfinite(dt))
+        return wff_fail(err, "time step dt = %g s: must be >= 0 and finite (0: γᶠ held)", dt);
+    double e = 0;
+    if (dt > 0) { /* as the built-in step's force pass */
+        if (wff_force_pass(m, U, R, m->gamma_f, dt, 1, &e, err))
+            return -1;
+    } else {      /* γᶠ (and static amplitudes) on a copy: the model stays as it was */
+        double *gf = scratch(m, err);
+        if (!gf)
+            return -1;
+        size_t nq = n_points(m);
+        memcpy(gf, m->gamma_f, sizeof(double) * nq);
+        double *dA = m->el.point_dA;
+        if (dA)
+            memcpy(gf + nq, dA, 2 * sizeof(double) * nq);
+        int rc = wff_force_pass(m, U, R, gf, 0, 0, &e, err);
+        if (dA)
+            memcpy(dA, gf + nq, 2 * sizeof(double) * nq);
+        if (rc)
+            return -1;
+    }
+    if (energy)
+        *energy = m->symmetry_factor * e;
+    return 0;
+}
+
+void wff_model_masses(const wff_model *m, double *M)
+{
+    memcpy(M, m->mass, sizeof(double) * (size_t)m->n_dofs);
+}
+
+int wff_model_stable_step(const wff_model *m, const double *U, double *dt, int *worst,
+                          wff_error *err)
+{
+    int w = -1;
+    *dt = wff_elements_stable_step(&m->el, &m->em, m->mesh.xy, U ? U : m->u, &w);
+    if (worst)
+        *worst = w;
+    if (!(*dt > 0) || !isfinite(*dt))
+        return wff_fail(err, "stable time step %g s at element %d is not positive: degenerate "
+                        "deformation (yarns collapsed or parallel) or NaN", *dt, w + 1);
+    return 0;
+}
+
+int wff_model_step(wff_model *m, double *dt_taken, wff_error *err)
+{
+    /* not started: the start (forces at u⁰, the first half step) sets the step */
+    if (m->step == 0 && !m->v_half_valid && wff_model_advance(m, DBL_MAX, 0, err))
+        return -1;
+    double dt = m->dt;
+    if (wff_model_advance(m, DBL_MAX, 1, err))
+        return -1;
+    *dt_taken = dt;
+    return 0;
+}
+
+void wff_model_dof_kinds(const wff_model *m, double *kind, double *v_prescribed)
+{
+    for (int i = 0; i < m->n_dofs; i++) {
+        kind[i] = m->dof_kind[i];
+        if (v_prescribed)
+            v_prescribed[i] = m->dof_kind[i] == WFF_DOF_PRESCRIBED ? m->v_prescribed[i] : 0;
+    }
+}
+
+int wff_model_contact_search(wff_model *m, const double *U)
+{
+    if (!m->projectile.active)
+        return 0;
+    double *u = m->u;
+    m->u = (double *)U; /* contact.c reads the state from the model: lend it the caller's */
+    wff_contact_refresh_candidates(m);
+    m->u = u;
+    return m->projectile.n_candidates;
+}
+
+int wff_model_contact(wff_model *m, const double *U, double *V, double *R, double tip[2],
+                      double dt, double dt_mid, double *dissipated, wff_error *err)
+{
+    wff_projectile *p = &m->projectile;
+    if (!p->active)
+        return wff_fail(err, "no projectile: set one first");
+    if (!(dt > 0) || !(dt_mid > 0) || !isfinite(dt) || !isfinite(dt_mid))
+        return wff_fail(err, "dt = %g s and dt_mid = %g s must be > 0 and finite", dt, dt_mid);
+    if (!isfinite(tip[0]) || !(tip[1] >= 0) || !isfinite(tip[1]))
+        return wff_fail(err, "projectile tip %g m and velocity %g m/s: finite, velocity >= 0",
+                        tip[0], tip[1]);
+    p->tip = tip[0];
+    p->velocity = tip[1];
+    double *u = m->u, *v = m->v, *f = m->f, before = m->dissipated_friction;
+    m->u = (double *)U; /* contact.c works on the model's arrays: lend it the caller's */
+    m->v = V;
+    m->f = R;
+    int rc = wff_contact_correct(m, dt, dt_mid, err);
+    m->u = u;
+    m->v = v;
+    m->f = f;
+    tip[1] = p->velocity;
+    *dissipated = m->symmetry_factor * (m->dissipated_friction - before);
+    return rc;
+}
+
+double wff_model_clamp_correct(wff_model *m, double *V, double dt_mid)
+{
+    double dissipated = wff_clamp_correct(m, V, dt_mid);
+    m->dissipated_friction += dissipated;
+    return m->symmetry_factor * dissipated;
+}
