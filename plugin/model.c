@@ -27,6 +27,7 @@ void wff_model_free(wff_model *m)
     free(m->projectile.impulse);
     free(m->clamp.node);
     free(m->clamp.normal_force);
+    free(m->bc);
     wff_elements_free(&m->el);
     wff_mesh_free(&m->mesh);
     memset(m, 0, sizeof *m);
@@ -203,7 +204,10 @@ int wff_model_fix_group(wff_model *m, const char *group, int component, wff_erro
     if (check_component(component, err))
         return -1;
     dof_setting s = {component, WFF_DOF_FIXED, 0};
-    return for_group_nodes(m, group, err, set_dof, &s);
+    int count = for_group_nodes(m, group, err, set_dof, &s);
+    if (count > 0 && wff_model_log_bc(m, WFF_DOF_FIXED, group, component, 0, 0, err))
+        return -1;
+    return count;
 }
 
 int wff_model_prescribe_group(wff_model *m, const char *group, int component, double velocity,
@@ -214,7 +218,10 @@ int wff_model_prescribe_group(wff_model *m, const char *group, int component, do
     if (!isfinite(velocity))
         return wff_fail(err, "prescribed velocity of '%s' is not finite", group);
     dof_setting s = {component, WFF_DOF_PRESCRIBED, velocity};
-    return for_group_nodes(m, group, err, set_dof, &s);
+    int count = for_group_nodes(m, group, err, set_dof, &s);
+    if (count > 0 && wff_model_log_bc(m, WFF_DOF_PRESCRIBED, group, component, velocity, 0, err))
+        return -1;
+    return count;
 }
 
 static void add_clamp_node(wff_model *m, int node, void *data)
@@ -248,6 +255,8 @@ int wff_model_clamp_friction(wff_model *m, const char *group, double normal_forc
     for (int i = 0; i < m->clamp.n; i++)
         m->clamp.normal_force[i] = normal_force * m->mass[D * m->clamp.node[i]] / total;
     m->clamp.mu = mu;
+    if (wff_model_log_bc(m, WFF_BC_CLAMP, group, 0, normal_force, mu, err))
+        return -1;
     return count;
 }
 
