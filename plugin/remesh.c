@@ -173,6 +173,8 @@ static void barycentric(const locator *L, int t, const double p[2], double lam[3
     lam[0] = (bx * cy - by * cx) / whole;
     lam[1] = (cx * ay - cy * ax) / whole;
     lam[2] = (ax * by - ay * bx) / whole;
+    int big = lam[1] > lam[0] ? (lam[2] > lam[1] ? 2 : 1) : (lam[2] > lam[0] ? 2 : 0);
+    lam[big] = 1 - lam[(big + 1) % 3] - lam[(big + 2) % 3]; /* exactly 1 at a vertex */
 }
 
 /* Nearest point of triangle t to p: barycentric coordinates (clamped) and the
@@ -520,6 +522,15 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, double *before, double *a
             nm.dof_kind[D * n + 3] = nm.dof_kind[D * n + 4] = WFF_DOF_FIXED;
     if (replay_bcs(m, &nm, err)) /* (they zero or set the velocities of their DOFs) */
         goto fail;
+    /* a new node between old nodes on the projectile's curved surface lies
+     * inside it (by ~h²/8R; more where the nose had poked between the old
+     * nodes): out onto the surface along z, as part of the transfer (its
+     * energy is in the transfer's change). Left inside, the next contact
+     * correction would throw it out at ~δ/Δt. */
+    if (nm.projectile.active) {
+        wff_contact_refresh_candidates(&nm);
+        wff_contact_push_out(&nm);
+    }
     /* forces at uⁿ, γᶠ held */
     wff_force_totals tot;
     wff_elements_forces(&nm.el, &nm.em, nm.mesh.xy, nm.u, nm.gamma_f, 0, nm.f, &tot);
@@ -550,7 +561,6 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, double *before, double *a
         if (nm.projectile.active) {
             nm.projectile.velocity = m->projectile.velocity +
                                      0.5 * m->dt * m->projectile.force / m->projectile.mass;
-            wff_contact_refresh_candidates(&nm);
             if (wff_contact_correct(&nm, nm.dt, 0.5 * nm.dt, err))
                 goto fail_prefixed;
         }
