@@ -4,6 +4,7 @@
  * the state; changes nothing. Knows cells only through their names tables;
  * nothing of the integrator, contact or FreeFEM. */
 #include "solver_internal.h"
+#include "wovenff/state.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -20,11 +21,15 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
                 out[n] = m->u[D * n + c];
             return 0;
         }
-    if (strcmp(name, "vz") == 0) {
-        for (int n = 0; n < m->n_nodes; n++)
-            out[n] = m->v[D * n + 2];
-        return 0;
-    }
+    for (int c = 0; c < 3; c++)
+        if (strcmp(name, c == 0 ? "vx" : c == 1 ? "vy" : "vz") == 0) {
+            for (int n = 0; n < m->n_nodes; n++)
+                out[n] = m->v[D * n + c];
+            return 0;
+        }
+    for (int k = 0; k < 2; k++) /* absolute amplitudes A_k = A_k0 + dA_k (state.c) */
+        if (strcmp(name, k ? "A2" : "A1") == 0)
+            return wff_model_amplitude(m, k, out, err);
     const wff_cell_type *cell = m->mat.cell;
     int diag = -1;
     for (int d = 0; d < cell->n_diag; d++)
@@ -35,22 +40,34 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
         if (strcmp(name, k ? "yarn_tension2" : "yarn_tension1") == 0)
             diag = cell->yarn_tension_diag[k];
     int shear = strcmp(name, "gamma") == 0, energy = strcmp(name, "W") == 0;
+    double *element = NULL; /* another element field (state.h), averaged the same way */
     if (diag < 0 && !shear && !energy) {
-        char known[512] = "ux uy uz dA1 dA2 vz gamma W yarn_tension1 yarn_tension2";
-        for (int d = 0; d < cell->n_diag; d++) {
-            size_t used = strlen(known);
-            snprintf(known + used, sizeof known - used, " %s", cell->diag_names[d]);
+        wff_error why;
+        element = malloc(sizeof(double) * (size_t)(m->el.n_tris + m->el.n_quads + 1));
+        if (!element)
+            return wff_fail(err, "out of memory");
+        if (wff_model_element_values(m, name, element, &why)) {
+            free(element);
+            if (strncmp(why.message, "unknown element field", 21) != 0)
+                return wff_fail(err, "%s", why.message);
+            const char *known = strstr(why.message, "(known: ");
+            return wff_fail(err, "unknown field '%s' (known: ux uy uz dA1 dA2 vx vy vz A1 A2 "
+                            "gamma yarn_tension1 yarn_tension2 %s", name,
+                            known ? known + 8 : ")");
         }
-        return wff_fail(err, "unknown field '%s' (known: %s)", name, known);
     }
     double *weight = calloc((size_t)m->n_nodes, sizeof(double));
-    if (!weight)
+    if (!weight) {
+        free(element);
         return wff_fail(err, "out of memory");
+    }
     memset(out, 0, sizeof(double) * (size_t)m->n_nodes);
     int n_el = m->el.n_tris + m->el.n_quads;
     for (int e = 0; e < n_el; e++) {
         double value;
-        if (shear) {
+        if (element) {
+            value = element[e];
+        } else if (shear) {
             double F[6], dA[2];
             wff_element_center_state(&m->el, m->mesh.xy, m->u, e, F, dA);
             const double *Fp = m->em.F_pre;
@@ -86,6 +103,7 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
     for (int n = 0; n < m->n_nodes; n++)
         out[n] = weight[n] > 0 ? out[n] / weight[n] : 0;
     free(weight);
+    free(element);
     return 0;
 }
 

@@ -7,6 +7,7 @@
  * gmsh is one global session per process: each load initialises it, and
  * finalises it on every path, so nothing of gmsh outlives the call. */
 #include "wovenff/mesh.h"
+#include "wovenff/mesh_labels.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -740,6 +741,9 @@ int wff_mesh_load(const char *path, const wff_mesh_options *options, wff_mesh *m
     /* gmsh opens a missing file without any error: check first. */
     if (access(path, R_OK) != 0)
         return wff_fail(err, "%s: cannot read: %s", path, strerror(errno));
+    /* FreeFEM's savemesh format, also named .msh (gmsh's starts "$MeshFormat") */
+    if (!is_geo && wff_mesh_is_freefem_msh(path))
+        return wff_mesh_load_freefem(path, NULL, mesh, err);
 
     /* gmshInitialize() switches the process locale (LC_CTYPE etc.): restore it. */
     const char *cur = setlocale(LC_ALL, NULL);

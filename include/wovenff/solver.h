@@ -230,8 +230,11 @@ int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 int wff_model_nearest_node(const wff_model *m, double x, double y);
 
 /* Per-node output: value of a named field at every node into out (n_nodes).
- * Names: ux uy uz dA1 dA2 vz, the cell's diagnostics (e.g. T1 T2 F_I), and
- * gamma (shear angle, rad). Element values are averaged to nodes by area.
+ * Names: ux uy uz dA1 dA2 vx vy vz (the stored velocity, see state.h), A1 A2
+ * (absolute amplitudes A_k0 + dA_k, m), the cell's diagnostics (e.g. T1 T2
+ * F_I), gamma (shear angle, rad) and every element field of state.h (P11 ..
+ * lambda1 .. gamma_f ...). Element values are averaged to nodes by area (the
+ * area-weighted mean over the elements around the node).
  * Returns -1 for an unknown name (listing the known ones). */
 int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff_error *err);
 

@@ -39,6 +39,7 @@
 extern "C" {
 #include "wovenff/solver.h"
 #include "wovenff/options.h"
+#include "wovenff/mesh_labels.h"
 }
 
 using namespace Fem2D;
@@ -114,6 +115,9 @@ long ffModel(string *const &meshFile, string *const &materialFile, string *const
 {
     wff_mesh_options opt;
     wff_error err;
+    // a FreeFEM-format .msh: settings name its labels (ff_femesh.cpp)
+    if (wff_mesh_is_freefem_msh(meshFile->c_str()))
+        return wff_ff_model_from_freefem_msh(meshFile->c_str(), materialFile, settings);
     if (wff_mesh_options_parse(settings->c_str(), &opt, &err))
         fail("wovenffModel", err);
     wff_model *m = (wff_model *)calloc(1, sizeof(wff_model));

@@ -26,6 +26,8 @@ void wff_ff_register_point();  // ff_point.cpp: pointwise material API
 void wff_ff_register_solver(); // ff_solver.cpp: models, meshes, explicit solver
 void wff_ff_register_fit();    // ff_fit.cpp: parameter identification
 void wff_ff_register_explore(); // ff_explore.cpp: one point along a load path (explorer)
+void wff_ff_register_femesh(); // ff_femesh.cpp: models from FreeFEM meshes, labels as groups
+void wff_ff_register_state();  // ff_state.cpp: state vectors in and out, element fields
 
 // Record "fn: message" as the last error and stop the script (exit code 8
 // unless it catches the error). Never returns.
@@ -49,6 +51,10 @@ void wff_ff_model_free(long id, const char *fn);
 [[noreturn]] void wff_ff_model_fail(const char *fn, const std::string &message, long id);
 // Model id's last error; for id < 0 (or not a model) the module's last error.
 std::string wff_ff_model_last_error(long id);
+
+// A model from a FreeFEM-format .msh file, its labels named by settings
+// ("names=1:clamp regions=0:ply"); its handle (ff_femesh.cpp).
+long wff_ff_model_from_freefem_msh(const char *path, const string *mat, const string *settings);
 
 // Load a material file (read afresh on every call: no cache). On failure
 // wff_ff_fail with the loader's message, which names the file, line and key.

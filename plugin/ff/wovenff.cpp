@@ -82,6 +82,8 @@ static void (*const kRegister[])() = {
     wff_ff_register_solver,
     wff_ff_register_fit,
     wff_ff_register_explore,
+    wff_ff_register_femesh,
+    wff_ff_register_state,
 };
 
 static void init()

@@ -1,0 +1,127 @@
+/* element_fields.c: per-element output of a model's state by name
+ * (include/wovenff/state.h): stress P, yarn stretches, shear angle, γᶠ, W,
+ * yarn tensions and the cell's diagnostics, evaluated at each element's
+ * centre; the same on FreeFEM's triangle twin (a quadrilateral's value to
+ * both its triangles). Reads the state; changes nothing. Knows cells only
+ * through their names tables and evaluate (via the elements); nothing of the
+ * integrator, contact or FreeFEM. */
+#include "solver_internal.h"
+#include "wovenff/state.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+enum { EF_P = 0, EF_LAMBDA = 6, EF_SHEAR = 8, EF_GAMMA_F, EF_W, EF_TENSION, EF_DIAG = 16 };
+
+static const char *const fixed_names[] = {"P11", "P12", "P21", "P22", "P31", "P32",
+                                          "lambda1", "lambda2", "shear_angle", "gamma_f", "W"};
+#define N_FIXED ((int)(sizeof fixed_names / sizeof fixed_names[0]))
+
+/* Code of a field name (EF_*, EF_TENSION + k, EF_DIAG + d) or -1. */
+static int field_code(const wff_cell_type *cell, const char *name)
+{
+    for (int i = 0; i < N_FIXED; i++)
+        if (strcmp(name, fixed_names[i]) == 0)
+            return i;
+    for (int k = 0; k < 2; k++)
+        if (strcmp(name, k ? "T2" : "T1") == 0 && cell->yarn_tension_diag[k] >= 0)
+            return EF_TENSION + k;
+    for (int d = 0; d < cell->n_diag; d++)
+        if (strcmp(name, cell->diag_names[d]) == 0)
+            return EF_DIAG + d;
+    return -1;
+}
+
+static int unknown(const wff_cell_type *cell, const char *name, wff_error *err)
+{
+    char known[600] = "";
+    for (int i = 0; i < N_FIXED; i++) {
+        size_t used = strlen(known);
+        snprintf(known + used, sizeof known - used, "%s%s", i ? " " : "", fixed_names[i]);
+    }
+    for (int k = 0; k < 2; k++)
+        if (cell->yarn_tension_diag[k] >= 0 && field_code(cell, k ? "T2" : "T1") < EF_DIAG) {
+            size_t used = strlen(known);
+            snprintf(known + used, sizeof known - used, " T%d", k + 1);
+        }
+    for (int d = 0; d < cell->n_diag; d++)
+        if (field_code(cell, cell->diag_names[d]) == EF_DIAG + d) {
+            size_t used = strlen(known);
+            snprintf(known + used, sizeof known - used, " %s", cell->diag_names[d]);
+        }
+    return wff_fail(err, "unknown element field '%s' (known: %s)", name, known);
+}
+
+int wff_model_element_values(const wff_model *m, const char *name, double *out,
+                             wff_error *err)
+{
+    const wff_cell_type *cell = m->mat.cell;
+    int code = field_code(cell, name);
+    if (code < 0)
+        return unknown(cell, name, err);
+    int n_el = m->el.n_tris + m->el.n_quads;
+    const double *Fp = m->em.F_pre;
+    for (int e = 0; e < n_el; e++) {
+        double value;
+        if (code == EF_GAMMA_F) {
+            int n = e < m->el.n_tris ? 3 : 4;
+            const double *g = e < m->el.n_tris
+                                  ? m->gamma_f + 3 * e
+                                  : m->gamma_f + 3 * m->el.n_tris + 4 * (e - m->el.n_tris);
+            value = 0;
+            for (int q = 0; q < n; q++)
+                value += g[q] / n;
+        } else if (code == EF_LAMBDA || code == EF_LAMBDA + 1 || code == EF_SHEAR) {
+            double F[6], dA[2], g[2][3];
+            wff_element_center_state(&m->el, m->mesh.xy, m->u, e, F, dA);
+            for (int i = 0; i < 3; i++) { /* g_k = F_eff E_k, F_eff = F F_pre */
+                g[0][i] = F[2 * i] * Fp[0] + F[2 * i + 1] * Fp[2];
+                g[1][i] = F[2 * i] * Fp[1] + F[2 * i + 1] * Fp[3];
+            }
+            if (code != EF_SHEAR) {
+                const double *gk = g[code - EF_LAMBDA];
+                value = sqrt(gk[0] * gk[0] + gk[1] * gk[1] + gk[2] * gk[2]);
+            } else {
+                double dot = g[0][0] * g[1][0] + g[0][1] * g[1][1] + g[0][2] * g[1][2];
+                double cx = g[0][1] * g[1][2] - g[0][2] * g[1][1],
+                       cy = g[0][2] * g[1][0] - g[0][0] * g[1][2],
+                       cz = g[0][0] * g[1][1] - g[0][1] * g[1][0];
+                value = M_PI_2 - atan2(sqrt(cx * cx + cy * cy + cz * cz), dot);
+            }
+        } else {
+            wff_point_result r;
+            if (wff_element_center_eval(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, e, &r) !=
+                WFF_POINT_OK) {
+                int tri = e < m->el.n_tris;
+                return wff_fail(err, "element field '%s': %s %d is degenerate (yarns collapsed "
+                                "or parallel)", name, tri ? "triangle" : "quadrilateral",
+                                tri ? e + 1 : e - m->el.n_tris + 1);
+            }
+            if (code < EF_LAMBDA)
+                value = r.stress[code];
+            else if (code == EF_W)
+                value = r.energy;
+            else if (code < EF_DIAG)
+                value = r.diag[cell->yarn_tension_diag[code - EF_TENSION]];
+            else
+                value = r.diag[code - EF_DIAG];
+        }
+        out[e] = value;
+    }
+    return 0;
+}
+
+int wff_model_element_field(const wff_model *m, const char *name, double *out,
+                            wff_error *err)
+{
+    int nt = m->el.n_tris, nq = m->el.n_quads;
+    /* the quads' values go to the tail first, then spread backwards in place */
+    if (wff_model_element_values(m, name, out, err))
+        return -1;
+    for (int q = nq - 1; q >= 0; q--) {
+        double value = out[nt + q];
+        out[nt + 2 * q] = out[nt + 2 * q + 1] = value;
+    }
+    return 0;
+}

@@ -1,0 +1,146 @@
+/* state.c: a model's state in and out as arrays (include/wovenff/state.h):
+ * get and set u or v with checks, the recomputation that makes energies,
+ * forces and fields describe a set state, the energy balance's reference
+ * moved by a set after steps; absolute crimp amplitudes. Knows the model, the
+ * elements' force pass and a cell's reference geometry; nothing of how a
+ * step is taken, of contact, of FreeFEM. */
+#include "solver_internal.h"
+#include "wovenff/state.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const component_names[D] = {"ux", "uy", "uz", "dA1", "dA2"};
+
+static int which_vector(const char *which, wff_error *err)
+{
+    if (which && strcmp(which, "u") == 0)
+        return 0;
+    if (which && strcmp(which, "v") == 0)
+        return 1;
+    return wff_fail(err, "unknown state vector '%s' (known: u, the displacements and amplitude "
+                    "changes; v, the velocities)", which ? which : "");
+}
+
+int wff_model_get_vector(const wff_model *m, const char *which, double *out, wff_error *err)
+{
+    int w = which_vector(which, err);
+    if (w < 0)
+        return -1;
+    memcpy(out, w ? m->v : m->u, sizeof(double) * (size_t)m->n_dofs);
+    return 0;
+}
+
+/* Kinetic + stored energy now, model part (what a set may change). */
+static void state_energy(const wff_model *m, double *kinetic, double *stored)
+{
+    wff_energies e;
+    wff_model_energies(m, &e);
+    double s = m->symmetry_factor;
+    *kinetic = (e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude +
+                e.kinetic_projectile) / s;
+    *stored = m->internal_energy;
+}
+
+/* Check a vector to be set; -1 naming the first DOF at fault. */
+static int check_vector(const wff_model *m, int w, const double *in, wff_error *err)
+{
+    const char *vec = w ? "v" : "u";
+    int no_amplitudes = m->mat.cell->n_amplitudes == 0;
+    for (int i = 0; i < m->n_dofs; i++) {
+        int node = i / D + 1, c = i % D;
+        if (!isfinite(in[i]))
+            return wff_fail(err, "%s[%d] (node %d, %s) = %g is not a finite number", vec, i,
+                            node, component_names[c], in[i]);
+        if (no_amplitudes && c >= WFF_DA1 && in[i] != 0)
+            return wff_fail(err, "%s[%d] (node %d, %s) = %g: cell '%s' has no amplitudes (must "
+                            "be 0)", vec, i, node, component_names[c], in[i], m->mat.cell->name);
+        if (!w)
+            continue;
+        if (m->dof_kind[i] == WFF_DOF_FIXED && in[i] != 0)
+            return wff_fail(err, "v[%d] (node %d, %s) = %g: the DOF is fixed (its velocity "
+                            "must be 0)", i, node, component_names[c], in[i]);
+        if (m->dof_kind[i] == WFF_DOF_PRESCRIBED && in[i] != m->v_prescribed[i])
+            return wff_fail(err, "v[%d] (node %d, %s) = %g: the DOF moves at its prescribed "
+                            "velocity %g m/s", i, node, component_names[c], in[i],
+                            m->v_prescribed[i]);
+    }
+    return 0;
+}
+
+/* Forces, stored energy and reactions at the current u, γᶠ held, no time;
+ * -1 naming the element if one is degenerate or not finite. */
+static int forces_now(wff_model *m, wff_error *err)
+{
+    wff_force_totals t;
+    memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
+    wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, 0, m->f, &t);
+    if (t.bad_element >= 0) {
+        int e = t.bad_element, tri = e < m->el.n_tris;
+        const int *node = tri ? m->el.tri + 3 * e : m->el.quad + 4 * (e - m->el.n_tris);
+        return wff_fail(err, "the state set makes %s %d (nodes %d %d %d%s) %s",
+                        tri ? "triangle" : "quadrilateral", tri ? e + 1 : e - m->el.n_tris + 1,
+                        node[0] + 1, node[1] + 1, node[2] + 1, tri ? "" : " ...",
+                        t.bad_status == WFF_POINT_DEGENERATE
+                            ? "degenerate (yarns collapsed or parallel: inverted element)"
+                            : "give a non-finite stress or energy");
+    }
+    m->internal_energy = t.internal_energy;
+    for (int i = 0; i < m->n_dofs; i++)
+        if (m->dof_kind[i] != WFF_DOF_FREE)
+            m->reaction[i] = -m->f[i];
+    return 0;
+}
+
+int wff_model_set_vector(wff_model *m, const char *which, const double *in, wff_error *err)
+{
+    int w = which_vector(which, err);
+    if (w < 0 || check_vector(m, w, in, err))
+        return -1;
+    size_t bytes = sizeof(double) * (size_t)m->n_dofs;
+    double k0, e0, k1, e1;
+    state_energy(m, &k0, &e0);
+    if (w) {
+        memcpy(m->v, in, bytes);
+    } else {
+        double *saved = malloc(3 * bytes);
+        if (!saved)
+            return wff_fail(err, "out of memory");
+        memcpy(saved, m->u, bytes);
+        memcpy(saved + m->n_dofs, m->f, bytes);
+        memcpy(saved + 2 * (size_t)m->n_dofs, m->reaction, bytes);
+        double saved_energy = m->internal_energy;
+        memcpy(m->u, in, bytes);
+        if (forces_now(m, err)) { /* back to the state as it was */
+            memcpy(m->u, saved, bytes);
+            memcpy(m->f, saved + m->n_dofs, bytes);
+            memcpy(m->reaction, saved + 2 * (size_t)m->n_dofs, bytes);
+            m->internal_energy = saved_energy;
+            free(saved);
+            return -1;
+        }
+        free(saved);
+    }
+    state_energy(m, &k1, &e1);
+    if (m->v_half_valid) { /* after steps: the set moves the balance's reference */
+        m->initial_kinetic += k1 - k0;
+        m->initial_total += (k1 - k0) + (e1 - e0);
+    }
+    return 0;
+}
+
+int wff_model_amplitude(const wff_model *m, int k, double *out, wff_error *err)
+{
+    const wff_cell_type *cell = m->mat.cell;
+    if (k < 0 || k > 1)
+        return wff_fail(err, "amplitude %d: must be 1 or 2", k + 1);
+    if (!cell->reference_geometry || cell->n_amplitudes == 0)
+        return wff_fail(err, "A%d: cell '%s' has no reference crimp amplitude A%d0 (no "
+                        "reference_geometry)", k + 1, cell->name, k + 1);
+    double pitch0[2], amplitude0[2];
+    cell->reference_geometry(m->mat.params, pitch0, amplitude0);
+    for (int n = 0; n < m->n_nodes; n++)
+        out[n] = amplitude0[k] + m->u[D * n + WFF_DA1 + k];
+    return 0;
+}
