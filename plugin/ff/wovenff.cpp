@@ -84,6 +84,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_explore,
     wff_ff_register_femesh,
     wff_ff_register_state,
+    wff_ff_register_remesh,
 };
 
 static void init()
