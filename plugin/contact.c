@@ -103,30 +103,28 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err)
     return 0;
 }
 
-/* Move every candidate node found inside the projectile (at the positions
- * now, not predicted) out onto its surface along z, the direction it moves
- * in (an in-plane move would strain the stiff yarns: a transverse one only
- * bends the ply), velocities unchanged. For a state that did not come from
- * a step, e.g. interpolated onto a new mesh. Returns the nodes moved. */
-int wff_contact_push_out(wff_model *m)
+/* Move the projectile back along −z until no candidate node is inside it
+ * (at the positions now); velocities unchanged. For a state that did not come
+ * from a step, e.g. interpolated onto a new mesh whose nodes the nose had
+ * reached between the old ones. Returns how far it moved, m (>= 0). */
+double wff_contact_retract(wff_model *m)
 {
     wff_projectile *p = &m->projectile;
-    int moved = 0;
-    for (int c = 0; c < p->n_candidates && p->active; c++) {
-        int n = p->candidates[c];
-        double *un = m->u + D * n;
-        if (m->dof_kind[D * n + WFF_UZ] != WFF_DOF_FREE)
-            continue;
-        int inside = 0;
-        for (int iteration = 0; iteration < 8; iteration++) { /* along z onto the surface */
+    double moved = 0;
+    for (int iteration = 0; iteration < 20 && p->active; iteration++) {
+        double shift = 0;
+        for (int c = 0; c < p->n_candidates; c++) {
+            int n = p->candidates[c];
+            const double *un = m->u + D * n;
             double x[3] = {m->mesh.xy[2 * n] + un[0], m->mesh.xy[2 * n + 1] + un[1], un[2]};
             double nrm[3], delta = penetration(p, x, nrm);
-            if (delta <= 1e-12 * p->radius)
-                break;
-            inside = 1;
-            un[2] += delta / fmax(nrm[2], 0.2);
+            if (delta > 0)
+                shift = fmax(shift, delta / fmax(nrm[2], 0.2));
         }
-        moved += inside;
+        if (shift <= 1e-12 * p->radius)
+            break;
+        p->tip -= shift;
+        moved += shift;
     }
     return moved;
 }

@@ -393,7 +393,8 @@ static int allocate(wff_model *nm, wff_error *err)
 }
 
 /* Interpolate the nodal state and the point state of m onto nm. */
-static int transfer_state(const wff_model *m, wff_model *nm, const locator *L, wff_error *err)
+static int transfer_state(const wff_model *m, wff_model *nm, const locator *L,
+                          wff_remesh_report *rep, wff_error *err)
 {
     const double half = m->v_half_valid ? 0.5 * m->dt : 0;
     const double limit = OUTSIDE_TOLERANCE * L->diagonal;
@@ -405,6 +406,10 @@ static int transfer_state(const wff_model *m, wff_model *nm, const locator *L, w
             return wff_fail(err, "wff_model_remesh: new node %d at (%g, %g) m is %.3g m outside "
                             "the old mesh (more than round-off, %.3g m): not a mesh of the same "
                             "specimen", n + 1, p[0], p[1], t < 0 ? INFINITY : distance, limit);
+        if (distance > 0) {
+            rep->snapped_nodes++;
+            rep->largest_snap = fmax(rep->largest_snap, distance);
+        }
         for (int j = 0; j < D; j++) {
             double u = 0, v = 0;
             for (int k = 0; k < 3; k++) {
@@ -476,9 +481,10 @@ static double stored_plus_kinetic(const wff_model *m)
            e.kinetic_projectile;
 }
 
-int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, double *before, double *after,
+int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report,
                      wff_error *err)
 {
+    wff_remesh_report rep = {0, 0, 0, 0, 0};
     wff_model nm = *m; /* every scalar: settings, preload, accumulators, projectile */
     nm.mesh = *new_mesh;
     memset(new_mesh, 0, sizeof *new_mesh);
@@ -511,7 +517,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, double *before, double *a
         if (wff_elements_static_amplitudes(&nm.el, &nm.em, guess, err))
             goto fail_prefixed;
     }
-    if (locator_build(&L, &m->mesh, err) || transfer_state(m, &nm, &L, err))
+    if (locator_build(&L, &m->mesh, err) || transfer_state(m, &nm, &L, &rep, err))
         goto fail;
     wff_elements_masses(&nm.el, &nm.em, nm.n_nodes, nm.mass);
     nm.fabric_mass = 0;
@@ -523,13 +529,14 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, double *before, double *a
     if (replay_bcs(m, &nm, err)) /* (they zero or set the velocities of their DOFs) */
         goto fail;
     /* a new node between old nodes on the projectile's curved surface lies
-     * inside it (by ~h²/8R; more where the nose had poked between the old
-     * nodes): out onto the surface along z, as part of the transfer (its
-     * energy is in the transfer's change). Left inside, the next contact
-     * correction would throw it out at ~δ/Δt. */
+     * inside it (by ~h²/8R, more where the nose had reached between the old
+     * nodes): the projectile goes back until none is. Pushing the nodes out
+     * instead would stretch the stiff yarns (arc longer than chord) and lock
+     * the cell; left inside, the next contact correction would throw them out
+     * at ~δ/Δt. */
     if (nm.projectile.active) {
         wff_contact_refresh_candidates(&nm);
-        wff_contact_push_out(&nm);
+        rep.retraction = wff_contact_retract(&nm);
     }
     /* forces at uⁿ, γᶠ held */
     wff_force_totals tot;
@@ -576,10 +583,10 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, double *before, double *a
     *m = nm;
     m->em.mat = &m->mat;
     free_new_arrays(&old); /* the old one's arrays (same list) */
-    if (before)
-        *before = e_before;
-    if (after)
-        *after = e_after;
+    rep.before = e_before;
+    rep.after = e_after;
+    if (report)
+        *report = rep;
     return 0;
 fail_prefixed:
     snprintf(why, sizeof why, "%s", err->message);

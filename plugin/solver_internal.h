@@ -17,9 +17,9 @@ void wff_contact_refresh_candidates(wff_model *m);
  * through the fabric. */
 int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
 
-/* contact.c: move nodes found inside the projectile now out onto its
- * surface (positions only); returns how many. */
-int wff_contact_push_out(wff_model *m);
+/* contact.c: move the projectile back along z until no node is inside it
+ * now; returns the distance, m. */
+double wff_contact_retract(wff_model *m);
 /* remesh.c: remember a boundary condition set by group (wff_bc_record) so
  * that a mesh transfer can set it again; -1 (err set) if out of memory. */
 int wff_model_log_bc(wff_model *m, int kind, const char *group, int component, double value,

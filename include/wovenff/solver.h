@@ -253,15 +253,24 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
  *   preload, projectile; the groups of the old mesh by name, found in the new
  *   mesh by name or by tag (edge label, triangle region); the boundary
  *   conditions and the clamp set again by group in the order they were set
- *   (a group they use missing in the new mesh is an error). Then masses, the
- *   forces at uⁿ (γᶠ held), the stable step, v^{n+½} = vⁿ + ½Δt_new f/M and
- *   the contact correction, as at the start of a run.
+ *   (a group they use missing in the new mesh is an error). A new node the
+ *   projectile's nose had reached between the old nodes would be inside it:
+ *   the projectile is moved back along z until none is (report->retraction;
+ *   its velocity is kept). Then masses, the forces at uⁿ (γᶠ held), the
+ *   stable step, v^{n+½} = vⁿ + ½Δt_new f/M and the contact correction, as
+ *   at the start of a run.
  *
- * The energy: stored + kinetic (whole specimen) before and after into
- * *before / *after (either may be NULL); after − before is added to the
- * balance as a transfer term (wff_energies.transfer), so energies.error
- * measures the integration only. On failure m is unchanged and usable. */
-int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, double *before, double *after,
+ * The energy: stored + kinetic (whole specimen) before and after; after −
+ * before is added to the balance as a transfer term (wff_energies.transfer),
+ * so energies.error measures the integration only. On failure m is
+ * unchanged and usable. report may be NULL. */
+typedef struct wff_remesh_report {
+    double before, after;   /* stored + kinetic energy, whole specimen, J */
+    double retraction;      /* the projectile moved back by this, m */
+    int snapped_nodes;      /* new nodes outside the old mesh by round-off */
+    double largest_snap;    /* the farthest of them, m */
+} wff_remesh_report;
+int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report,
                      wff_error *err);
 
 #ifdef __cplusplus

@@ -76,8 +76,10 @@ static void same_mesh(check_state *st)
     long step = m.step;
     wff_mesh same;
     CHECK(st, test_mesh_rect(&r, &same) == 0, "mesh");
-    double before, after, t0 = seconds();
-    rc = wff_model_remesh(&m, &same, &before, &after, &err);
+    double t0 = seconds();
+    wff_remesh_report rep;
+    rc = wff_model_remesh(&m, &same, &rep, &err);
+    double before = rep.before, after = rep.after;
     double cost = seconds() - t0;
     CHECK(st, rc == 0, "%s", err.message);
     if (rc == 0) {
@@ -160,8 +162,9 @@ static double deformation(check_state *st, field_fn field, const char *what, int
     m.internal_energy = U0;
     wff_mesh mesh;
     CHECK(st, test_mesh_rect(&fine, &mesh) == 0, "mesh");
-    double before, after;
-    int rc = wff_model_remesh(&m, &mesh, &before, &after, &err);
+    wff_remesh_report rep;
+    int rc = wff_model_remesh(&m, &mesh, &rep, &err);
+    double before = rep.before, after = rep.after;
     CHECK(st, rc == 0, "%s", err.message);
     if (rc == 0) {
         double U1 = stored_energy(&m);
@@ -199,7 +202,7 @@ static void groups(check_state *st)
             snprintf(bad.groups[g].name, sizeof bad.groups[g].name, "lid"), bad.groups[g].tag = 99;
     int n0 = m.n_nodes;
     double uz0 = m.u[D * (n0 / 2) + WFF_UZ];
-    int rc = wff_model_remesh(&m, &bad, NULL, NULL, &err);
+    int rc = wff_model_remesh(&m, &bad, NULL, &err);
     CHECK(st, rc == -1 && strstr(err.message, "'top'"), "missing group: rc %d, %s", rc,
           err.message);
     printf("  missing group: %s\n", err.message);
@@ -208,7 +211,7 @@ static void groups(check_state *st)
     big.x1 = 0.031;
     wff_mesh outside;
     CHECK(st, test_mesh_rect(&big, &outside) == 0, "mesh");
-    rc = wff_model_remesh(&m, &outside, NULL, NULL, &err);
+    rc = wff_model_remesh(&m, &outside, NULL, &err);
     CHECK(st, rc == -1 && strstr(err.message, "outside the old mesh"), "outside: rc %d, %s", rc,
           err.message);
     printf("  node outside: %s\n", err.message);
@@ -216,7 +219,7 @@ static void groups(check_state *st)
     CHECK(st, wff_model_advance(&m, 1, 20, &err) == 0, "usable after failures: %s", err.message);
     wff_mesh good;
     CHECK(st, test_mesh_rect(&r2, &good) == 0, "mesh");
-    rc = wff_model_remesh(&m, &good, NULL, NULL, &err);
+    rc = wff_model_remesh(&m, &good, NULL, &err);
     CHECK(st, rc == 0, "%s", err.message);
     if (rc == 0) {
         unsigned char *in_clamp = calloc((size_t)m.n_nodes, 1);
@@ -278,15 +281,18 @@ static void continues(check_state *st)
                           TEST_MESH_TRI, block % 2, 0.1, (uint64_t)(20 + block)};
         wff_mesh mesh;
         CHECK(st, test_mesh_rect(&next, &mesh) == 0, "mesh");
-        double before, after, err_before = e.error;
-        rc = wff_model_remesh(&m, &mesh, &before, &after, &err);
+        double err_before = e.error;
+        wff_remesh_report rep;
+        rc = wff_model_remesh(&m, &mesh, &rep, &err);
+        double before = rep.before, after = rep.after;
         CHECK(st, rc == 0, "%s", err.message);
         wff_model_energies(&m, &e);
         transfers += after - before;
         worst_jump = fmax(worst_jump, fabs(e.error - err_before));
         printf("  transfer %d onto %dx%d at step %ld: stored+kinetic %.6e -> %.6e J "
-               "(%+.2e of the reference), balance %.2e -> %.2e\n", block + 1, next.nx, next.ny,
-               m.step, before, after, (after - before) / e.reference, err_before, e.error);
+               "(%+.2e of the reference), balance %.2e -> %.2e, projectile back %.3g mm\n", block + 1,
+               next.nx, next.ny, m.step, before, after, (after - before) / e.reference,
+               err_before, e.error, 1e3 * rep.retraction);
         CHECK_CLOSE(st, e.transfer, transfers, 1e-12, 1e-15, "transfer term");
         CHECK(st, fabs(e.error - err_before) < 1e-3, "balance across the transfer: %g -> %g",
               err_before, e.error);
