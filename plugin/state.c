@@ -104,18 +104,26 @@ int wff_model_set_vector(wff_model *m, const char *which, const double *in, wff_
     if (w) {
         memcpy(m->v, in, bytes);
     } else {
-        double *saved = malloc(3 * bytes);
+        /* static amplitudes: the points' own dA are state the force pass updates */
+        size_t n_point_dA = m->el.point_dA ? 2 * (size_t)(WFF_TRI_POINTS * m->el.n_tris +
+                                                          WFF_QUAD_POINTS * m->el.n_quads) : 0;
+        double *saved = malloc(3 * bytes + n_point_dA * sizeof(double) + 1);
         if (!saved)
             return wff_fail(err, "out of memory");
+        double *saved_dA = saved + 3 * (size_t)m->n_dofs;
         memcpy(saved, m->u, bytes);
         memcpy(saved + m->n_dofs, m->f, bytes);
         memcpy(saved + 2 * (size_t)m->n_dofs, m->reaction, bytes);
+        if (n_point_dA)
+            memcpy(saved_dA, m->el.point_dA, n_point_dA * sizeof(double));
         double saved_energy = m->internal_energy;
         memcpy(m->u, in, bytes);
         if (forces_now(m, err)) { /* back to the state as it was */
             memcpy(m->u, saved, bytes);
             memcpy(m->f, saved + m->n_dofs, bytes);
             memcpy(m->reaction, saved + 2 * (size_t)m->n_dofs, bytes);
+            if (n_point_dA)
+                memcpy(m->el.point_dA, saved_dA, n_point_dA * sizeof(double));
             m->internal_energy = saved_energy;
             free(saved);
             return -1;

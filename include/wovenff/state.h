@@ -18,6 +18,9 @@
  * prescribed DOF's velocity other than its prescribed one, a non-zero
  * amplitude of a cell without amplitudes, a u that makes an element
  * degenerate (named). Each error names the DOF (1-based node and component).
+ * Not checked: a u that puts nodes inside the projectile (the next step's
+ * kinematic contact puts them back on its surface, the normal impulse's work
+ * counted as contact dissipation, as for any contact).
  *
  * The energy balance: a state set before the first step is the initial state
  * the balance starts from. A state set after steps moves the balance's

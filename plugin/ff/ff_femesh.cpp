@@ -53,7 +53,16 @@ long model_of_mesh(wff_mesh *mesh, const string *mat)
 
 long model_from_mesh(const Mesh *th, const string *mat, const char *settings)
 {
-    const char *fn = "wovenffModel";
+    wff_mesh mesh;
+    wff_ff_mesh_from_freefem("wovenffModel", th, settings, &mesh);
+    return model_of_mesh(&mesh, mat);
+}
+
+} // namespace
+
+void wff_ff_mesh_from_freefem(const char *fn, const Mesh *th, const char *settings,
+                              wff_mesh *mesh)
+{
     if (!th)
         wff_ff_fail(fn, "no mesh given");
     const Mesh &Th = *th;
@@ -78,14 +87,10 @@ long model_from_mesh(const Mesh *th, const string *mat, const char *settings)
     }
     wff_mesh_arrays in = {nv, xy.data(), nt, tri.data(), region.data(), nbe, edge.data(),
                           label.data()};
-    wff_mesh mesh;
     wff_error err;
-    if (wff_mesh_from_arrays(&in, settings, &mesh, &err))
+    if (wff_mesh_from_arrays(&in, settings, mesh, &err))
         wff_ff_fail(fn, std::string("FreeFEM mesh: ") + err.message);
-    return model_of_mesh(&mesh, mat);
 }
-
-} // namespace
 
 long wff_ff_model_from_freefem_msh(const char *path, const string *mat, const string *settings)
 {

@@ -20,12 +20,10 @@
 #include "AFunction_ext.hpp"
 
 #include <string>
-#include <vector>
 
 #include "ff_wovenff.hpp"
 
 extern "C" {
-#include "wovenff/mesh_labels.h"
 #include "wovenff/solver.h"
 }
 
@@ -33,44 +31,12 @@ using namespace Fem2D;
 
 namespace {
 
-// Th's arrays as wovenffModel(mesh Th, ...) takes them (ff_femesh.cpp).
-void mesh_of(const Mesh *th, wff_mesh *mesh, const char *fn, long id)
-{
-    if (!th)
-        wff_ff_model_fail(fn, "no mesh given", id);
-    const Mesh &Th = *th;
-    int nv = Th.nv, nt = Th.nt, nbe = Th.neb;
-    std::vector<double> xy(2 * (size_t)nv);
-    std::vector<int> tri(3 * (size_t)nt), region((size_t)nt), edge(2 * (size_t)nbe),
-        label((size_t)nbe);
-    for (int i = 0; i < nv; i++) {
-        xy[2 * i] = Th(i).x;
-        xy[2 * i + 1] = Th(i).y;
-    }
-    for (int k = 0; k < nt; k++) {
-        for (int a = 0; a < 3; a++)
-            tri[3 * k + a] = Th(Th[k][a]);
-        region[k] = Th[k].lab;
-    }
-    for (int k = 0; k < nbe; k++) {
-        const Mesh::BorderElement &be = Th.be(k);
-        edge[2 * k] = Th(be[0]);
-        edge[2 * k + 1] = Th(be[1]);
-        label[k] = be.lab;
-    }
-    wff_mesh_arrays in = {nv, xy.data(), nt, tri.data(), region.data(), nbe, edge.data(),
-                          label.data()};
-    wff_error err;
-    if (wff_mesh_from_arrays(&in, "", mesh, &err))
-        wff_ff_model_fail(fn, std::string("new mesh: ") + err.message, id);
-}
-
 double remesh(long id, const Mesh *th, double *before, double *after, double *retraction)
 {
     const char *fn = "wovenffRemesh";
     wff_model *m = wff_ff_model(id, fn);
     wff_mesh mesh;
-    mesh_of(th, &mesh, fn, id);
+    wff_ff_mesh_from_freefem(fn, th, "", &mesh); // as wovenffModel(mesh Th, ...) reads one
     wff_error err;
     wff_remesh_report rep;
     if (wff_model_remesh(m, &mesh, &rep, &err))

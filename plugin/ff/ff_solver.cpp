@@ -117,7 +117,9 @@ long ffModel(string *const &meshFile, string *const &materialFile, string *const
     wff_mesh_options opt;
     wff_error err;
     // a FreeFEM-format .msh: settings name its labels (ff_femesh.cpp)
-    if (wff_mesh_is_freefem_msh(meshFile->c_str()))
+    size_t len = meshFile->size();
+    if (len > 4 && meshFile->compare(len - 4, 4, ".msh") == 0 &&
+        wff_mesh_is_freefem_msh(meshFile->c_str()))
         return wff_ff_model_from_freefem_msh(meshFile->c_str(), materialFile, settings);
     if (wff_mesh_options_parse(settings->c_str(), &opt, &err))
         fail("wovenffModel", err);

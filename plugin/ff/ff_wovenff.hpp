@@ -57,6 +57,12 @@ std::string wff_ff_model_last_error(long id);
 // ("names=1:clamp regions=0:ply"); its handle (ff_femesh.cpp).
 long wff_ff_model_from_freefem_msh(const char *path, const string *mat, const string *settings);
 
+// Copy FreeFEM mesh th into *mesh (same vertex numbering, triangle regions and
+// boundary-edge labels as groups named by settings, checked by the C core;
+// caller frees with wff_mesh_free), or wff_ff_fail naming fn (ff_femesh.cpp).
+void wff_ff_mesh_from_freefem(const char *fn, const Fem2D::Mesh *th, const char *settings,
+                              wff_mesh *mesh);
+
 // Load a material file (read afresh on every call: no cache). On failure
 // wff_ff_fail with the loader's message, which names the file, line and key.
 void wff_ff_material(const char *fn, const string *path, wff_material *mat);
