@@ -143,12 +143,12 @@ static double stored_energy(wff_model *m)
 }
 
 /* 2. Uniform deformation: exact on any mesh; smooth: interpolation error. */
-static double deformation(check_state *st, field_fn field, const char *what, int nx_old,
-                          int nx_new, double tol)
+static double deformation_types(check_state *st, field_fn field, const char *what, int nx_old,
+                                int nx_new, double tol, int old_type, int new_type)
 {
     double change = NAN;
-    test_rect coarse = {-0.03, 0.03, -0.03, 0.03, nx_old, nx_old, TEST_MESH_TRI, 0, 0.2, 3};
-    test_rect fine = {-0.03, 0.03, -0.03, 0.03, nx_new, nx_new, TEST_MESH_TRI, 1, 0.2, 11};
+    test_rect coarse = {-0.03, 0.03, -0.03, 0.03, nx_old, nx_old, old_type, 0, 0.2, 3};
+    test_rect fine = {-0.03, 0.03, -0.03, 0.03, nx_new, nx_new, new_type, 1, 0.2, 11};
     wff_model m, ref;
     wff_error err;
     if (test_model_rect(&m, &coarse, KEVLAR, &err) ||
@@ -178,6 +178,12 @@ static double deformation(check_state *st, field_fn field, const char *what, int
     wff_model_free(&m);
     wff_model_free(&ref);
     return change;
+}
+
+static double deformation(check_state *st, field_fn field, const char *what, int nx_old,
+                          int nx_new, double tol)
+{
+    return deformation_types(st, field, what, nx_old, nx_new, tol, TEST_MESH_TRI, TEST_MESH_TRI);
 }
 
 /* 3. Groups: clamped nodes of the new mesh are clamped, fixed edges fixed; a
@@ -311,6 +317,10 @@ int main(void)
     check_state st = {0, 0};
     same_mesh(&st);
     deformation(&st, uniform_field, "uniform", 12, 23, 1e-12);
+    deformation_types(&st, uniform_field, "uniform, quads to triangles", 12, 23, 1e-12,
+                      TEST_MESH_QUAD, TEST_MESH_TRI);
+    deformation_types(&st, uniform_field, "uniform, triangles to quads", 12, 23, 1e-12,
+                      TEST_MESH_TRI, TEST_MESH_QUAD);
     /* smooth: an interpolation error, of order h² (measured: 4x smaller at h/2) */
     double c1 = deformation(&st, smooth_field, "smooth", 12, 24, 5e-2);
     double c2 = deformation(&st, smooth_field, "smooth", 24, 48, 2.5e-2);
