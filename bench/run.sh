@@ -78,6 +78,8 @@ else
 fi
 scene mesh_coarse -mesh coarse
 scene mesh_default -mesh default
+scene adapt_5 -mesh coarse -adapt 5     # adaptmesh every 5 frames from the coarse mesh
+scene adapt_20 -mesh coarse -adapt 20
 [ "$quick" = 1 ] || scene mesh_fine -mesh fine
 [ "$quick" = 1 ] || scene mesh_finer -mesh finer -threads 2
 scene quads_default -mesh default -elements quad

@@ -276,6 +276,32 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err)
     return 0;
 }
 
+/* Move the projectile back along −z until no candidate node is inside it
+ * (at the positions now); velocities unchanged. For a state that did not come
+ * from a step, e.g. interpolated onto a new mesh whose nodes the nose had
+ * reached between the old ones. Returns how far it moved, m (>= 0). */
+double wff_contact_retract(wff_model *m)
+{
+    wff_projectile *p = &m->projectile;
+    double moved = 0;
+    for (int iteration = 0; iteration < 20 && p->active; iteration++) {
+        double shift = 0;
+        for (int c = 0; c < p->n_candidates; c++) {
+            int n = p->candidates[c];
+            const double *un = m->u + D * n;
+            double x[3] = {m->mesh.xy[2 * n] + un[0], m->mesh.xy[2 * n + 1] + un[1], un[2]};
+            double nrm[3], delta = penetration(p, x, nrm);
+            if (delta > 0)
+                shift = fmax(shift, delta / fmax(nrm[2], 0.2));
+        }
+        if (shift <= 1e-12 * p->radius)
+            break;
+        p->tip -= shift;
+        moved += shift;
+    }
+    return moved;
+}
+
 /* Nodes whose current in-plane position is near enough the projectile axis
  * to touch it before the next refresh. */
 void wff_contact_refresh_candidates(wff_model *m)

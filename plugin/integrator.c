@@ -232,8 +232,10 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     out->dissipated_shear = s * m->dissipated_shear;
     out->dissipated_friction = s * m->dissipated_friction;
     out->external_work = s * m->external_work;
+    out->transfer = s * m->transfer_energy;
     double total = k[0] + k[1] + k[2] + k[3] + m->internal_energy +
-                   m->dissipated_shear + m->dissipated_friction - m->external_work;
+                   m->dissipated_shear + m->dissipated_friction - m->external_work -
+                   m->transfer_energy;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
      * boundaries) the work done on it or the energy it now holds */
     double stored = m->internal_energy - (m->initial_total - m->initial_kinetic);

@@ -28,6 +28,7 @@ void wff_model_free(wff_model *m)
     free(m->clamp.node);
     free(m->clamp.normal_force);
     free(m->operator_scratch);
+    free(m->bc);
     wff_elements_free(&m->el);
     wff_mesh_free(&m->mesh);
     memset(m, 0, sizeof *m);
@@ -247,7 +248,10 @@ int wff_model_fix_group(wff_model *m, const char *group, int component, wff_erro
     if (check_component(component, err))
         return -1;
     dof_setting s = {component, WFF_DOF_FIXED, 0, -1};
-    return set_group_dofs(m, group, &s, "fix", err);
+    int count = set_group_dofs(m, group, &s, "fix", err);
+    if (count > 0 && wff_model_log_bc(m, WFF_DOF_FIXED, group, component, 0, 0, err))
+        return -1;
+    return count;
 }
 
 int wff_model_prescribe_group(wff_model *m, const char *group, int component, double velocity,
@@ -258,11 +262,11 @@ int wff_model_prescribe_group(wff_model *m, const char *group, int component, do
     if (!isfinite(velocity))
         return wff_fail(err, "prescribed velocity of '%s' is not finite", group);
     dof_setting s = {component, WFF_DOF_PRESCRIBED, velocity, -1};
-    return set_group_dofs(m, group, &s, "prescribe", err);
+    int count = set_group_dofs(m, group, &s, "prescribe", err);
+    if (count > 0 && wff_model_log_bc(m, WFF_DOF_PRESCRIBED, group, component, velocity, 0, err))
+        return -1;
+    return count;
 }
-
-/* The modelled part's clamping force (whole / symmetry_factor), shared by
- * lumped (displacement) mass, i.e. by nodal area. */
 
 static void add_clamp_node(wff_model *m, int node, void *data)
 {
@@ -359,6 +363,8 @@ int wff_model_clamp_friction(wff_model *m, const char *group, double normal_forc
     m->clamp.radius = 0;
     m->clamp.edge_reaction = 0;
     if (share_clamp_force(m, err))
+        return -1;
+    if (wff_model_log_bc(m, WFF_BC_CLAMP, group, 0, normal_force, mu, err))
         return -1;
     return count;
 }

@@ -33,5 +33,12 @@ int wff_force_pass(wff_model *m, const double *u, double *f, double *gamma_f, do
  * velocities v (5 per node) of the clamped nodes over dt_mid; returns the
  * energy it dissipates, J (model part). */
 double wff_clamp_correct(const wff_model *m, double *v, double dt_mid);
+/* contact.c: move the projectile back along z until no node is inside it
+ * now; returns the distance, m. */
+double wff_contact_retract(wff_model *m);
+/* remesh.c: remember a boundary condition set by group (wff_bc_record) so
+ * that a mesh transfer can set it again; -1 (err set) if out of memory. */
+int wff_model_log_bc(wff_model *m, int kind, const char *group, int component, double value,
+                     double mu, wff_error *err);
 
 #endif

@@ -84,11 +84,24 @@ typedef struct wff_energies {
     double dissipated_friction;  /* clamp friction, projectile friction and the inelastic
                                     normal contact */
     double external_work;     /* work done on the model by prescribed-velocity DOFs */
+    double transfer;          /* stored + kinetic energy changed by mesh transfers
+                                 (wff_model_remesh), a term of the balance like W */
     double error;             /* (E_now + D − W) − E_0, relative to the reference energy */
     double reference;         /* normaliser: the largest of the initial kinetic energy,
                                  the external work, the kinetic energy now and the change
                                  of stored energy since the start */
 } wff_energies;
+
+/* A boundary condition as it was set, by group name, so that a mesh
+ * transfer (wff_model_remesh) can set it again on the new mesh. */
+enum { WFF_BC_CLAMP = 3 };
+typedef struct wff_bc_record {
+    char group[WFF_MESH_NAME_MAX];
+    int kind;             /* WFF_DOF_FIXED, WFF_DOF_PRESCRIBED or WFF_BC_CLAMP */
+    int component;        /* WFF_UX..WFF_DA2 (not used by the clamp) */
+    double value;         /* prescribed velocity, m/s, or the clamp's normal force, N */
+    double mu;            /* the clamp's friction coefficient */
+} wff_bc_record;
 
 typedef struct wff_model {
     wff_mesh mesh;
@@ -124,6 +137,10 @@ typedef struct wff_model {
     double last_error;        /* energy balance error at the last step */
     double *operator_scratch; /* operators.c's copy of γᶠ and the static amplitudes for a
                                  force pass without side effect (allocated on first use) */
+    double transfer_energy;   /* Σ (after − before) of stored + kinetic energy over mesh
+                                 transfers since the start, J (model part) */
+    int n_bc;                 /* boundary conditions set so far, in order (remesh.c) */
+    wff_bc_record *bc;
 } wff_model;
 
 /* Create a model from a mesh file (.geo or .msh, see mesh.h; mesh_options
@@ -334,6 +351,40 @@ int wff_model_contact(wff_model *m, const double *U, double *V, double *R, doubl
  * dt_mid; returns the energy dissipated, J, whole specimen (added to the
  * model's dissipated_friction too). No-op (0) without a friction clamp. */
 double wff_model_clamp_correct(wff_model *m, double *V, double dt_mid);
+/* Mesh transfer (plugin/remesh.c): carry the whole state of m onto new_mesh,
+ * a new mesh of the same specimen (every new node inside the old mesh, to
+ * 1e-7 of its bounding-box diagonal; nearer than that a node outside snaps
+ * to the nearest old element). The model takes the new mesh's arrays over
+ * (new_mesh is emptied, also on failure, when they are freed).
+ *
+ *   u and the integer-step velocity vⁿ (v^{n+½} − ½Δt f/M, the kinetic
+ *   energy's velocity) of all 5 DOFs per node: P1 interpolation on the old
+ *   triangles (a quad as its two triangles 0-1-2, 0-2-3) found by a bucket
+ *   grid; γᶠ (and static amplitudes) per new quadrature point from the old
+ *   element containing it (a triangle: P1 between its three point values; a
+ *   quad: its nearest Gauss point); time, step, accumulators, settings,
+ *   preload, projectile; the groups of the old mesh by name, found in the new
+ *   mesh by name or by tag (edge label, triangle region); the boundary
+ *   conditions and the clamp set again by group in the order they were set
+ *   (a group they use missing in the new mesh is an error). A new node the
+ *   projectile's nose had reached between the old nodes would be inside it:
+ *   the projectile is moved back along z until none is (report->retraction;
+ *   its velocity is kept). Then masses, the forces at uⁿ (γᶠ held), the
+ *   stable step, v^{n+½} = vⁿ + ½Δt_new f/M and the contact correction, as
+ *   at the start of a run.
+ *
+ * The energy: stored + kinetic (whole specimen) before and after; after −
+ * before is added to the balance as a transfer term (wff_energies.transfer),
+ * so energies.error measures the integration only. On failure m is
+ * unchanged and usable. report may be NULL. */
+typedef struct wff_remesh_report {
+    double before, after;   /* stored + kinetic energy, whole specimen, J */
+    double retraction;      /* the projectile moved back by this, m */
+    int snapped_nodes;      /* new nodes outside the old mesh by round-off */
+    double largest_snap;    /* the farthest of them, m */
+} wff_remesh_report;
+int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report,
+                     wff_error *err);
 
 #ifdef __cplusplus
 }

@@ -29,6 +29,7 @@ void wff_ff_register_explore(); // ff_explore.cpp: one point along a load path (
 void wff_ff_register_projectile(); // ff_projectile.cpp: nose shape, impact point
 void wff_ff_register_loop();   // ff_loop.cpp: element operators for a script's own loop
 void wff_ff_register_femesh(); // ff_femesh.cpp: models from FreeFEM meshes, labels as groups
+void wff_ff_register_remesh(); // ff_remesh.cpp: a model's state carried onto a new mesh
 void wff_ff_register_state();  // ff_state.cpp: state vectors in and out, element fields
 
 // Record "fn: message" as the last error and stop the script (exit code 8

@@ -86,6 +86,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_loop,
     wff_ff_register_femesh,
     wff_ff_register_state,
+    wff_ff_register_remesh,
 };
 
 static void init()
