@@ -26,6 +26,7 @@ void wff_ff_register_point();  // ff_point.cpp: pointwise material API
 void wff_ff_register_solver(); // ff_solver.cpp: models, meshes, explicit solver
 void wff_ff_register_fit();    // ff_fit.cpp: parameter identification
 void wff_ff_register_explore(); // ff_explore.cpp: one point along a load path (explorer)
+void wff_ff_register_materials(); // ff_materials.cpp: the material handle table
 
 // Record "fn: message" as the last error and stop the script (exit code 8
 // unless it catches the error). Never returns.
@@ -53,6 +54,15 @@ std::string wff_ff_model_last_error(long id);
 // Load a material file (read afresh on every call: no cache). On failure
 // wff_ff_fail with the loader's message, which names the file, line and key.
 void wff_ff_material(const char *fn, const string *path, wff_material *mat);
+
+// The material handle table (ff_materials.cpp): wovenffMaterial(file) loads
+// a material once. The material of handle id, or wff_ff_fail naming fn and id.
+const wff_material *wff_ff_material(long id, const char *fn);
+// A pointwise function's material argument, a file name or a handle: the file
+// is loaded into *scratch (as wff_ff_material above), the handle looked up.
+const wff_material *wff_ff_material_arg(const char *fn, string *const &path,
+                                        wff_material *scratch);
+const wff_material *wff_ff_material_arg(const char *fn, const long &id, wff_material *scratch);
 
 // wff_ff_fail unless v has exactly n entries; `layout` says what they are,
 // e.g. "F11 F12 F21 F22 F31 F32".
