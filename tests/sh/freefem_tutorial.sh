@@ -31,7 +31,8 @@ n=$(ls "$out"/section_*.title 2>/dev/null | wc -l)
 
 for name in wovenffMaterial wovenffPoints 'wovenffModel(Th' wovenffFix wovenffGetVector \
             wovenffSetVector wovenffElementField wovenffForces wovenffMass wovenffStableStep \
-            wovenffProjectile wovenffRemesh square adaptmesh; do
+            wovenffProjectile wovenffImpactPoint wovenffProjectileShape wovenffRemesh square \
+            adaptmesh; do
     grep -q "$name" "$out"/section_*.edp || { echo "$doc: no code uses $name"; fail=1; }
 done
 
