@@ -1,8 +1,9 @@
 // wovenff FreeFEM binding: one material point along a load path, for the
 // unit-cell explorer (C core: plugin/point_path.c). Works with every cell: the
 // record's columns come from the cell's own diagnostic and mechanism names.
-// Every function reads its material file afresh and reports failures with
-// ExecError. No physics here.
+// Every function takes its material as a file name (read afresh on every
+// call) or as a wovenffMaterial handle (loaded once; ff_materials.cpp) and
+// reports failures with wff_ff_fail. No physics here.
 //
 //   int n = wovenffPathSegment(mat, Fa, Fb, duration, dynamicAmplitudes, shearFlow, state);
 //       F linear in time from Fa to Fb over duration (s): dynamic amplitudes
@@ -109,10 +110,11 @@ std::vector<Column> columns(const wff_material &mat, const wff_point_record &rec
 }
 
 // The columns without values (names and units).
-std::vector<Column> column_names(const char *fn, const string *material)
+template <class M>
+std::vector<Column> column_names(const char *fn, const M &material)
 {
-    wff_material mat;
-    wff_ff_material(fn, material, &mat);
+    wff_material scratch;
+    const wff_material &mat = *wff_ff_material_arg(fn, material, &scratch);
     wff_point_record rec = {};
     rec.n_mech = mat.cell->energy_split ? mat.cell->n_mech : 0;
     const wff_point_state s = {};
@@ -128,7 +130,8 @@ std::string joined(const std::vector<Column> &cols, bool units, const char *sep)
     return text;
 }
 
-long ffPathSegment(string *const &material, KN<double> *const &Fa, KN<double> *const &Fb,
+template <class M>
+long ffPathSegment(const M &material, KN<double> *const &Fa, KN<double> *const &Fb,
                    const double &duration, const long &dynamic_amplitudes,
                    const long &shear_flow, KN<double> *const &state)
 {
@@ -137,12 +140,12 @@ long ffPathSegment(string *const &material, KN<double> *const &Fa, KN<double> *c
     take_F(fn, "Fa", Fa, F_a);
     take_F(fn, "Fb", Fb, F_b);
     wff_point_state s = take_state(fn, state);
-    wff_material mat;
-    wff_ff_material(fn, material, &mat);
+    wff_material scratch;
+    const wff_material *mat = wff_ff_material_arg(fn, material, &scratch);
     wff_path_mode mode = {dynamic_amplitudes != 0, shear_flow != 0, WFF_PATH_STEP_SAFETY,
                           WFF_PATH_FLOW_SUBSTEPS};
     wff_error err;
-    if (wff_point_path_segment(&mat, F_a, F_b, duration, &mode, &s, &err))
+    if (wff_point_path_segment(mat, F_a, F_b, duration, &mode, &s, &err))
         wff_ff_fail(fn, err);
     const double back[kStateSize] = {s.dA[0], s.dA[1], s.velocity[0], s.velocity[1],
                                      s.gamma_f, s.previous_step};
@@ -151,19 +154,22 @@ long ffPathSegment(string *const &material, KN<double> *const &Fa, KN<double> *c
     return s.substeps;
 }
 
-string *ffExploreColumns(Stack stack, string *const &material)
+template <class M>
+string *ffExploreColumns(Stack stack, const M &material)
 {
     std::vector<Column> cols = column_names("wovenffExploreColumns", material);
     return Add2StackOfPtr2Free(stack, new string(joined(cols, false, ",")));
 }
 
-string *ffExploreUnits(Stack stack, string *const &material)
+template <class M>
+string *ffExploreUnits(Stack stack, const M &material)
 {
     std::vector<Column> cols = column_names("wovenffExploreUnits", material);
     return Add2StackOfPtr2Free(stack, new string(joined(cols, true, " ")));
 }
 
-long ffExploreColumn(string *const &material, string *const &name)
+template <class M>
+long ffExploreColumn(const M &material, string *const &name)
 {
     std::vector<Column> cols = column_names("wovenffExploreColumn", material);
     for (size_t i = 0; i < cols.size(); i++)
@@ -172,7 +178,8 @@ long ffExploreColumn(string *const &material, string *const &name)
     return -1;
 }
 
-long ffExploreRow(string *const &material, KN<double> *const &Fv, KN<double> *const &state,
+template <class M>
+long ffExploreRow(const M &material, KN<double> *const &Fv, KN<double> *const &state,
                   KN<double> *const &dA_static, KN<double> *const &out)
 {
     const char *fn = "wovenffExploreRow";
@@ -183,8 +190,8 @@ long ffExploreRow(string *const &material, KN<double> *const &Fv, KN<double> *co
     const double dAst[2] = {(*dA_static)[0], (*dA_static)[1]};
     if (!out)
         wff_ff_fail(fn, "no output array");
-    wff_material mat;
-    wff_ff_material(fn, material, &mat);
+    wff_material scratch;
+    const wff_material &mat = *wff_ff_material_arg(fn, material, &scratch);
     wff_point_record rec;
     wff_error err;
     if (wff_point_path_record(&mat, F, &s, &rec, &err))
@@ -196,20 +203,21 @@ long ffExploreRow(string *const &material, KN<double> *const &Fv, KN<double> *co
     return (long)cols.size();
 }
 
-long ffCellAmplitudes(string *const &material)
+template <class M>
+long ffCellAmplitudes(const M &material)
 {
-    wff_material mat;
-    wff_ff_material("wovenffCellAmplitudes", material, &mat);
-    return mat.cell->n_amplitudes;
+    wff_material scratch;
+    return wff_ff_material_arg("wovenffCellAmplitudes", material, &scratch)->cell->n_amplitudes;
 }
 
-long ffReferenceGeometry(string *const &material, KN<double> *const &out)
+template <class M>
+long ffReferenceGeometry(const M &material, KN<double> *const &out)
 {
     const char *fn = "wovenffReferenceGeometry";
     if (!out)
         wff_ff_fail(fn, "no output array");
-    wff_material mat;
-    wff_ff_material(fn, material, &mat);
+    wff_material scratch;
+    const wff_material &mat = *wff_ff_material_arg(fn, material, &scratch);
     if (!mat.cell->reference_geometry) {
         out->resize(0);
         return 0;
@@ -224,22 +232,31 @@ long ffReferenceGeometry(string *const &material, KN<double> *const &out)
     return 1;
 }
 
+// Every function twice: the material as a file name (M = string *) or as a
+// wovenffMaterial handle (M = long).
+template <class M>
+void register_explore()
+{
+    Global.Add("wovenffPathSegment", "(",
+               new OneOperator7_<long, M, KN<double> *, KN<double> *, double, long, long,
+                                 KN<double> *>(ffPathSegment<M>));
+    Global.Add("wovenffExploreColumns", "(",
+               new OneOperator1s_<string *, M>(ffExploreColumns<M>));
+    Global.Add("wovenffExploreUnits", "(", new OneOperator1s_<string *, M>(ffExploreUnits<M>));
+    Global.Add("wovenffExploreColumn", "(",
+               new OneOperator2_<long, M, string *>(ffExploreColumn<M>));
+    Global.Add("wovenffExploreRow", "(",
+               new OneOperator5_<long, M, KN<double> *, KN<double> *, KN<double> *,
+                                 KN<double> *>(ffExploreRow<M>));
+    Global.Add("wovenffCellAmplitudes", "(", new OneOperator1_<long, M>(ffCellAmplitudes<M>));
+    Global.Add("wovenffReferenceGeometry", "(",
+               new OneOperator2_<long, M, KN<double> *>(ffReferenceGeometry<M>));
+}
+
 } // namespace
 
 void wff_ff_register_explore()
 {
-    Global.Add("wovenffPathSegment", "(",
-               new OneOperator7_<long, string *, KN<double> *, KN<double> *, double, long, long,
-                                 KN<double> *>(ffPathSegment));
-    Global.Add("wovenffExploreColumns", "(",
-               new OneOperator1s_<string *, string *>(ffExploreColumns));
-    Global.Add("wovenffExploreUnits", "(", new OneOperator1s_<string *, string *>(ffExploreUnits));
-    Global.Add("wovenffExploreColumn", "(",
-               new OneOperator2_<long, string *, string *>(ffExploreColumn));
-    Global.Add("wovenffExploreRow", "(",
-               new OneOperator5_<long, string *, KN<double> *, KN<double> *, KN<double> *,
-                                 KN<double> *>(ffExploreRow));
-    Global.Add("wovenffCellAmplitudes", "(", new OneOperator1_<long, string *>(ffCellAmplitudes));
-    Global.Add("wovenffReferenceGeometry", "(",
-               new OneOperator2_<long, string *, KN<double> *>(ffReferenceGeometry));
+    register_explore<string *>();
+    register_explore<long>();
 }

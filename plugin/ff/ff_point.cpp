@@ -1,6 +1,7 @@
-// wovenff FreeFEM binding: the pointwise material API (one material point,
-// no mesh). Every function reads its material file afresh (no cache: see
-// docs/freefem_api.md for the cost) and reports failures with wff_ff_fail.
+// wovenff FreeFEM binding: the pointwise material API (material points, no
+// mesh). Every function takes its material as a file name (read afresh on
+// every call) or as a handle from wovenffMaterial (ff_materials.cpp: loaded
+// once; use it in loops), and reports failures with wff_ff_fail.
 //
 //   real r = wovenffPoint(matFile, F, dA, gammaf, out);   // P, R, W, diagnostics
 //   wovenffBalance(matFile, F, dA);                        // dA: guess in, balance out
@@ -11,6 +12,7 @@
 //   wovenffPointStep(matFile, F, dA, gammaf, dt, out);     // wovenffPoint's out + new gamma_f
 //   wovenffPointEnergySplit(matFile, F, dA, gammaf, out);  // energy per mechanism, J/m^2
 //   string names = wovenffPointMechNames(matFile);         // "yarn_stretch yarn_bending ..."
+//   wovenffPoints(mat, F, dA, gammaf, out);   // n points: F 6n, dA 2n, gammaf n; out n rows
 // (wovenffEnergySplit / wovenffMechNames are a model's: ff_solver.cpp)
 //
 // F is row-major 3x2 (F11 F12 F21 F22 F31 F32), dA = [dA1, dA2] in m; SI units.
@@ -66,12 +68,15 @@ void require_finite(const char *fn, const char *name, double x)
     }
 }
 
-// The material of a function that fills `out` (refused without an out array).
-void material_for(const char *fn, string *material, KN<double> *out, wff_material *mat)
+// The material (a file name loaded into *scratch, or a handle) of a function
+// that fills `out` (refused without an out array).
+template <class M>
+const wff_material *material_for(const char *fn, const M &material, KN<double> *out,
+                                 wff_material *scratch)
 {
     if (!out)
         wff_ff_fail(fn, "no output array");
-    wff_ff_material(fn, material, mat);
+    return wff_ff_material_arg(fn, material, scratch);
 }
 
 // The start of the static solvers: unstretched, amplitudes as made.
@@ -96,9 +101,22 @@ void put_state(KN<double> *out, const wff_biaxial_state &s, bool resultants)
     }
 }
 
+// Refuse a point the cell found degenerate, naming it (`where`: "" or
+// "point 17: ") with its F and the material.
+[[noreturn]] void fail_degenerate(const char *fn, const char *where, const double F[6],
+                                  const wff_material &mat)
+{
+    char msg[240 + sizeof mat.source];
+    snprintf(msg, sizeof msg, "%sdegenerate point (a yarn direction has zero length or the "
+             "yarns are parallel): F = [%g %g %g %g %g %g], material %s",
+             where, F[0], F[1], F[2], F[3], F[4], F[5], mat.source);
+    wff_ff_fail(fn, msg);
+}
+
 // Evaluate one point (dt > 0 advances gamma_f by the cell's flow rule) and fill
 // out with P, R, W and the diagnostics; extra entries are left for the caller.
-void point(const char *fn, string *material, KN<double> *Fv, KN<double> *dAv, double gamma_f,
+template <class M>
+void point(const char *fn, const M &material, KN<double> *Fv, KN<double> *dAv, double gamma_f,
            double dt, KN<double> *out, int extra, wff_point_result *r)
 {
     double F[6], dA[2];
@@ -111,16 +129,11 @@ void point(const char *fn, string *material, KN<double> *Fv, KN<double> *dAv, do
         snprintf(msg, sizeof msg, "dt = %g must be >= 0", dt);
         wff_ff_fail(fn, msg);
     }
-    wff_material mat;
-    material_for(fn, material, out, &mat);
-    if (wff_material_evaluate(&mat, F, dA, gamma_f, dt, r) != WFF_POINT_OK) {
-        char msg[200 + sizeof mat.source];
-        snprintf(msg, sizeof msg, "degenerate point (a yarn direction has zero length or the "
-                 "yarns are parallel): F = [%g %g %g %g %g %g], material %s",
-                 F[0], F[1], F[2], F[3], F[4], F[5], mat.source);
-        wff_ff_fail(fn, msg);
-    }
-    const int n_diag = mat.cell->n_diag;
+    wff_material scratch;
+    const wff_material *mat = material_for(fn, material, out, &scratch);
+    if (wff_material_evaluate(mat, F, dA, gamma_f, dt, r) != WFF_POINT_OK)
+        fail_degenerate(fn, "", F, *mat);
+    const int n_diag = mat->cell->n_diag;
     out->resize(kOutFixed + n_diag + extra);
     for (int i = 0; i < 6; i++)
         (*out)[i] = r->stress[i];
@@ -131,7 +144,8 @@ void point(const char *fn, string *material, KN<double> *Fv, KN<double> *dAv, do
         (*out)[kOutFixed + i] = r->diag[i];
 }
 
-double ffPoint(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv,
+template <class M>
+double ffPoint(const M &material, KN<double> *const &Fv, KN<double> *const &dAv,
                const double &gamma_f, KN<double> *const &out)
 {
     wff_point_result r;
@@ -140,13 +154,86 @@ double ffPoint(string *const &material, KN<double> *const &Fv, KN<double> *const
 }
 
 // wovenffPoint's out with gamma_f advanced over dt, and the new gamma_f last.
-double ffPointStep(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv,
+template <class M>
+double ffPointStep(const M &material, KN<double> *const &Fv, KN<double> *const &dAv,
                    const double &gamma_f, const double &dt, KN<double> *const &out)
 {
     wff_point_result r;
     point("wovenffPointStep", material, Fv, dAv, gamma_f, dt, out, 1, &r);
     (*out)[out->N() - 1] = r.gamma_f;
     return 0;
+}
+
+// n material points at once, gamma_f held (wovenffPoint's dt = 0): point p
+// has F = F[6p .. 6p+5], dA = dA[2p, 2p+1], gamma_f = gammaf[p]; n is gammaf's
+// size and F, dA must have 6n, 2n entries. out is resized to n rows of
+// wovenffPoint's out (row-major: row p starts at p * (9 + the cell's
+// diagnostics)); each row equals wovenffPoint's out for that point bit for
+// bit (the same evaluation). Returns n.
+template <class M>
+double ffPoints(const M &material, KN<double> *const &Fv, KN<double> *const &dAv,
+                KN<double> *const &gv, KN<double> *const &out)
+{
+    const char *fn = "wovenffPoints";
+    if (!gv)
+        wff_ff_fail(fn, "no gammaf array");
+    const long n = gv->N();
+    char layout[120];
+    snprintf(layout, sizeof layout, "%s per point, %ld points (the size of gammaf)", kFLayout, n);
+    wff_ff_require_size(fn, "F", Fv, 6 * n, layout);
+    snprintf(layout, sizeof layout, "%s per point, %ld points (the size of gammaf)", kDALayout, n);
+    wff_ff_require_size(fn, "dA", dAv, 2 * n, layout);
+    if (out == Fv || out == dAv || out == gv)
+        wff_ff_fail(fn, "out must be an array of its own (it is resized), not F, dA or gammaf");
+    wff_material scratch;
+    const wff_material *mat = material_for(fn, material, out, &scratch);
+    const long cols = kOutFixed + mat->cell->n_diag;
+    out->resize(n * cols);
+    const char *const f_names[6] = {"F11", "F12", "F21", "F22", "F31", "F32"};
+    for (long p = 0; p < n; p++) {
+        double F[6], dA[2];
+        const double gamma_f = (*gv)[p];
+        for (int i = 0; i < 6; i++)
+            F[i] = (*Fv)[6 * p + i];
+        dA[0] = (*dAv)[2 * p];
+        dA[1] = (*dAv)[2 * p + 1];
+        bool finite = std::isfinite(gamma_f);
+        for (int i = 0; i < 6; i++)
+            finite = finite && std::isfinite(F[i]);
+        finite = finite && std::isfinite(dA[0]) && std::isfinite(dA[1]);
+        if (!finite) {
+            char msg[300];
+            int i = 0;
+            while (i < 6 && std::isfinite(F[i]))
+                i++;
+            if (i < 6)
+                snprintf(msg, sizeof msg, "point %ld: F[%ld] (its %s) = %g is not a finite number",
+                         p, 6 * p + i, f_names[i], F[i]);
+            else if (!std::isfinite(dA[0]) || !std::isfinite(dA[1])) {
+                const int k = std::isfinite(dA[0]) ? 1 : 0;
+                snprintf(msg, sizeof msg, "point %ld: dA[%ld] (its dA%d) = %g is not a finite "
+                         "number", p, 2 * p + k, k + 1, dA[k]);
+            } else
+                snprintf(msg, sizeof msg, "point %ld: gammaf[%ld] = %g is not a finite number", p,
+                         p, gamma_f);
+            wff_ff_fail(fn, msg);
+        }
+        wff_point_result r;
+        if (wff_material_evaluate(mat, F, dA, gamma_f, 0, &r) != WFF_POINT_OK) {
+            char where[40];
+            snprintf(where, sizeof where, "point %ld: ", p);
+            fail_degenerate(fn, where, F, *mat);
+        }
+        double *row = &(*out)[p * cols];
+        for (int i = 0; i < 6; i++)
+            row[i] = r.stress[i];
+        row[6] = r.residual[0];
+        row[7] = r.residual[1];
+        row[8] = r.energy;
+        for (int i = 0; i < mat->cell->n_diag; i++)
+            row[kOutFixed + i] = r.diag[i];
+    }
+    return (double)n;
 }
 
 // The cell's energy_split; fails naming the cell if it has none.
@@ -161,7 +248,8 @@ const wff_cell_type *split_cell(const char *fn, const wff_material &mat)
     return c;
 }
 
-double ffEnergySplit(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv,
+template <class M>
+double ffEnergySplit(const M &material, KN<double> *const &Fv, KN<double> *const &dAv,
                      const double &gamma_f, KN<double> *const &out)
 {
     const char *fn = "wovenffPointEnergySplit";
@@ -169,74 +257,73 @@ double ffEnergySplit(string *const &material, KN<double> *const &Fv, KN<double> 
     take(fn, "F", Fv, 6, kFLayout, F);
     take(fn, "dA", dAv, 2, kDALayout, dA);
     require_finite(fn, "gammaf", gamma_f);
-    wff_material mat;
-    material_for(fn, material, out, &mat);
+    wff_material scratch;
+    const wff_material &mat = *material_for(fn, material, out, &scratch);
     const wff_cell_type *c = split_cell(fn, mat);
     double mech[WFF_MECH_MAX];
     c->energy_split(mat.params, F, dA, gamma_f, mech);
     for (int i = 0; i < c->n_mech; i++)
-        if (!std::isfinite(mech[i])) {
-            char msg[200 + sizeof mat.source];
-            snprintf(msg, sizeof msg, "degenerate point (a yarn direction has zero length or "
-                     "the yarns are parallel): F = [%g %g %g %g %g %g], material %s",
-                     F[0], F[1], F[2], F[3], F[4], F[5], mat.source);
-            wff_ff_fail(fn, msg);
-        }
+        if (!std::isfinite(mech[i]))
+            fail_degenerate(fn, "", F, mat);
     out->resize(c->n_mech);
     for (int i = 0; i < c->n_mech; i++)
         (*out)[i] = mech[i];
     return 0;
 }
 
-string *ffMechNames(Stack stack, string *const &material)
+template <class M>
+string *ffMechNames(Stack stack, const M &material)
 {
     const char *fn = "wovenffPointMechNames";
-    wff_material mat;
-    wff_ff_material(fn, material, &mat);
-    const wff_cell_type *c = split_cell(fn, mat);
+    wff_material scratch;
+    const wff_cell_type *c = split_cell(fn, *wff_ff_material_arg(fn, material, &scratch));
     std::string text;
     for (int i = 0; i < c->n_mech; i++)
         text += (i ? " " : "") + std::string(c->mech_names[i]);
     return Add2StackOfPtr2Free(stack, new string(text));
 }
 
-double balance(const char *fn, string *material, KN<double> *Fv, KN<double> *dAv,
+template <class M>
+double balance(const char *fn, const M &material, KN<double> *Fv, KN<double> *dAv,
                double gamma_f)
 {
     double F[6], dA[2];
     take(fn, "F", Fv, 6, kFLayout, F);
     take(fn, "dA", dAv, 2, kDALayout, dA);
     require_finite(fn, "gammaf", gamma_f);
-    wff_material mat;
-    wff_ff_material(fn, material, &mat);
+    wff_material scratch;
+    const wff_material *mat = wff_ff_material_arg(fn, material, &scratch);
     wff_error err;
-    if (wff_balance_amplitudes(&mat, F, gamma_f, dA, &err))
+    if (wff_balance_amplitudes(mat, F, gamma_f, dA, &err))
         wff_ff_fail(fn, err);
     (*dAv)[0] = dA[0];
     (*dAv)[1] = dA[1];
     return 0;
 }
 
-double ffBalance(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv)
+template <class M>
+double ffBalance(const M &material, KN<double> *const &Fv, KN<double> *const &dAv)
 {
     return balance("wovenffBalance", material, Fv, dAv, 0);
 }
 
-double ffBalanceHeld(string *const &material, KN<double> *const &Fv, KN<double> *const &dAv,
+template <class M>
+double ffBalanceHeld(const M &material, KN<double> *const &Fv, KN<double> *const &dAv,
                      const double &gamma_f)
 {
     return balance("wovenffBalance", material, Fv, dAv, gamma_f);
 }
 
-double ffPreload(string *const &material, const double &tension, KN<double> *const &out)
+template <class M>
+double ffPreload(const M &material, const double &tension, KN<double> *const &out)
 {
     const char *fn = "wovenffPreload";
     require_finite(fn, "yarnTension", tension);
-    wff_material mat;
-    material_for(fn, material, out, &mat);
+    wff_material scratch;
+    const wff_material *mat = material_for(fn, material, out, &scratch);
     wff_biaxial_state s = unstretched();
     wff_error err;
-    if (wff_preload_equal_force(&mat, tension, &s, &err))
+    if (wff_preload_equal_force(mat, tension, &s, &err))
         wff_ff_fail(fn, err);
     put_state(out, s, false);
     return 0;
@@ -253,7 +340,8 @@ double ffMaterialOverride(string *const &material, string *const &overrides,
     return 0;
 }
 
-double ffUniaxial(string *const &material, const long &family, const double &stretch,
+template <class M>
+double ffUniaxial(const M &material, const long &family, const double &stretch,
                   KN<double> *const &out)
 {
     const char *fn = "wovenffUniaxial";
@@ -263,21 +351,21 @@ double ffUniaxial(string *const &material, const long &family, const double &str
         snprintf(msg, sizeof msg, "family must be 0 (warp) or 1 (weft), got %ld", family);
         wff_ff_fail(fn, msg);
     }
-    wff_material mat;
-    material_for(fn, material, out, &mat);
+    wff_material scratch;
+    const wff_material *mat = material_for(fn, material, out, &scratch);
     wff_biaxial_state s = unstretched();
     wff_error err;
-    if (wff_uniaxial_static(&mat, (int)family, stretch, &s, &err))
+    if (wff_uniaxial_static(mat, (int)family, stretch, &s, &err))
         wff_ff_fail(fn, err);
     put_state(out, s, true);
     return 0;
 }
 
-string *ffCellInfo(Stack stack, string *const &material)
+template <class M>
+string *ffCellInfo(Stack stack, const M &material)
 {
-    wff_material mat;
-    wff_ff_material("wovenffCellInfo", material, &mat);
-    const wff_cell_type *c = mat.cell;
+    wff_material scratch;
+    const wff_cell_type *c = wff_ff_material_arg("wovenffCellInfo", material, &scratch)->cell;
     std::string text = std::string("cell ") + c->name + ": " + c->summary + "\n" +
                        "wovenffPoint out layout (index name unit):\n";
     char line[120];
@@ -297,30 +385,42 @@ string *ffCellInfo(Stack stack, string *const &material)
     return Add2StackOfPtr2Free(stack, new string(text));
 }
 
+// Every function twice: the material as a file name (M = string *) or as a
+// wovenffMaterial handle (M = long).
+template <class M>
+void register_point()
+{
+    Global.Add("wovenffPoint", "(",
+               new OneOperator5_<double, M, KN<double> *, KN<double> *, double, KN<double> *>(
+                   ffPoint<M>));
+    Global.Add("wovenffPoints", "(",
+               new OneOperator5_<double, M, KN<double> *, KN<double> *, KN<double> *,
+                                 KN<double> *>(ffPoints<M>));
+    Global.Add("wovenffBalance", "(",
+               new OneOperator3_<double, M, KN<double> *, KN<double> *>(ffBalance<M>));
+    Global.Add("wovenffBalance", "(",
+               new OneOperator4_<double, M, KN<double> *, KN<double> *, double>(
+                   ffBalanceHeld<M>));
+    Global.Add("wovenffPreload", "(",
+               new OneOperator3_<double, M, double, KN<double> *>(ffPreload<M>));
+    Global.Add("wovenffUniaxial", "(",
+               new OneOperator4_<double, M, long, double, KN<double> *>(ffUniaxial<M>));
+    Global.Add("wovenffCellInfo", "(", new OneOperator1s_<string *, M>(ffCellInfo<M>));
+    Global.Add("wovenffPointStep", "(",
+               new OneOperator6_<double, M, KN<double> *, KN<double> *, double, double,
+                                 KN<double> *>(ffPointStep<M>));
+    Global.Add("wovenffPointEnergySplit", "(",
+               new OneOperator5_<double, M, KN<double> *, KN<double> *, double, KN<double> *>(
+                   ffEnergySplit<M>));
+    Global.Add("wovenffPointMechNames", "(", new OneOperator1s_<string *, M>(ffMechNames<M>));
+}
+
 } // namespace
 
 void wff_ff_register_point()
 {
-    Global.Add("wovenffPoint", "(",
-               new OneOperator5_<double, string *, KN<double> *, KN<double> *, double,
-                                 KN<double> *>(ffPoint));
-    Global.Add("wovenffBalance", "(",
-               new OneOperator3_<double, string *, KN<double> *, KN<double> *>(ffBalance));
-    Global.Add("wovenffBalance", "(",
-               new OneOperator4_<double, string *, KN<double> *, KN<double> *, double>(
-                   ffBalanceHeld));
-    Global.Add("wovenffPreload", "(",
-               new OneOperator3_<double, string *, double, KN<double> *>(ffPreload));
-    Global.Add("wovenffUniaxial", "(",
-               new OneOperator4_<double, string *, long, double, KN<double> *>(ffUniaxial));
-    Global.Add("wovenffCellInfo", "(", new OneOperator1s_<string *, string *>(ffCellInfo));
-    Global.Add("wovenffPointStep", "(",
-               new OneOperator6_<double, string *, KN<double> *, KN<double> *, double, double,
-                                 KN<double> *>(ffPointStep));
-    Global.Add("wovenffPointEnergySplit", "(",
-               new OneOperator5_<double, string *, KN<double> *, KN<double> *, double,
-                                 KN<double> *>(ffEnergySplit));
-    Global.Add("wovenffPointMechNames", "(", new OneOperator1s_<string *, string *>(ffMechNames));
+    register_point<string *>();
+    register_point<long>();
     Global.Add("wovenffMaterialOverride", "(",
                new OneOperator3_<double, string *, string *, string *>(ffMaterialOverride));
 }

@@ -31,6 +31,7 @@ void wff_ff_register_loop();   // ff_loop.cpp: element operators for a script's 
 void wff_ff_register_femesh(); // ff_femesh.cpp: models from FreeFEM meshes, labels as groups
 void wff_ff_register_remesh(); // ff_remesh.cpp: a model's state carried onto a new mesh
 void wff_ff_register_state();  // ff_state.cpp: state vectors in and out, element fields
+void wff_ff_register_materials(); // ff_materials.cpp: the material handle table
 
 // Record "fn: message" as the last error and stop the script (exit code 8
 // unless it catches the error). Never returns.
@@ -68,6 +69,15 @@ void wff_ff_mesh_from_freefem(const char *fn, const Fem2D::Mesh *th, const char 
 // Load a material file (read afresh on every call: no cache). On failure
 // wff_ff_fail with the loader's message, which names the file, line and key.
 void wff_ff_material(const char *fn, const string *path, wff_material *mat);
+
+// The material handle table (ff_materials.cpp): wovenffMaterial(file) loads
+// a material once. The material of handle id, or wff_ff_fail naming fn and id.
+const wff_material *wff_ff_material(long id, const char *fn);
+// A pointwise function's material argument, a file name or a handle: the file
+// is loaded into *scratch (as wff_ff_material above), the handle looked up.
+const wff_material *wff_ff_material_arg(const char *fn, string *const &path,
+                                        wff_material *scratch);
+const wff_material *wff_ff_material_arg(const char *fn, const long &id, wff_material *scratch);
 
 // wff_ff_fail unless v has exactly n entries; `layout` says what they are,
 // e.g. "F11 F12 F21 F22 F31 F32".

@@ -87,6 +87,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_femesh,
     wff_ff_register_state,
     wff_ff_register_remesh,
+    wff_ff_register_materials,
 };
 
 static void init()
