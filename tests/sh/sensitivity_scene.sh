@@ -8,6 +8,8 @@
 #     S = ln(y_high / y_low) / ln(x_high / x_low)
 #   velocity (linear, 18 .. 26 m/s), those two runs and the base run:
 #     S = (y_high - y_low) / (x_high - x_low) * x_base / y_base
+# Morris screening on one input and one trajectory: mu* is the elementary effect
+# computed by hand from the design's two runs.
 # A run that fails (a = -1e5 1/m: the material is refused) is listed with its
 # error and leaves its input's sensitivities empty; the study still exits 0.
 # Bad inputs stop with exit code 2 before anything is run: an unknown input,
@@ -62,6 +64,17 @@ for side in low high; do
         || { echo "velocity_$side: the study's peak differs from the run by hand"; fail=1; }
 done
 
+# Morris, one input, one trajectory: mu* = |ln(y_b / y_a) / ln(x_b / x_a)| from the design's two runs
+sh tools/ff.sh freefem_scripts/sensitivity.edp -base "$base" -inputs "K_I:4.15e-3:1.66e-2" -method morris \
+    -trajectories 1 -jobs 2 -out "$tmp/morris" > "$tmp/morris.log" 2>&1 || { echo "Morris study failed"; fail=1; }
+mx() { sed -n "s/.*\"name\": \"morris_0_$1\".*K_I=\([^']*\)'.*/\1/p" "$tmp/morris/sensitivity.json"; }
+my() { sed -n 's/^  "peak_displacement": \([^,]*\),$/\1/p' "$tmp/morris/runs/"*"_morris_0_$1/summary.json"; }
+want_m=$(awk -v xa="$(mx 0)" -v xb="$(mx 1)" -v ya="$(my 0)" -v yb="$(my 1)" \
+    'BEGIN { e = (log(yb) - log(ya)) / (log(xb) - log(xa)); printf "%.6g", (e < 0 ? -e : e) }')
+got_m=$(awk -F, '$1 == "K_I" && $2 == "peak_displacement" { print $7 }' "$tmp/morris/sensitivity.csv")
+echo "Morris K_I: scene mu* $got_m, by hand $want_m (x $(mx 0) -> $(mx 1))"
+[ -n "$want_m" ] && [ "$got_m" = "$want_m" ] || { echo "Morris mu* differs"; fail=1; }
+
 # a failed run is listed with its error; its input has no sensitivity; exit 0
 sh tools/ff.sh freefem_scripts/sensitivity.edp -base "$base" -inputs "a:-1e5:2e5" -plots 0 \
     -out "$tmp/failed" > "$tmp/failed.log" 2>&1
@@ -89,4 +102,5 @@ expect equal_ends "K_d:1e8:1e8': low must be below high" -inputs "K_d:1e8:1e8"
 expect not_a_number "velocity:fast:26': low and high must be numbers" -inputs "velocity:fast:26"
 expect out_of_range "massfactor:0.5:2': massfactor must be real>=1" -inputs "massfactor:0.5:2"
 expect jobs_zero "-jobs 0: must be >= 1" -inputs "velocity:18:26" -jobs 0
+expect morris_mesh "mesh:coarse:fine': not in a Morris design" -inputs "mesh:coarse:fine" -method morris
 exit $fail
