@@ -13,7 +13,8 @@
 # A run that fails (a = -1e5 1/m: the material is refused) is listed with its
 # error and leaves its input's sensitivities empty; the study still exits 0.
 # Bad inputs stop with exit code 2 before anything is run: an unknown input,
-# low >= high, a non-number, -jobs 0.
+# low >= high, a non-number, out of range, -jobs 0, base options the scene
+# refuses, the mesh in a Morris design.
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/sensitivity_scene"
 rm -rf "$tmp"; mkdir -p "$tmp"
@@ -94,7 +95,7 @@ expect() { # name, pattern, options...
     rc=$?
     [ $rc -eq 2 ] || { echo "$name: exit $rc, want 2"; fail=1; }
     grep -qF -- "$pattern" "$tmp/$name.log" || { echo "$name: output lacks '$pattern'"; sed 's/^/    | /' "$tmp/$name.log" | tail -3; fail=1; }
-    [ ! -e "$tmp/$name" ] || { echo "$name: results were written"; fail=1; }
+    [ ! -e "$tmp/$name/sensitivity.csv" ] || { echo "$name: results were written"; fail=1; }
 }
 expect unknown_input "'K_x' is neither a numeric key" -inputs "K_x:1:2"
 expect low_above_high "velocity:26:18': low must be below high" -inputs "velocity:26:18"
@@ -103,4 +104,7 @@ expect not_a_number "velocity:fast:26': low and high must be numbers" -inputs "v
 expect out_of_range "massfactor:0.5:2': massfactor must be real>=1" -inputs "massfactor:0.5:2"
 expect jobs_zero "-jobs 0: must be >= 1" -inputs "velocity:18:26" -jobs 0
 expect morris_mesh "mesh:coarse:fine': not in a Morris design" -inputs "mesh:coarse:fine" -method morris
+base="-mesh coarse -velocity fast"   # base options the ballistic scene refuses
+expect bad_base "the base options do not run in ballistic_impact: -velocity 'fast' is not a number" \
+    -inputs "K_I:4e-3:1e-2"
 exit $fail
