@@ -253,6 +253,34 @@ int wff_copy_tree(const char *from, const char *to, const char *skip, wff_error 
     return rc;
 }
 
+int wff_clear_dir(const char *dir, const char *skip, wff_error *err)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return wff_fail(err, "cannot read folder %s: %s", dir, strerror(errno));
+    int rc = 0;
+    struct dirent *e;
+    while (rc == 0 && (e = readdir(d))) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") ||
+            (skip && !strcmp(e->d_name, skip)))
+            continue;
+        char path[PATH_MAXLEN];
+        if (snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= (int)sizeof path)
+            rc = wff_fail(err, "path too long under %s", dir);
+        else
+            rc = wff_remove_tree(path, err);
+    }
+    closedir(d);
+    return rc;
+}
+
+int wff_same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+           sa.st_ino == sb.st_ino;
+}
+
 int wff_exists(const char *path)
 {
     struct stat st;

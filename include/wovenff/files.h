@@ -48,6 +48,11 @@ int wff_remove_tree(const char *path, wff_error *err);
  * top level are left out. */
 int wff_copy_tree(const char *from, const char *to, const char *skip, wff_error *err);
 
+/* Remove every entry of folder dir but skip (NULL: none). */
+int wff_clear_dir(const char *dir, const char *skip, wff_error *err);
+/* 1 if a and b are the same file or folder (same device and inode), else 0. */
+int wff_same_file(const char *a, const char *b);
+
 /* 1 if path exists (any kind), 0 if not. */
 int wff_exists(const char *path);
 /* Folder dir's entries other than "." ".." and skip (NULL: none), counted. */

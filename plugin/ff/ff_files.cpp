@@ -6,9 +6,13 @@
 //   wovenffWriteTable(file, header, v, ncols, digits) // CSV: header, then v row-major, atomic
 //   wovenffCommit(tmp, final)           // a file a tool wrote: non-empty, complete (.vtu/.pvd:
 //                                       // </VTKFile>, .png: IEND), fsync, rename
+//   real wovenffStableStep(md)          // the elements' stable step now, s (for cost estimates)
 //   wovenffSaveCheckpoint(md, file)     // wovenffSave, a failure is a write failure
 //   wovenffMakeDir(dir) wovenffRename(from, to) wovenffCopyTree(from, to) wovenffRemove(path)
 //   wovenffCutLines(file, n)            // keep the first n lines (atomic)
+//   wovenffClearDir(dir)                // remove everything in dir but its lock
+//   wovenffWriteFailed(file, reason)    // a write a tool reported failed: exit 3 as below
+//   int wovenffSameFile(a, b)           // same file or folder (device and inode)
 // A failed write stops the script at once with exit code 3 and "error: <file>: <strerror>",
 // writes a failed summary.json into the locked run folder (if it can), releases the lock.
 //   wovenffRunLock(dir)                 // take dir/.wovenff.lock (released at any exit; a lock of
@@ -35,6 +39,7 @@
 
 extern "C" {
 #include "wovenff/files.h"
+#include "wovenff/membrane.h"
 #include "wovenff/text_io.h"
 }
 
@@ -173,10 +178,19 @@ long ffSaveCheckpoint(const long &id, string *const &file)
     return 0;
 }
 
+double ffStableStep(const long &id)
+{
+    const wff_model *m = wff_ff_model(id, "wovenffStableStep");
+    int worst;
+    return wff_elements_stable_step(&m->el, &m->em, m->mesh.xy, m->u, &worst);
+}
+
 long ffMakeDir(string *const &dir)
 {
     wff_error err;
-    check("wovenffMakeDir", wff_make_dirs(dir->c_str(), &err), err);
+    if (wff_make_dirs(dir->c_str(), &err))
+        write_fail("wovenffMakeDir", "output folder '" + *dir + "' cannot be created or written (" +
+                                         err.message + ")");
     return 0;
 }
 
@@ -199,6 +213,20 @@ long ffRemove(string *const &path)
     wff_error err;
     check("wovenffRemove", wff_remove_tree(path->c_str(), &err), err);
     return 0;
+}
+
+long ffClearDir(string *const &dir)
+{
+    wff_error err;
+    check("wovenffClearDir", wff_clear_dir(dir->c_str(), ".wovenff.lock", &err), err);
+    return 0;
+}
+
+long ffSameFile(string *const &a, string *const &b) { return wff_same_file(a->c_str(), b->c_str()); }
+
+long ffWriteFailed(string *const &file, string *const &reason)
+{
+    write_fail("wovenffWriteFailed", "cannot write " + *file + ": " + *reason);
 }
 
 long ffCutLines(string *const &file, const long &n)
@@ -335,10 +363,14 @@ void wff_ff_register_files()
     Global.Add("wovenffCommit", "(", new OneOperator2_<long, string *, string *>(ffCommit));
     Global.Add("wovenffSaveCheckpoint", "(",
                new OneOperator2_<long, long, string *>(ffSaveCheckpoint));
+    Global.Add("wovenffStableStep", "(", new OneOperator1_<double, long>(ffStableStep));
     Global.Add("wovenffMakeDir", "(", new OneOperator1_<long, string *>(ffMakeDir));
     Global.Add("wovenffRename", "(", new OneOperator2_<long, string *, string *>(ffRename));
     Global.Add("wovenffCopyTree", "(", new OneOperator2_<long, string *, string *>(ffCopyTree));
     Global.Add("wovenffRemove", "(", new OneOperator1_<long, string *>(ffRemove));
+    Global.Add("wovenffClearDir", "(", new OneOperator1_<long, string *>(ffClearDir));
+    Global.Add("wovenffSameFile", "(", new OneOperator2_<long, string *, string *>(ffSameFile));
+    Global.Add("wovenffWriteFailed", "(", new OneOperator2_<long, string *, string *>(ffWriteFailed));
     Global.Add("wovenffCutLines", "(", new OneOperator2_<long, string *, long>(ffCutLines));
     Global.Add("wovenffRunLock", "(", new OneOperator1_<long, string *>(ffRunLock));
     Global.Add("wovenffExists", "(", new OneOperator1_<long, string *>(ffExists));
