@@ -14,7 +14,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -153,11 +155,23 @@ int wff_commit_file(const char *tmp, const char *final, wff_error *err)
         e = errno;
         why = "cannot be synced";
     }
+    /* the tool does not say why: a file at the file-size limit, or a full file system */
+    char cause[160] = "";
+    struct rlimit lim;
+    struct statvfs fs;
+    if (why && !e) {
+        if (getrlimit(RLIMIT_FSIZE, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY &&
+            (rlim_t)st.st_size >= lim.rlim_cur / 2)
+            snprintf(cause, sizeof cause, " (%s: the file-size limit is %llu bytes)",
+                     strerror(EFBIG), (unsigned long long)lim.rlim_cur);
+        else if (fstatvfs(fd, &fs) == 0 && fs.f_bavail == 0)
+            snprintf(cause, sizeof cause, " (%s)", strerror(ENOSPC));
+    }
     close(fd);
     if (why) {
         unlink(tmp);
-        return wff_fail(err, "cannot write %s: %s %s%s%s", final, tmp, why, e ? ": " : "",
-                        e ? strerror(e) : "");
+        return wff_fail(err, "cannot write %s: %s %s%s%s%s", final, tmp, why, e ? ": " : "",
+                        e ? strerror(e) : "", cause);
     }
     if (rename(tmp, final) != 0) {
         e = errno;
