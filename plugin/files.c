@@ -145,6 +145,13 @@ int wff_commit_file(const char *tmp, const char *final, wff_error *err)
             if (n < sizeof vtk_end - 1 || memcmp(tail + n - (sizeof vtk_end - 1), vtk_end,
                                                  sizeof vtk_end - 1))
                 why = "is incomplete (it does not end with </VTKFile>)";
+        } else if (ends_with(final, ".json")) {
+            if (n == 0 || tail[n - 1] != '}')
+                why = "is incomplete (a JSON file that does not end with })";
+        } else if (ends_with(final, ".csv")) {
+            n = read_tail(fd, st.st_size, tail);
+            if (n == 0 || tail[n - 1] != '\n')
+                why = "is incomplete (a CSV file that ends mid-row)";
         } else if (ends_with(final, ".png")) {
             n = read_tail(fd, st.st_size, tail);
             if (n < sizeof png_end || memcmp(tail + n - sizeof png_end, png_end, sizeof png_end))

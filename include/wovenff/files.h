@@ -32,7 +32,8 @@ int wff_write_whole(const char *path, const void *data, size_t size, wff_error *
 int wff_append_whole(const char *path, const void *data, size_t size, wff_error *err);
 
 /* A file a tool wrote at tmp: checked to exist, be non-empty and complete
- * (a .vtu ends with </VTKFile>, a .png with its IEND chunk), fsync'ed and
+ * (a .vtu/.pvd ends with </VTKFile>, a .png with its IEND chunk, a .json
+ * with }, a .csv with a newline), fsync'ed and
  * renamed to final. The tmp file is removed on failure. */
 int wff_commit_file(const char *tmp, const char *final, wff_error *err);
 
