@@ -49,6 +49,7 @@ echo "$edp"
 king_default=$(build/bench/kernel_speed tri 1 1 400) || king_default='{}'
 echo "$king_default"
 echo "== 2b. the paper's scene at its defaults, start to plots"
+rm -rf "$out/runs/scene_default"   # (a results folder holding a run refuses a new one)
 t0=$(now)
 ff freefem_scripts/ballistic_impact.edp -out "$out/runs/scene_default" > "$out/runs/scene_default.log" 2>&1
 scene_wall=$(elapsed "$t0")

@@ -32,6 +32,7 @@ void wff_ff_register_femesh(); // ff_femesh.cpp: models from FreeFEM meshes, lab
 void wff_ff_register_remesh(); // ff_remesh.cpp: a model's state carried onto a new mesh
 void wff_ff_register_state();  // ff_state.cpp: state vectors in and out, element fields
 void wff_ff_register_materials(); // ff_materials.cpp: the material handle table
+void wff_ff_register_files();   // ff_files.cpp: checked writes, folders, locks, no shell
 
 // Record "fn: message" as the last error and stop the script (exit code 8
 // unless it catches the error). Never returns.

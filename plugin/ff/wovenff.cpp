@@ -88,6 +88,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_state,
     wff_ff_register_remesh,
     wff_ff_register_materials,
+    wff_ff_register_files,
 };
 
 static void init()

@@ -1,0 +1,474 @@
+/* files.c: results files and folders without a shell (include/wovenff/files.h):
+ * checked whole-row appends, commits of tool-written files, mkdir -p, rename,
+ * copy and removal of trees, line counts and hashes, the run lock, fork/exec.
+ * Knows nothing of what the files hold (beyond newlines and the tails of .vtu
+ * and .png files), nothing of models or scenes. */
+#define _GNU_SOURCE
+#include "wovenff/files.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <ftw.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "wovenff/text_io.h"
+
+#define FNV_START 0xcbf29ce484222325ULL
+#define PATH_MAXLEN 4096
+
+static uint64_t fnv(uint64_t h, const void *data, size_t size)
+{
+    const unsigned char *p = data;
+    for (size_t i = 0; i < size; i++) {
+        h ^= p[i];
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
+
+uint64_t wff_hash_bytes(const void *data, size_t size) { return fnv(FNV_START, data, size); }
+
+int wff_path_check(const char *path, const char *what, wff_error *err)
+{
+    if (!path[0])
+        return wff_fail(err, "%s: an empty path", what);
+    for (const unsigned char *p = (const unsigned char *)path; *p; p++)
+        if (*p < 0x20 || *p == 0x7f)
+            return wff_fail(err, "%s '%s': a path with a control character (newline, tab, ...) "
+                            "is refused", what, path);
+    if (strlen(path) >= PATH_MAXLEN - 64)
+        return wff_fail(err, "%s: path longer than %d characters", what, PATH_MAXLEN - 64);
+    return 0;
+}
+
+/* write(2) all of it; 0 or -1 with errno (a short write with no errno: EIO... */
+static int write_all(int fd, const void *data, size_t size)
+{
+    const char *p = data;
+    while (size > 0) {
+        ssize_t n = write(fd, p, size);
+        if (n < 0) {
+            if (errno == EINTR)
+                continue;
+            return -1;
+        }
+        if (n == 0) {
+            errno = ENOSPC;
+            return -1;
+        }
+        p += n;
+        size -= (size_t)n;
+    }
+    return 0;
+}
+
+int wff_write_whole(const char *path, const void *data, size_t size, wff_error *err)
+{
+    wff_atomic_file af;
+    if (wff_atomic_open(&af, path, "file", err))
+        return -1;
+    wff_atomic_write(&af, data, size);
+    return wff_atomic_commit(&af, err);
+}
+
+int wff_append_whole(const char *path, const void *data, size_t size, wff_error *err)
+{
+    int fd = open(path, O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0)
+        return wff_fail(err, "cannot append to %s: %s", path, strerror(errno));
+    struct stat st;
+    if (fstat(fd, &st) != 0) {
+        int e = errno;
+        close(fd);
+        return wff_fail(err, "cannot append to %s: %s", path, strerror(e));
+    }
+    if (write_all(fd, data, size) != 0) {
+        int e = errno;
+        int cut = ftruncate(fd, st.st_size); /* the row whole or not at all */
+        close(fd);
+        return wff_fail(err, "cannot write %s: %s%s", path, strerror(e),
+                        cut ? " (and the partial row could not be removed)" : "");
+    }
+    if (close(fd) != 0)
+        return wff_fail(err, "cannot write %s: %s", path, strerror(errno));
+    return 0;
+}
+
+static int ends_with(const char *s, const char *tail)
+{
+    size_t a = strlen(s), b = strlen(tail);
+    return a >= b && strcmp(s + a - b, tail) == 0;
+}
+
+/* The last up to 64 bytes of fd (size bytes long) into tail, trailing blanks dropped. */
+static size_t read_tail(int fd, off_t size, char *tail)
+{
+    size_t want = size < 64 ? (size_t)size : 64;
+    ssize_t got = pread(fd, tail, want, size - (off_t)want);
+    if (got < 0)
+        got = 0;
+    return (size_t)got;
+}
+
+int wff_commit_file(const char *tmp, const char *final, wff_error *err)
+{
+    int fd = open(tmp, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return wff_fail(err, "cannot write %s: %s was not written (%s)", final, tmp,
+                        strerror(errno));
+    struct stat st;
+    const char *why = NULL;
+    int e = 0;
+    if (fstat(fd, &st) != 0) {
+        e = errno;
+        why = "cannot be examined";
+    } else if (st.st_size == 0) {
+        why = "is empty (the tool that wrote it failed)";
+    } else {
+        char tail[64];
+        size_t n = read_tail(fd, st.st_size, tail);
+        while (n > 0 && (tail[n - 1] == '\n' || tail[n - 1] == ' ' || tail[n - 1] == '\r'))
+            n--;
+        static const char vtk_end[] = "</VTKFile>";
+        static const unsigned char png_end[] = {'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+        if (ends_with(final, ".vtu") || ends_with(final, ".pvd")) {
+            if (n < sizeof vtk_end - 1 || memcmp(tail + n - (sizeof vtk_end - 1), vtk_end,
+                                                 sizeof vtk_end - 1))
+                why = "is incomplete (it does not end with </VTKFile>)";
+        } else if (ends_with(final, ".json")) {
+            if (n == 0 || tail[n - 1] != '}')
+                why = "is incomplete (a JSON file that does not end with })";
+        } else if (ends_with(final, ".csv")) {
+            n = read_tail(fd, st.st_size, tail);
+            if (n == 0 || tail[n - 1] != '\n')
+                why = "is incomplete (a CSV file that ends mid-row)";
+        } else if (ends_with(final, ".png")) {
+            n = read_tail(fd, st.st_size, tail);
+            if (n < sizeof png_end || memcmp(tail + n - sizeof png_end, png_end, sizeof png_end))
+                why = "is incomplete (no PNG end chunk)";
+        }
+    }
+    if (!why && fsync(fd) != 0) {
+        e = errno;
+        why = "cannot be synced";
+    }
+    /* the tool does not say why: a file at the file-size limit, or a full file system */
+    char cause[160] = "";
+    struct rlimit lim;
+    struct statvfs fs;
+    if (why && !e) {
+        if (getrlimit(RLIMIT_FSIZE, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY &&
+            (rlim_t)st.st_size >= lim.rlim_cur / 2)
+            snprintf(cause, sizeof cause, " (%s: the file-size limit is %llu bytes)",
+                     strerror(EFBIG), (unsigned long long)lim.rlim_cur);
+        else if (fstatvfs(fd, &fs) == 0 && fs.f_bavail == 0)
+            snprintf(cause, sizeof cause, " (%s)", strerror(ENOSPC));
+    }
+    close(fd);
+    if (why) {
+        unlink(tmp);
+        return wff_fail(err, "cannot write %s: %s %s%s%s%s", final, tmp, why, e ? ": " : "",
+                        e ? strerror(e) : "", cause);
+    }
+    if (rename(tmp, final) != 0) {
+        e = errno;
+        unlink(tmp);
+        return wff_fail(err, "cannot rename %s to %s: %s", tmp, final, strerror(e));
+    }
+    return 0;
+}
+
+int wff_make_dirs(const char *path, wff_error *err)
+{
+    char buf[PATH_MAXLEN];
+    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf)
+        return wff_fail(err, "folder path too long: %s", path);
+    for (char *p = buf + 1;; p++) {
+        if (*p == '/' || *p == '\0') {
+            char c = *p;
+            *p = '\0';
+            if (mkdir(buf, 0755) != 0 && errno != EEXIST)
+                return wff_fail(err, "cannot create folder %s: %s", buf, strerror(errno));
+            *p = c;
+            if (c == '\0')
+                break;
+        }
+    }
+    struct stat st;
+    if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode))
+        return wff_fail(err, "%s is not a folder", path);
+    if (access(path, W_OK | X_OK) != 0)
+        return wff_fail(err, "folder %s cannot be written: %s", path, strerror(errno));
+    return 0;
+}
+
+int wff_rename(const char *from, const char *to, wff_error *err)
+{
+    if (rename(from, to) != 0)
+        return wff_fail(err, "cannot rename %s to %s: %s", from, to, strerror(errno));
+    return 0;
+}
+
+static int remove_one(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st; (void)ftw;
+    return (flag == FTW_DP ? rmdir(path) : unlink(path)) != 0 ? -1 : 0;
+}
+
+int wff_remove_tree(const char *path, wff_error *err)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0)
+        return errno == ENOENT ? 0 : wff_fail(err, "cannot remove %s: %s", path, strerror(errno));
+    int rc = S_ISDIR(st.st_mode) ? nftw(path, remove_one, 16, FTW_DEPTH | FTW_PHYS) : unlink(path);
+    if (rc != 0)
+        return wff_fail(err, "cannot remove %s: %s", path, strerror(errno));
+    return 0;
+}
+
+int wff_copy_tree(const char *from, const char *to, const char *skip, wff_error *err)
+{
+    if (wff_make_dirs(to, err))
+        return -1;
+    DIR *d = opendir(from);
+    if (!d)
+        return wff_fail(err, "cannot read folder %s: %s", from, strerror(errno));
+    int rc = 0;
+    struct dirent *e;
+    while (rc == 0 && (e = readdir(d))) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") ||
+            (skip && !strcmp(e->d_name, skip)))
+            continue;
+        char src[PATH_MAXLEN], dst[PATH_MAXLEN];
+        if (snprintf(src, sizeof src, "%s/%s", from, e->d_name) >= (int)sizeof src ||
+            snprintf(dst, sizeof dst, "%s/%s", to, e->d_name) >= (int)sizeof dst) {
+            rc = wff_fail(err, "path too long under %s", from);
+            break;
+        }
+        struct stat st;
+        if (lstat(src, &st) != 0) {
+            rc = wff_fail(err, "cannot read %s: %s", src, strerror(errno));
+        } else if (S_ISDIR(st.st_mode)) {
+            rc = wff_copy_tree(src, dst, NULL, err);
+        } else if (S_ISREG(st.st_mode)) {
+            char *data;
+            size_t size;
+            rc = wff_read_file(src, "file", (size_t)1 << 40, &data, &size, err);
+            if (rc == 0) {
+                rc = wff_write_whole(dst, data, size, err);
+                free(data);
+            }
+        }
+    }
+    closedir(d);
+    return rc;
+}
+
+int wff_clear_dir(const char *dir, const char *skip, wff_error *err)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return wff_fail(err, "cannot read folder %s: %s", dir, strerror(errno));
+    int rc = 0;
+    struct dirent *e;
+    while (rc == 0 && (e = readdir(d))) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") ||
+            (skip && !strcmp(e->d_name, skip)))
+            continue;
+        char path[PATH_MAXLEN];
+        if (snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= (int)sizeof path)
+            rc = wff_fail(err, "path too long under %s", dir);
+        else
+            rc = wff_remove_tree(path, err);
+    }
+    closedir(d);
+    return rc;
+}
+
+int wff_same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+           sa.st_ino == sb.st_ino;
+}
+
+int wff_exists(const char *path)
+{
+    struct stat st;
+    return lstat(path, &st) == 0;
+}
+
+int wff_dir_entries(const char *dir, const char *skip, long *count, wff_error *err)
+{
+    *count = 0;
+    DIR *d = opendir(dir);
+    if (!d)
+        return wff_fail(err, "cannot read folder %s: %s", dir, strerror(errno));
+    struct dirent *e;
+    while ((e = readdir(d)))
+        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..") && !(skip && !strcmp(e->d_name, skip)))
+            (*count)++;
+    closedir(d);
+    return 0;
+}
+
+int wff_file_lines(const char *path, long n, long *lines, uint64_t *hash, char *last,
+                   size_t last_size, wff_error *err)
+{
+    *lines = 0;
+    *hash = FNV_START;
+    if (last && last_size)
+        last[0] = '\0';
+    char *data;
+    size_t size;
+    if (wff_read_file(path, "file", (size_t)1 << 40, &data, &size, err))
+        return -1;
+    size_t end = 0, line_start = 0, prev_start = 0;
+    for (size_t i = 0; i < size && (n < 0 || *lines < n); i++)
+        if (data[i] == '\n') {
+            (*lines)++;
+            prev_start = line_start;
+            line_start = end = i + 1;
+        }
+    *hash = fnv(FNV_START, data, end);
+    if (last && last_size && *lines > 0) {
+        size_t len = end - 1 - prev_start;
+        if (len >= last_size)
+            len = last_size - 1;
+        memcpy(last, data + prev_start, len);
+        last[len] = '\0';
+    }
+    free(data);
+    return 0;
+}
+
+int wff_file_hash(const char *path, uint64_t *hash, wff_error *err)
+{
+    char *data;
+    size_t size;
+    if (wff_read_file(path, "file", (size_t)1 << 40, &data, &size, err))
+        return -1;
+    *hash = fnv(FNV_START, data, size);
+    free(data);
+    return 0;
+}
+
+int wff_cut_lines(const char *path, long n, wff_error *err)
+{
+    char *data;
+    size_t size;
+    if (wff_read_file(path, "file", (size_t)1 << 40, &data, &size, err))
+        return -1;
+    size_t end = 0;
+    long lines = 0;
+    for (size_t i = 0; i < size && lines < n; i++)
+        if (data[i] == '\n') {
+            lines++;
+            end = i + 1;
+        }
+    int rc = 0;
+    if (lines < n)
+        rc = wff_fail(err, "%s has %ld lines, fewer than %ld", path, lines, n);
+    else if (end != size)
+        rc = wff_write_whole(path, data, end, err);
+    free(data);
+    return rc;
+}
+
+static int lock_path(const char *dir, char *path, size_t size)
+{
+    return snprintf(path, size, "%s/.wovenff.lock", dir) >= (int)size ? -1 : 0;
+}
+
+int wff_lock_take(const char *dir, char *note, size_t note_size, wff_error *err)
+{
+    char path[PATH_MAXLEN];
+    if (note_size)
+        note[0] = '\0';
+    if (lock_path(dir, path, sizeof path))
+        return wff_fail(err, "folder path too long: %s", dir);
+    for (int attempt = 0; attempt < 2; attempt++) {
+        int fd = open(path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+        if (fd >= 0) {
+            char text[32];
+            int len = snprintf(text, sizeof text, "%ld\n", (long)getpid());
+            int bad = write_all(fd, text, (size_t)len) != 0;
+            int e = errno;
+            if (close(fd) != 0 && !bad) {
+                bad = 1;
+                e = errno;
+            }
+            if (bad) {
+                unlink(path);
+                return wff_fail(err, "cannot write the lock %s: %s", path, strerror(e));
+            }
+            return 0;
+        }
+        if (errno != EEXIST)
+            return wff_fail(err, "cannot create the lock %s: %s", path, strerror(errno));
+        char *text = NULL;
+        size_t size;
+        long pid = 0;
+        if (wff_read_file(path, "lock", 64, &text, &size, NULL) == 0) {
+            pid = strtol(text, NULL, 10);
+            free(text);
+        }
+        if (pid == (long)getpid())
+            return 0; /* ours already */
+        if (pid > 0 && (kill((pid_t)pid, 0) == 0 || errno == EPERM))
+            return wff_fail(err, "folder %s is in use by another run (process %ld holds %s); "
+                            "wait for it, or choose another folder", dir, pid, path);
+        /* the holder is gone (killed): take the lock over */
+        if (note_size)
+            snprintf(note, note_size, "note: %s was left by process %ld, which no longer runs "
+                     "(a killed run); taking it over", path, pid);
+        if (unlink(path) != 0 && errno != ENOENT)
+            return wff_fail(err, "cannot remove the stale lock %s: %s", path, strerror(errno));
+    }
+    return wff_fail(err, "cannot take the lock of %s (another run took it at the same time)", dir);
+}
+
+void wff_lock_release(const char *dir)
+{
+    char path[PATH_MAXLEN];
+    if (lock_path(dir, path, sizeof path))
+        return;
+    char *text = NULL;
+    size_t size;
+    if (wff_read_file(path, "lock", 64, &text, &size, NULL) == 0) {
+        long pid = strtol(text, NULL, 10);
+        free(text);
+        if (pid == (long)getpid())
+            unlink(path);
+    }
+}
+
+int wff_run_program(char *const argv[], int *status, wff_error *err)
+{
+    *status = -1;
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0)
+        return wff_fail(err, "cannot start %s: %s", argv[0], strerror(errno));
+    if (pid == 0) {
+        execvp(argv[0], argv);
+        fprintf(stderr, "cannot run %s: %s\n", argv[0], strerror(errno));
+        _exit(127);
+    }
+    int ws;
+    while (waitpid(pid, &ws, 0) < 0)
+        if (errno != EINTR)
+            return wff_fail(err, "waiting for %s: %s", argv[0], strerror(errno));
+    *status = WIFEXITED(ws) ? WEXITSTATUS(ws) : 128 + WTERMSIG(ws);
+    return 0;
+}
