@@ -6,7 +6,7 @@
 //   wovenffWriteTable(file, header, v, ncols, digits) // CSV: header, then v row-major, atomic
 //   wovenffCommit(tmp, final)           // a file a tool wrote: non-empty, complete (.vtu/.pvd:
 //                                       // </VTKFile>, .png: IEND), fsync, rename
-//   real wovenffStableStep(md)          // the elements' stable step now, s (for cost estimates)
+//   (the cost estimate uses wovenffStableStep(md) of ff_loop.cpp)
 //   wovenffSaveCheckpoint(md, file)     // wovenffSave, a failure is a write failure
 //   wovenffMakeDir(dir) wovenffRename(from, to) wovenffCopyTree(from, to) wovenffRemove(path)
 //   wovenffCutLines(file, n)            // keep the first n lines (atomic)
@@ -176,13 +176,6 @@ long ffSaveCheckpoint(const long &id, string *const &file)
     check("wovenffSaveCheckpoint",
           wff_model_save(wff_ff_model(id, "wovenffSaveCheckpoint"), file->c_str(), &err), err);
     return 0;
-}
-
-double ffStableStep(const long &id)
-{
-    const wff_model *m = wff_ff_model(id, "wovenffStableStep");
-    int worst;
-    return wff_elements_stable_step(&m->el, &m->em, m->mesh.xy, m->u, &worst);
 }
 
 long ffMakeDir(string *const &dir)
@@ -363,7 +356,6 @@ void wff_ff_register_files()
     Global.Add("wovenffCommit", "(", new OneOperator2_<long, string *, string *>(ffCommit));
     Global.Add("wovenffSaveCheckpoint", "(",
                new OneOperator2_<long, long, string *>(ffSaveCheckpoint));
-    Global.Add("wovenffStableStep", "(", new OneOperator1_<double, long>(ffStableStep));
     Global.Add("wovenffMakeDir", "(", new OneOperator1_<long, string *>(ffMakeDir));
     Global.Add("wovenffRename", "(", new OneOperator2_<long, string *, string *>(ffRename));
     Global.Add("wovenffCopyTree", "(", new OneOperator2_<long, string *, string *>(ffCopyTree));
