@@ -93,8 +93,13 @@ deps:
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
 	else echo "all Debian packages present"; fi
 
+# A scene with a run lock refuses a folder holding an earlier run's results;
+# `make run` into the scene's default folder starts afresh (-overwrite 1)
+# unless ARGS names its own -out or -overwrite.
+LOCKED_SCENES := ballistic_impact strip_tension explicit_loop
+RUN_FRESH := $(if $(filter $(SCENE),$(LOCKED_SCENES)),$(if $(findstring -out,$(ARGS))$(findstring -overwrite,$(ARGS)),,-overwrite 1))
 run: all
-	@sh tools/ff.sh freefem_scripts/$(SCENE).edp $(ARGS)
+	@sh tools/ff.sh freefem_scripts/$(SCENE).edp $(RUN_FRESH) $(ARGS)
 
 test: all
 	@sh tests/run.sh
