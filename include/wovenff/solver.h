@@ -49,6 +49,10 @@ typedef struct wff_projectile {
     double max_penetration;  /* largest penetration left after a contact correction, m */
     double force;         /* mean contact force on the projectile along −z over the last
                              step, N (model part) */
+    double impulse_total; /* contact impulse on the projectile along −z since the start,
+                             N·s (model part): the sum of force × step, = mass × (initial −
+                             current velocity); a frame's mean force is its increase over
+                             the frame / the frame's length */
 } wff_projectile;
 
 typedef struct wff_clamp {

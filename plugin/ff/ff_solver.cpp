@@ -79,7 +79,7 @@ const StateQuantity kState[] = {
     {"dissipated_friction", true}, {"external_work", true},
     {"energy_error", true},       {"element_steps", false},
     {"elements", false},          {"nodes", false},
-    {"dt_worst_element", false}};
+    {"dt_worst_element", false},  {"projectile_impulse", false}};
 const int kStateSize = sizeof kState / sizeof kState[0];
 
 std::string state_names()
@@ -104,7 +104,7 @@ void state_values(const wff_model *m, bool with_energies, double values[kStateSi
                         e.kinetic_amplitude, e.kinetic_projectile, e.internal, e.dissipated_shear,
                         e.dissipated_friction, e.external_work, e.error, (double)m->element_steps,
                         (double)(m->el.n_tris + m->el.n_quads), (double)m->n_nodes,
-                        (double)(m->dt_worst_element + 1)};
+                        (double)(m->dt_worst_element + 1), s * m->projectile.impulse_total};
     static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
     for (int i = 0; i < kStateSize; i++)
         values[i] = v[i];
