@@ -196,6 +196,11 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
 /* Energies now (whole specimen: model part × symmetry_factor). */
 void wff_model_energies(const wff_model *m, wff_energies *out);
 
+/* The time step the next advance would take from the current state (s):
+ * dtfactor × the stable step over the elements (the state is not changed; a
+ * scene checks with it, before the loop, that a run takes at least one step). */
+double wff_model_step_estimate(const wff_model *m);
+
 /* Stored energy per mechanism of the cell (names: m->mat.cell->mech_names),
  * whole specimen (× symmetry_factor), J, at the current state with γᶠ held.
  * Fills out[0 .. n_mech−1] (all zeros if the cell has no energy split) and

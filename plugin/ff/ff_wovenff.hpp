@@ -26,6 +26,7 @@ void wff_ff_register_point();  // ff_point.cpp: pointwise material API
 void wff_ff_register_solver(); // ff_solver.cpp: models, meshes, explicit solver
 void wff_ff_register_fit();    // ff_fit.cpp: parameter identification
 void wff_ff_register_explore(); // ff_explore.cpp: one point along a load path (explorer)
+void wff_ff_register_checks(); // ff_checks.cpp: checks a scene makes before it runs
 
 // Record "fn: message" as the last error and stop the script (exit code 8
 // unless it catches the error). Never returns.

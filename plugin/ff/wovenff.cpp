@@ -82,6 +82,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_solver,
     wff_ff_register_fit,
     wff_ff_register_explore,
+    wff_ff_register_checks,
 };
 
 static void init()

@@ -1,0 +1,31 @@
+// wovenff FreeFEM binding: checks a scene makes before its time loop (issue 11:
+// a run that would take no step is refused before it starts).
+//
+//   real dt = wovenffStepEstimate(md);   // s: the step the next advance takes
+//
+// Knows the model handle table (ff_wovenff.hpp) and the solver's public API only.
+#include "ff++.hpp"
+#include "AFunction_ext.hpp"
+
+#include "ff_wovenff.hpp"
+
+using namespace Fem2D;
+
+namespace {
+
+double ffStepEstimate(const long &id)
+{
+    const wff_model *m = wff_ff_model(id, "wovenffStepEstimate");
+    double dt = wff_model_step_estimate(m);
+    if (!(dt > 0) || !std::isfinite(dt))
+        wff_ff_model_fail("wovenffStepEstimate", "the stable step " + std::to_string(dt)
+                          + " s is not positive: degenerate elements or NaN", id);
+    return dt;
+}
+
+} // namespace
+
+void wff_ff_register_checks()
+{
+    Global.Add("wovenffStepEstimate", "(", new OneOperator1_<double, long>(ffStepEstimate));
+}
