@@ -40,6 +40,8 @@ int wff_mesh_options_parse(const char *text, wff_mesh_options *opt, wff_error *e
             opt->size_factor = value;
         } else if (strcmp(name, "recombine") == 0) {
             opt->recombine = value != 0;
+        } else if (strcmp(name, "vertex_only") == 0) { /* elements meeting at a vertex */
+            opt->allow_vertex_only = value != 0;
         } else {
             if (opt->n_settings >= WFF_MESH_SETTINGS_MAX)
                 return wff_fail(err, "mesh settings: more than %d numbers", WFF_MESH_SETTINGS_MAX);
