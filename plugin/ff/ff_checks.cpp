@@ -2,10 +2,15 @@
 // a run that would take no step is refused before it starts).
 //
 //   real dt = wovenffStepEstimate(md);   // s: the step the next advance takes
+// and the finiteness check every model function taking reals makes
+// (wff_ff_require_finite: a NaN or infinite argument is an error naming it).
 //
 // Knows the model handle table (ff_wovenff.hpp) and the solver's public API only.
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
+
+#include <cmath>
+#include <cstdio>
 
 #include "ff_wovenff.hpp"
 
@@ -24,6 +29,17 @@ double ffStepEstimate(const long &id)
 }
 
 } // namespace
+
+void wff_ff_require_finite(const char *fn, const char *name, double x, long id)
+{
+    if (std::isfinite(x))
+        return;
+    char msg[160];
+    snprintf(msg, sizeof msg, "%s = %g is not a finite number", name, x);
+    if (id >= 0)
+        wff_ff_model_fail(fn, msg, id);
+    wff_ff_fail(fn, msg);
+}
 
 void wff_ff_register_checks()
 {

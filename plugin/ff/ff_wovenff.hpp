@@ -51,6 +51,10 @@ void wff_ff_model_free(long id, const char *fn);
 // Model id's last error; for id < 0 (or not a model) the module's last error.
 std::string wff_ff_model_last_error(long id);
 
+// wff_ff_model_fail unless x is finite: "NAME = inf is not a finite number"
+// (ff_checks.cpp; id < 0: no model).
+void wff_ff_require_finite(const char *fn, const char *name, double x, long id);
+
 // Load a material file (read afresh on every call: no cache). On failure
 // wff_ff_fail with the loader's message, which names the file, line and key.
 void wff_ff_material(const char *fn, const string *path, wff_material *mat);
