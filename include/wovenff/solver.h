@@ -234,7 +234,7 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 1
+#define WFF_CHECKPOINT_VERSION 2 /* 2: the projectile's impulse_total added */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 
