@@ -11,7 +11,8 @@
 #              element with a repeated node, an empty file, random bytes
 #   point API  NaN and infinite arguments, amplitude changes beyond p0, strip
 #              stretches outside [0.9, 1.5], negative preloads, a short array
-#   options    random lines for the ballistic and strip scenes, each with one
+#   options    random lines for the ballistic and strip scenes (and ten for the
+#              explorer and fit scenes: a bad number), each with one
 #              bad item: unknown names, missing values, option names as values,
 #              huge or non-numbers, values out of range, duplicates
 # Materials, meshes and point cases run in one FreeFEM process
@@ -188,10 +189,22 @@ awk -v seed=1103 '
         nb = split("-velocity -mass -preload -mu -standoff -frame -vtkdt -dtfactor -massfactor -threads -checkpoint", bnum, " ")
         ns = split("-velocity -ramp -dtfactor -frame -strain", snum, " ")
         nv = split("abc|1e400|-1e400|1e-400|0x10|inf|nan|-5|1,5|1e|--|1.2.3|1e99999|+|-0x1", bval, "|")
-        for (c = 0; c < 50; c++) {
+        ne = split("-steps -maxstrain -weftstrain -maxforce -maxshear -preload -duration", enum, " ")
+        nf = split("-maxiter -n -strain -shear -noise -seed", fnum, " ")
+        for (c = 0; c < 60; c++) {
             strip = c % 5 == 4
             scene = strip ? "strip_tension" : "ballistic_impact"
             base = strip ? "-family warp -plots 0 -strain 0.001" : "-mesh coarse -tend 2e-5 -plots 0"
+            if (c >= 50) {   # the explorer and the fit scene: a bad number
+                explorer = c % 2 == 0
+                scene = explorer ? "unit_cell_explorer" : "fit_parameters"
+                base = explorer ? "-path warp -steps 2 -plots 0" : "-maxiter 1 -n 2 -plots 0"
+                o = explorer ? enum[1 + int(rand() * ne)] : fnum[1 + int(rand() * nf)]
+                if (o == "-steps" || o == "-maxiter" || o == "-n") o = explorer ? "-maxshear" : "-noise"
+                v = bval[1 + int(rand() * nv)]
+                print scene "|" base " " o " " v "|" o
+                continue
+            }
             m = int(rand() * 6)
             if (m == 0) { o = "-" substr("qwertzuiopasdfghjk", 1 + int(rand() * 10), 3 + int(rand() * 4)); item = o " 1"; want = o }
             else if (m == 1) { o = strip ? snum[1 + int(rand() * ns)] : bnum[1 + int(rand() * nb)]; item = o; want = o }          # no value
