@@ -133,6 +133,7 @@ static int state_fields(wff_model *m, int n_candidates, state_field *f)
     FIELD(p->axis, 2);
     FIELD(&p->max_penetration, 1);
     FIELD(&p->force, 1);
+    FIELD(&p->impulse_total, 1);
     FIELD(&p->n_candidates, 1);
     FIELD(p->candidates, n_candidates);
     FIELD(m->u, m->n_dofs);

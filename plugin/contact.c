@@ -186,6 +186,7 @@ int wff_model_set_projectile(wff_model *m, double radius, double mass, double ve
     p->n_candidates = 0;
     p->max_penetration = 0;
     p->force = 0;
+    p->impulse_total = 0;
     /* nose tip touching the fabric plane z = 0 */
     p->active = 1;
     if (wff_model_place_projectile(m, 0, err)) {
@@ -352,15 +353,18 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
                             "projectile (more than %.0f%% of its radius): the projectile has "
                             "passed through the fabric", m->time, m->step, n + 1, delta,
                             100 * RUNAWAY_PENETRATION);
-        /* inverse mass along the normal: free node components and the projectile (z) */
+        /* inverse mass along the normal: free node components and the projectile (z);
+         * a node held in every direction along the normal (clamped, fixed) has none:
+         * the projectile alone takes the correction, its support the force */
         double w_node = 0;
         for (int i = 0; i < 3; i++)
             if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
                 w_node += nrm[i] * nrm[i];
-        if (w_node == 0)
-            continue;
         w_node /= mass;
-        double jn = delta / dt / (w_node + nrm[2] * nrm[2] / p->mass); /* N·s */
+        double w_total = w_node + nrm[2] * nrm[2] / p->mass;
+        if (w_total == 0)
+            continue; /* neither side can move along the normal */
+        double jn = delta / dt / w_total; /* N·s */
         double j[3] = {jn * nrm[0], jn * nrm[1], jn * nrm[2]};
         /* friction against the tangential relative velocity left after jn */
         if (p->mu > 0) {
@@ -379,13 +383,17 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
                     j[i] -= jt * vt[i] / speed;
             }
         }
+        const double j_projectile = j[2]; /* the projectile takes all of it */
         for (int i = 0; i < 3; i++) {
-            if (m->dof_kind[D * n + i] != WFF_DOF_FREE)
+            if (m->dof_kind[D * n + i] != WFF_DOF_FREE) {
+                /* a held component: its support takes the contact force */
+                m->reaction[D * n + i] -= j[i] / dt_mid;
                 j[i] = 0;
+            }
             vn[i] += j[i] / mass;
             jc[i] = j[i];
         }
-        p->velocity -= j[2] / p->mass;
+        p->velocity -= j_projectile / p->mass;
         p->contact_node[touched++] = n;
         /* what remains inside after the correction */
         double x2[3] = {m->mesh.xy[2 * n] + un[0] + dt * vn[0],
@@ -412,6 +420,7 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
     }
     double dv = p->velocity - v_proj_before;
     p->force = -p->mass * dv / dt_mid;
+    p->impulse_total -= p->mass * dv;
     work += p->mass * dv * (p->velocity - 0.5 * dv);
     m->dissipated_friction -= work;
     return 0;

@@ -248,6 +248,12 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     out->error = m->v_half_valid ? (total - m->initial_total) / ref : 0; /* not started: exact */
 }
 
+double wff_model_step_estimate(const wff_model *m)
+{
+    int worst;
+    return m->dt_factor * wff_elements_stable_step(&m->el, &m->em, m->mesh.xy, m->u, &worst);
+}
+
 int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err)
 {
     if (!isfinite(t_end))

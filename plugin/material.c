@@ -91,16 +91,14 @@ static int kv_read(const char *text, wff_kv *kv, wff_error *err)
 
 static int parse_number(const wff_kv *kv, const wff_kv_entry *e, double *value, wff_error *err)
 {
-    char *end;
-    errno = 0;
-    double v = strtod(e->value, &end);
-    if (end == e->value || *trim(end) != '\0')
-        return wff_fail(err, "%s:%d: key '%s': '%s' is not a number", kv->source, e->line,
+    int why = wff_parse_decimal(e->value, e->value + strlen(e->value), value);
+    if (why == WFF_NUMBER_SYNTAX)
+        return wff_fail(err, "%s:%d: key '%s': '%s' is not a number (decimal: digits, one "
+                        "point, an optional exponent, e.g. 1.25e-3)", kv->source, e->line,
                         e->key, e->value);
-    if (errno == ERANGE || !isfinite(v))
-        return wff_fail(err, "%s:%d: key '%s': '%s' is not a finite number", kv->source,
-                        e->line, e->key, e->value);
-    *value = v;
+    if (why)
+        return wff_fail(err, "%s:%d: key '%s': '%s' is not a finite number (beyond the range "
+                        "of a double)", kv->source, e->line, e->key, e->value);
     return 0;
 }
 

@@ -789,6 +789,8 @@ int wff_mesh_load(const char *path, const wff_mesh_options *options, wff_mesh *m
         setlocale(LC_ALL, saved_locale);
         free(saved_locale);
     }
+    if (!rc)
+        rc = wff_mesh_check(&m, o->allow_vertex_only, path, err);
     if (rc) {
         wff_mesh_free(&m);
         return -1;

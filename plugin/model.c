@@ -78,6 +78,10 @@ int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *materia
     memset(m, 0, sizeof *m);
     m->mesh = *mesh;
     memset(mesh, 0, sizeof *mesh);
+    if (wff_mesh_check(&m->mesh, 1, "mesh", err)) {
+        wff_mesh_free(&m->mesh);
+        return -1;
+    }
     if (wff_material_load(material_path, &m->mat, err)) {
         wff_mesh_free(&m->mesh);
         return -1;

@@ -3,6 +3,7 @@
  * other name=value into the .geo's numbers (include/wovenff/options.h).
  * Knows nothing of gmsh, materials or the solver. */
 #include "wovenff/options.h"
+#include "wovenff/text_io.h"
 
 #include <errno.h>
 #include <math.h>
@@ -29,10 +30,8 @@ int wff_mesh_options_parse(const char *text, wff_mesh_options *opt, wff_error *e
             return wff_fail(err, "mesh settings '%s': bad name at '%.*s'", text, (int)len, p);
         memcpy(name, p, nlen);
         name[nlen] = '\0';
-        char *end;
-        errno = 0;
-        double value = strtod(eq + 1, &end);
-        if (end == eq + 1 || (size_t)(end - p) != len || errno || !isfinite(value))
+        double value = 0;
+        if (wff_parse_decimal(eq + 1, p + len, &value))
             return wff_fail(err, "mesh settings: '%s' needs a number, got '%.*s'", name,
                             (int)(len - nlen - 1), eq + 1);
         if (strcmp(name, "size_factor") == 0) {
@@ -41,6 +40,8 @@ int wff_mesh_options_parse(const char *text, wff_mesh_options *opt, wff_error *e
             opt->size_factor = value;
         } else if (strcmp(name, "recombine") == 0) {
             opt->recombine = value != 0;
+        } else if (strcmp(name, "vertex_only") == 0) { /* elements meeting at a vertex */
+            opt->allow_vertex_only = value != 0;
         } else {
             if (opt->n_settings >= WFF_MESH_SETTINGS_MAX)
                 return wff_fail(err, "mesh settings: more than %d numbers", WFF_MESH_SETTINGS_MAX);

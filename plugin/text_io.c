@@ -214,19 +214,53 @@ const char *wff_trim_end(const char *begin, const char *end)
     return end;
 }
 
-int wff_parse_number_span(const char *begin, const char *end, double *value)
+int wff_number_grammar(const char *begin, const char *end)
+{
+    const char *p = begin;
+    int digits = 0, points = 0;
+    if (p < end && (*p == '+' || *p == '-'))
+        p++;
+    for (; p < end && (isdigit((unsigned char)*p) || *p == '.'); p++) {
+        if (*p == '.')
+            points++;
+        else
+            digits++;
+    }
+    if (digits == 0 || points > 1)
+        return 0;
+    if (p < end && (*p == 'e' || *p == 'E')) {
+        p++;
+        if (p < end && (*p == '+' || *p == '-'))
+            p++;
+        int exp_digits = 0;
+        for (; p < end && isdigit((unsigned char)*p); p++)
+            exp_digits++;
+        if (exp_digits == 0)
+            return 0;
+    }
+    return p == end;
+}
+
+int wff_parse_decimal(const char *begin, const char *end, double *value)
 {
     char buf[96];
     size_t len = (size_t)(end - begin);
-    if (len == 0 || len >= sizeof buf)
-        return -1;
+    if (len == 0 || len >= sizeof buf || !wff_number_grammar(begin, end))
+        return WFF_NUMBER_SYNTAX;
     memcpy(buf, begin, len);
     buf[len] = '\0';
     char *stop;
     errno = 0;
     double v = strtod(buf, &stop);
-    if (stop == buf || *stop != '\0' || errno == ERANGE)
-        return -1;
+    if (stop != buf + len)
+        return WFF_NUMBER_SYNTAX;
+    if (errno == ERANGE || !isfinite(v))
+        return WFF_NUMBER_RANGE;
     *value = v;
     return 0;
+}
+
+int wff_parse_number_span(const char *begin, const char *end, double *value)
+{
+    return wff_parse_decimal(begin, end, value) ? -1 : 0;
 }

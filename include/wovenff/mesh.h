@@ -85,6 +85,8 @@ typedef struct wff_mesh_options {
                             Mesh.RecombinationAlgorithm): all quads */
     double size_factor;  /* gmsh Mesh.MeshSizeFactor for a .geo; 0 leaves the
                             file's value (default 1). Both override the file. */
+    int allow_vertex_only; /* 1: elements meeting only at a vertex are accepted
+                              (setting vertex_only=1); 0: an error (wff_mesh_check) */
 } wff_mesh_options;
 
 /* Load or generate a mesh (path ends in .geo or .msh; options may be NULL:
@@ -95,6 +97,18 @@ int wff_mesh_load(const char *path, const wff_mesh_options *options, wff_mesh *m
                   wff_error *err);
 
 void wff_mesh_free(wff_mesh *mesh);
+
+/* Defects no single element shows (plugin/mesh_check.c), each an error naming
+ * `where` (the file), the nodes or elements and the coordinates: an element
+ * node index out of range, a node in no element (it would carry no mass),
+ * two nodes that coincide (within 1e-9 of the bounding-box diagonal: a slit in
+ * the fabric), and, unless allow_vertex_only, elements that meet only at a
+ * vertex (no shared edge around the node: a hinge). wff_mesh_load runs it
+ * (with the setting vertex_only), and so does wff_model_create_from_mesh (for
+ * meshes given as arrays; vertex-only contacts there are the caller's to
+ * check). */
+int wff_mesh_check(const wff_mesh *mesh, int allow_vertex_only, const char *where,
+                   wff_error *err);
 
 /* Label of the physical group named `name` of dimension dim, or -1. */
 int wff_mesh_group_tag(const wff_mesh *mesh, int dim, const char *name);

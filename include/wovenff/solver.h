@@ -60,6 +60,10 @@ typedef struct wff_projectile {
     double max_penetration;  /* largest penetration left after a contact correction, m */
     double force;         /* mean contact force on the projectile along −z over the last
                              step, N (model part) */
+    double impulse_total; /* contact impulse on the projectile along −z since the start,
+                             N·s (model part): the sum of force × step, = mass × (initial −
+                             current velocity); a frame's mean force is its increase over
+                             the frame / the frame's length */
 } wff_projectile;
 
 typedef struct wff_clamp {
@@ -256,6 +260,11 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
 /* Energies now (whole specimen: model part × symmetry_factor). */
 void wff_model_energies(const wff_model *m, wff_energies *out);
 
+/* The time step the next advance would take from the current state (s):
+ * dtfactor × the stable step over the elements (the state is not changed; a
+ * scene checks with it, before the loop, that a run takes at least one step). */
+double wff_model_step_estimate(const wff_model *m);
+
 /* Stored energy per mechanism of the cell (names: m->mat.cell->mech_names),
  * whole specimen (× symmetry_factor), J, at the current state with γᶠ held.
  * Fills out[0 .. n_mech−1] (all zeros if the cell has no energy split) and
@@ -289,7 +298,7 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 1
+#define WFF_CHECKPOINT_VERSION 2 /* 2: the projectile's impulse_total added */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 

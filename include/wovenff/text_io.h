@@ -66,9 +66,20 @@ void wff_text_json_member(wff_text *b, const char *lead, double v);
  * error naming path. */
 int wff_text_write(const wff_text *b, const char *path, const char *what, wff_error *err);
 
+/* The one number grammar of every text input (material files, mesh settings,
+ * fit data; the scenes' options follow the same rule in wff_args.idp):
+ * decimal only, no blanks: an optional sign, digits with at most one point
+ * (at least one digit), an optional exponent e|E[sign]digits. "0x10", "inf",
+ * "nan", "1,5" are not numbers. wff_number_grammar is 1 if [begin, end) is one.
+ * wff_parse_decimal also rejects a value that overflows or underflows a double
+ * (strtod's ERANGE: "1e400", "1e-400"): 0, WFF_NUMBER_SYNTAX or WFF_NUMBER_RANGE. */
+enum { WFF_NUMBER_SYNTAX = -1, WFF_NUMBER_RANGE = -2 };
+int wff_number_grammar(const char *begin, const char *end);
+int wff_parse_decimal(const char *begin, const char *end, double *value);
+
 /* Text spans [begin, end) of a line being read: the first non-blank from p,
  * the end with trailing blanks dropped, and a number spanning exactly the
- * span (strtod; -1 if it is not one or is out of range). */
+ * span (wff_parse_decimal; -1 if it is not one or is out of range). */
 const char *wff_skip_space(const char *p, const char *end);
 const char *wff_trim_end(const char *begin, const char *end);
 int wff_parse_number_span(const char *begin, const char *end, double *value);

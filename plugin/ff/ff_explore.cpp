@@ -139,6 +139,7 @@ long ffPathSegment(const M &material, KN<double> *const &Fa, KN<double> *const &
     double F_a[6], F_b[6];
     take_F(fn, "Fa", Fa, F_a);
     take_F(fn, "Fb", Fb, F_b);
+    wff_ff_require_finite(fn, "duration", duration, -1);
     wff_point_state s = take_state(fn, state);
     wff_material scratch;
     const wff_material *mat = wff_ff_material_arg(fn, material, &scratch);

@@ -53,10 +53,9 @@ struct Options {
 
 double number(const char *fn, const std::string &name, const std::string &value)
 {
-    char *end = nullptr;
-    double v = std::strtod(value.c_str(), &end);
-    if (value.empty() || *end != '\0' || !std::isfinite(v)) {
-        std::string msg = "option " + name + "=" + value + ": not a number";
+    double v = 0;
+    if (wff_parse_decimal(value.c_str(), value.c_str() + value.size(), &v)) {
+        std::string msg = "option " + name + "=" + value + ": not a finite decimal number";
         wff_ff_fail(fn, msg.c_str());
     }
     return v;

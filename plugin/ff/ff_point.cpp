@@ -68,6 +68,29 @@ void require_finite(const char *fn, const char *name, double x)
     }
 }
 
+// Inputs far outside the model are refused, not evaluated (docs/limits.md,
+// "Numbers"): an amplitude change must stay below the cell's quarter
+// wavelength, |dA_k| < p_k0 (cells that draw a reference geometry); a strip
+// stretch in [0.9, 1.5]; a preload yarn tension >= 0.
+const double kStretchMin = 0.9, kStretchMax = 1.5;
+
+void require_amplitudes_in_model(const char *fn, const wff_material &mat, const double dA[2])
+{
+    const wff_cell_type *c = mat.cell;
+    if (c->n_amplitudes <= 0 || !c->reference_geometry)
+        return;
+    double pitch0[2], amplitude0[2];
+    c->reference_geometry(mat.params, pitch0, amplitude0);
+    for (int k = 0; k < 2; k++)
+        if (!(std::fabs(dA[k]) < pitch0[k])) {
+            char msg[300 + sizeof mat.source];
+            snprintf(msg, sizeof msg, "dA[%d] = %g m is outside the model: |dA_%d| must be "
+                     "below the quarter wavelength p%d_0 = %g m (material %s)", k, dA[k], k + 1,
+                     k + 1, pitch0[k], mat.source);
+            wff_ff_fail(fn, msg);
+        }
+}
+
 // The material (a file name loaded into *scratch, or a handle) of a function
 // that fills `out` (refused without an out array).
 template <class M>
@@ -131,6 +154,7 @@ void point(const char *fn, const M &material, KN<double> *Fv, KN<double> *dAv, d
     }
     wff_material scratch;
     const wff_material *mat = material_for(fn, material, out, &scratch);
+    require_amplitudes_in_model(fn, *mat, dA);
     if (wff_material_evaluate(mat, F, dA, gamma_f, dt, r) != WFF_POINT_OK)
         fail_degenerate(fn, "", F, *mat);
     const int n_diag = mat->cell->n_diag;
@@ -259,6 +283,7 @@ double ffEnergySplit(const M &material, KN<double> *const &Fv, KN<double> *const
     require_finite(fn, "gammaf", gamma_f);
     wff_material scratch;
     const wff_material &mat = *material_for(fn, material, out, &scratch);
+    require_amplitudes_in_model(fn, mat, dA);
     const wff_cell_type *c = split_cell(fn, mat);
     double mech[WFF_MECH_MAX];
     c->energy_split(mat.params, F, dA, gamma_f, mech);
@@ -293,6 +318,7 @@ double balance(const char *fn, const M &material, KN<double> *Fv, KN<double> *dA
     require_finite(fn, "gammaf", gamma_f);
     wff_material scratch;
     const wff_material *mat = wff_ff_material_arg(fn, material, &scratch);
+    require_amplitudes_in_model(fn, *mat, dA);   // the guess
     wff_error err;
     if (wff_balance_amplitudes(mat, F, gamma_f, dA, &err))
         wff_ff_fail(fn, err);
@@ -319,6 +345,12 @@ double ffPreload(const M &material, const double &tension, KN<double> *const &ou
 {
     const char *fn = "wovenffPreload";
     require_finite(fn, "yarnTension", tension);
+    if (!(tension >= 0)) {
+        char msg[160];
+        snprintf(msg, sizeof msg, "yarnTension = %g N must be >= 0 (a preload pulls the "
+                 "yarns; 0 = none)", tension);
+        wff_ff_fail(fn, msg);
+    }
     wff_material scratch;
     const wff_material *mat = material_for(fn, material, out, &scratch);
     wff_biaxial_state s = unstretched();
@@ -346,6 +378,13 @@ double ffUniaxial(const M &material, const long &family, const double &stretch,
 {
     const char *fn = "wovenffUniaxial";
     require_finite(fn, "stretch", stretch);
+    if (!(stretch >= kStretchMin && stretch <= kStretchMax)) {
+        char msg[200];
+        snprintf(msg, sizeof msg, "stretch = %g is outside the model: a strip stretch must be "
+                 "in [%g, %g] (a fabric carries no compression; Kevlar breaks near 1.04)",
+                 stretch, kStretchMin, kStretchMax);
+        wff_ff_fail(fn, msg);
+    }
     if (family != 0 && family != 1) {
         char msg[120];
         snprintf(msg, sizeof msg, "family must be 0 (warp) or 1 (weft), got %ld", family);

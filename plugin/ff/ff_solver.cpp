@@ -80,8 +80,8 @@ const StateQuantity kState[] = {
     {"dissipated_friction", true}, {"external_work", true},
     {"energy_error", true},       {"element_steps", false},
     {"elements", false},          {"nodes", false},
-    {"dt_worst_element", false},
-    {"transfer_energy", true}};
+    {"dt_worst_element", false},  {"transfer_energy", true},
+    {"projectile_impulse", false}};
 const int kStateSize = sizeof kState / sizeof kState[0];
 
 std::string state_names()
@@ -106,7 +106,8 @@ void state_values(const wff_model *m, bool with_energies, double values[kStateSi
                         e.kinetic_amplitude, e.kinetic_projectile, e.internal, e.dissipated_shear,
                         e.dissipated_friction, e.external_work, e.error, (double)m->element_steps,
                         (double)(m->el.n_tris + m->el.n_quads), (double)m->n_nodes,
-                        (double)(m->dt_worst_element + 1), e.transfer};
+                        (double)(m->dt_worst_element + 1), e.transfer,
+                        s * m->projectile.impulse_total};
     static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
     for (int i = 0; i < kStateSize; i++)
         values[i] = v[i];
@@ -175,6 +176,11 @@ long ffSetPreload(const long &id, KN<double> *const &F, KN<double> *const &dA)
     if (F->N() != 4 || dA->N() != 2)
         fail("wovenffSetPreload", "F_pre must have 4 entries (F11 F12 F21 F22) and dA0 2", id);
     double Fp[4] = {(*F)[0], (*F)[1], (*F)[2], (*F)[3]}, d[2] = {(*dA)[0], (*dA)[1]};
+    for (int i = 0; i < 4; i++)
+        wff_ff_require_finite("wovenffSetPreload", i < 2 ? (i ? "F_pre[1]" : "F_pre[0]")
+                              : (i == 2 ? "F_pre[2]" : "F_pre[3]"), Fp[i], id);
+    wff_ff_require_finite("wovenffSetPreload", "dA0[0]", d[0], id);
+    wff_ff_require_finite("wovenffSetPreload", "dA0[1]", d[1], id);
     wff_error err;
     if (wff_model_set_preload(m, Fp, d, &err))
         fail("wovenffSetPreload", err, id);
@@ -193,6 +199,7 @@ long ffFix(const long &id, string *const &group, const long &component)
 long ffPrescribe(const long &id, string *const &group, const long &component,
                  const double &velocity)
 {
+    wff_ff_require_finite("wovenffPrescribe", "velocity", velocity, id);
     wff_error err;
     int n = wff_model_prescribe_group(model_of(id, "wovenffPrescribe"), group->c_str(),
                                       (int)component, velocity, &err);
@@ -203,6 +210,8 @@ long ffPrescribe(const long &id, string *const &group, const long &component,
 
 long ffClampFriction(const long &id, string *const &group, const double &force, const double &mu)
 {
+    wff_ff_require_finite("wovenffClampFriction", "force", force, id);
+    wff_ff_require_finite("wovenffClampFriction", "mu", mu, id);
     wff_error err;
     int n = wff_model_clamp_friction(model_of(id, "wovenffClampFriction"), group->c_str(), force,
                                      mu, &err);
@@ -214,6 +223,11 @@ long ffClampFriction(const long &id, string *const &group, const double &force, 
 long ffProjectile(const long &id, const double &radius, const double &mass,
                   const double &velocity, const double &mu)
 {
+    const char *fn = "wovenffProjectile";
+    wff_ff_require_finite(fn, "radius", radius, id);
+    wff_ff_require_finite(fn, "mass", mass, id);
+    wff_ff_require_finite(fn, "velocity", velocity, id);
+    wff_ff_require_finite(fn, "mu", mu, id);
     wff_error err;
     if (wff_model_set_projectile(model_of(id, "wovenffProjectile"), radius, mass, velocity, mu,
                                  &err))
@@ -224,6 +238,7 @@ long ffProjectile(const long &id, const double &radius, const double &mass,
 long ffSet(const long &id, string *const &key, const double &value)
 {
     wff_model *m = model_of(id, "wovenffSet");
+    wff_ff_require_finite("wovenffSet", key->c_str(), value, id);
     wff_error err;
     if (wff_model_set_option(m, key->c_str(), value, &err))
         fail("wovenffSet", err, id);
@@ -233,6 +248,7 @@ long ffSet(const long &id, string *const &key, const double &value)
 long ffAdvance(const long &id, const double &t_end)
 {
     wff_model *m = model_of(id, "wovenffAdvance");
+    wff_ff_require_finite("wovenffAdvance", "t_end", t_end, id);
     wff_error err;
     if (wff_model_advance(m, t_end, 2000000000L, &err))
         fail("wovenffAdvance", err, id);
@@ -281,7 +297,10 @@ long ffField(const long &id, string *const &name, KN<double> *const &out)
 
 long ffNearestNode(const long &id, const double &x, const double &y)
 {
-    return wff_model_nearest_node(model_of(id, "wovenffNearestNode"), x, y);
+    const wff_model *m = model_of(id, "wovenffNearestNode");
+    wff_ff_require_finite("wovenffNearestNode", "x", x, id);
+    wff_ff_require_finite("wovenffNearestNode", "y", y, id);
+    return wff_model_nearest_node(m, x, y);
 }
 
 long ffReaction(const long &id, string *const &group, const long &component, KN<double> *const &out)
@@ -299,8 +318,10 @@ long ffReaction(const long &id, string *const &group, const long &component, KN<
 
 long ffProjectileTip(const long &id, const double &tip)
 {
+    wff_model *m = model_of(id, "wovenffProjectileTip");
+    wff_ff_require_finite("wovenffProjectileTip", "tip", tip, id);
     wff_error err;
-    if (wff_model_place_projectile(model_of(id, "wovenffProjectileTip"), tip, &err))
+    if (wff_model_place_projectile(m, tip, &err))
         fail("wovenffProjectileTip", err, id);
     return 0;
 }

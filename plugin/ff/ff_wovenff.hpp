@@ -33,6 +33,7 @@ void wff_ff_register_remesh(); // ff_remesh.cpp: a model's state carried onto a 
 void wff_ff_register_state();  // ff_state.cpp: state vectors in and out, element fields
 void wff_ff_register_materials(); // ff_materials.cpp: the material handle table
 void wff_ff_register_files();   // ff_files.cpp: checked writes, folders, locks, no shell
+void wff_ff_register_checks(); // ff_checks.cpp: checks a scene makes before it runs
 
 // Record "fn: message" as the last error and stop the script (exit code 8
 // unless it catches the error). Never returns.
@@ -66,6 +67,9 @@ long wff_ff_model_from_freefem_msh(const char *path, const string *mat, const st
 // caller frees with wff_mesh_free), or wff_ff_fail naming fn (ff_femesh.cpp).
 void wff_ff_mesh_from_freefem(const char *fn, const Fem2D::Mesh *th, const char *settings,
                               wff_mesh *mesh);
+// wff_ff_model_fail unless x is finite: "NAME = inf is not a finite number"
+// (ff_checks.cpp; id < 0: no model).
+void wff_ff_require_finite(const char *fn, const char *name, double x, long id);
 
 // Load a material file (read afresh on every call: no cache). On failure
 // wff_ff_fail with the loader's message, which names the file, line and key.

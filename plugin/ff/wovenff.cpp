@@ -89,6 +89,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_remesh,
     wff_ff_register_materials,
     wff_ff_register_files,
+    wff_ff_register_checks,
 };
 
 static void init()

@@ -133,6 +133,30 @@ int main(void)
         expect_error(&st, text, bad_numbers[i][1], key, where, "number");
     }
 
+    /* the one number grammar (decimal only, as the scenes' options): hex, a
+     * comma, blanks inside, a lone point or sign are not numbers; overflow and
+     * underflow are not finite numbers */
+    const char *not_decimal[][2] = {{"k_1", "k_1 = 0x10"}, {"k_1", "k_1 = 1,5"},
+                                    {"k_1", "k_1 = 1e"}, {"k_1", "k_1 = ."},
+                                    {"k_1", "k_1 = -"}, {"k_1", "k_1 = 1.2.3"},
+                                    {"k_1", "k_1 = 0x1p3"}, {"k_1", "k_1 = infinity"}};
+    for (size_t i = 0; i < sizeof not_decimal / sizeof not_decimal[0]; i++) {
+        edit(base, not_decimal[i][0], not_decimal[i][1], text, sizeof text);
+        expect_error(&st, text, not_decimal[i][1], "'k_1'", "is not a number", "decimal");
+    }
+    const char *out_of_range[] = {"k_1 = 1e400", "k_1 = -1e400", "k_1 = 1e-400"};
+    for (size_t i = 0; i < sizeof out_of_range / sizeof out_of_range[0]; i++) {
+        edit(base, "k_1", out_of_range[i], text, sizeof text);
+        expect_error(&st, text, out_of_range[i], "'k_1'", "not a finite number", NULL);
+    }
+    const char *decimal[] = {"k_1 = 2e7", "k_1 = +2E+7", "k_1 = 20000000.", "k_1 = .2e8"};
+    for (size_t i = 0; i < sizeof decimal / sizeof decimal[0]; i++) {
+        edit(base, "k_1", decimal[i], text, sizeof text);
+        CHECK(&st, wff_material_parse_text(text, "case.txt", &m, &e) == 0,
+              "'%s' is a number: %s", decimal[i], e.message);
+    }
+    CHECK(&st, wff_material_parse_text(base, "case.txt", &m, &e) == 0, "kevlar again");
+
     /* syntax */
     edit(base, "K_d", "K_d 1e8", text, sizeof text);
     expect_error(&st, text, "no '='", "expected 'key = value'", NULL, NULL);

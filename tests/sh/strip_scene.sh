@@ -1,18 +1,15 @@
 #!/bin/sh
-# Strip tension scene, warp and weft, pulled at the default speed (2 m/s, 1 ms
-# ramp) to 4 % strain: both CSVs, the summary and the plot are written, and the
-# explicit strip follows the static one-point solution (the load_static
-# column) where the load has left the toe of the curve:
-#   warp  every sample at 2.5-4 % strain within 2 % of static, at 1.8-2.2 % within 4 %
-#         (measured: at most 0.74 % over 2.5-4 %, 1.65 % over 1.5-2.5 %);
-#   weft  every sample at 3.5-4 % within 6 % (measured: at most 3.4 %; the weft's
-#         crimp interchange rings undamped, ~5 % at this pull: 8 % at 3-3.5 %).
-# Below ~1.5 % (warp) and ~3 % (weft) the static load is small and the strip's
-# ringing is tens of per cent of it: not compared.
+# Strip tension scene, warp and weft, pulled at the default speed (0.25 m/s after a
+# 10 ms smooth start) to 1.1 % strain (the default 4 % takes ~2 min: measured in
+# docs/limits.md): both CSVs, the summary and the plot are written, and the pull is
+# quasi-static: every sample from 0.5 % to 1.1 % strain of both strips is within
+# 1 % of the static one-point solution (the load_static column). Measured: warp at
+# most 0.73 %, weft 0.79 %; at the earlier default (2 m/s, 1 ms start) the weft was
+# 25 % above the static load at 1 % strain and this test fails.
 set -u
 out="${WFF_TEST_TMP:-/tmp}/strip_scene"
 rm -rf "$out"
-sh tools/ff.sh freefem_scripts/strip_tension.edp -strain 0.04 -out "$out" > "$out.log" 2>&1
+sh tools/ff.sh freefem_scripts/strip_tension.edp -strain 0.011 -out "$out" > "$out.log" 2>&1
 rc=$?
 tail -4 "$out.log"
 [ $rc -eq 0 ] || { echo "scene exited $rc"; exit 1; }
@@ -35,7 +32,7 @@ near() {
                           name, n, from, to, 100 * worst, 100 * tol
               exit bad }' "$1"
 }
-near "$out/strip_warp.csv" 0.025 0.04 0.02 || fail=1
-near "$out/strip_warp.csv" 0.018 0.022 0.04 || fail=1
-near "$out/strip_weft.csv" 0.035 0.04 0.06 || fail=1
+near "$out/strip_warp.csv" 0.005 0.011 0.01 || fail=1
+near "$out/strip_weft.csv" 0.005 0.011 0.01 || fail=1
+grep -q "quasi-static" freefem_scripts/strip_tension.edp || { echo "header: no quasi-static claim to check"; fail=1; }
 exit $fail

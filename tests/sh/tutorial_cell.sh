@@ -52,7 +52,7 @@ done
 cmd=$(grep -m1 "^sh tools/ff.sh freefem_scripts/strip_tension.edp -material $material" "$doc")
 [ -n "$cmd" ] || { echo "$doc has no strip-scene command with $material"; exit 1; }
 cmd=$(printf '%s' "$cmd" | sed 's/ -out [^ ]*//')
-eval "$cmd -strain 0.003 -velocity 2 -ramp 4e-4 -plots 0 -out \"\$out/strip\"" \
+eval "$cmd -strain 0.003 -velocity 2 -ramp 4e-4 -frame 5e-5 -plots 0 -out \"\$out/strip\"" \
     > "$out/strip.log" 2>&1
 rc=$?
 [ $rc -eq 0 ] || { echo "strip scene exited $rc:"; tail -20 "$out/strip.log"; exit 1; }
