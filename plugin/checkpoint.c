@@ -18,16 +18,6 @@
 static const char checkpoint_magic[8] = {'W', 'F', 'F', 'S', 'T', 'A', 'T', 'E'};
 #define BYTE_ORDER_MARK 0x0102030405060708ULL
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t size)
-{
-    const unsigned char *b = data;
-    for (size_t i = 0; i < size; i++) {
-        h ^= b[i];
-        h *= 0x100000001b3ULL;
-    }
-    return h;
-}
-#define FNV_START 0xcbf29ce484222325ULL
 
 static size_t n_gamma(const wff_model *m)
 {
@@ -63,37 +53,37 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     h->dt_interval = m->dt_interval;
     h->reference_path = m->em.reference_path;
     h->pad = 0;
-    uint64_t g = FNV_START;
-    g = fnv1a(g, m->mesh.xy, sizeof(double) * 2 * (size_t)m->n_nodes);
-    g = fnv1a(g, m->el.tri, sizeof(int) * 3 * (size_t)m->el.n_tris);
-    g = fnv1a(g, m->el.quad, sizeof(int) * 4 * (size_t)m->el.n_quads);
+    uint64_t g = WFF_FNV_START;
+    g = wff_fnv1a(g, m->mesh.xy, sizeof(double) * 2 * (size_t)m->n_nodes);
+    g = wff_fnv1a(g, m->el.tri, sizeof(int) * 3 * (size_t)m->el.n_tris);
+    g = wff_fnv1a(g, m->el.quad, sizeof(int) * 4 * (size_t)m->el.n_quads);
     h->mesh_hash = g;
     const char *cell = m->mat.cell ? m->mat.cell->name : "";
-    g = fnv1a(FNV_START, cell, strlen(cell));
-    g = fnv1a(g, &m->mat.areal_density, sizeof(double));
-    g = fnv1a(g, m->mat.params, sizeof m->mat.params);
+    g = wff_fnv1a(WFF_FNV_START, cell, strlen(cell));
+    g = wff_fnv1a(g, &m->mat.areal_density, sizeof(double));
+    g = wff_fnv1a(g, m->mat.params, sizeof m->mat.params);
     h->material_hash = g;
-    h->mass_hash = fnv1a(FNV_START, m->mass, sizeof(double) * (size_t)m->n_dofs);
-    g = fnv1a(FNV_START, m->dof_kind, (size_t)m->n_dofs);
-    g = fnv1a(g, m->clamp.node, sizeof(int) * (size_t)m->clamp.n);
-    g = fnv1a(g, m->clamp.normal_force, sizeof(double) * (size_t)m->clamp.n);
-    g = fnv1a(g, &m->clamp.mu, sizeof(double));
-    g = fnv1a(g, &m->clamp.edge_reaction, sizeof(int));
+    h->mass_hash = wff_fnv1a(WFF_FNV_START, m->mass, sizeof(double) * (size_t)m->n_dofs);
+    g = wff_fnv1a(WFF_FNV_START, m->dof_kind, (size_t)m->n_dofs);
+    g = wff_fnv1a(g, m->clamp.node, sizeof(int) * (size_t)m->clamp.n);
+    g = wff_fnv1a(g, m->clamp.normal_force, sizeof(double) * (size_t)m->clamp.n);
+    g = wff_fnv1a(g, &m->clamp.mu, sizeof(double));
+    g = wff_fnv1a(g, &m->clamp.edge_reaction, sizeof(int));
     h->bc_hash = g;
     /* settings that change the numbers: preload, amplitude treatment, contact search,
      * threads (the force sums' order) */
-    g = fnv1a(FNV_START, m->em.F_pre, sizeof m->em.F_pre);
-    g = fnv1a(g, &m->em.amplitude_mass_factor, sizeof(double));
-    g = fnv1a(g, &m->em.static_amplitudes, sizeof(int));
-    g = fnv1a(g, &m->projectile.search_all, sizeof(int));
-    g = fnv1a(g, &m->el.n_threads, sizeof(int));
+    g = wff_fnv1a(WFF_FNV_START, m->em.F_pre, sizeof m->em.F_pre);
+    g = wff_fnv1a(g, &m->em.amplitude_mass_factor, sizeof(double));
+    g = wff_fnv1a(g, &m->em.static_amplitudes, sizeof(int));
+    g = wff_fnv1a(g, &m->projectile.search_all, sizeof(int));
+    g = wff_fnv1a(g, &m->el.n_threads, sizeof(int));
     /* the projectile's nose and axis, when not the default (older checkpoints of a
      * hemisphere at the origin still load) */
     const wff_projectile *p = &m->projectile;
     if (p->nose != WFF_NOSE_HEMISPHERE || p->axis[0] != 0 || p->axis[1] != 0) {
-        g = fnv1a(g, &p->nose, sizeof(int));
-        g = fnv1a(g, &p->edge_radius, sizeof(double));
-        g = fnv1a(g, p->axis, sizeof p->axis);
+        g = wff_fnv1a(g, &p->nose, sizeof(int));
+        g = wff_fnv1a(g, &p->edge_radius, sizeof(double));
+        g = wff_fnv1a(g, p->axis, sizeof p->axis);
     }
     h->settings_hash = g;
     h->dt_factor = m->dt_factor;
@@ -162,13 +152,13 @@ int wff_model_save(const wff_model *m, const char *path, wff_error *err)
     wff_atomic_file out;
     if (wff_atomic_open(&out, path, "checkpoint", err))
         return -1;
-    uint64_t sum = fnv1a(FNV_START, &h, sizeof h);
+    uint64_t sum = wff_fnv1a(WFF_FNV_START, &h, sizeof h);
     wff_atomic_write(&out, &h, sizeof h);
     for (int i = 0; i < nf; i++) {
         size_t bytes = fields[i].size * fields[i].count;
         if (bytes == 0)
             continue;
-        sum = fnv1a(sum, fields[i].data, bytes);
+        sum = wff_fnv1a(sum, fields[i].data, bytes);
         wff_atomic_write(&out, fields[i].data, bytes);
     }
     wff_atomic_write(&out, &sum, sizeof sum);
@@ -225,7 +215,7 @@ int wff_model_load_state(wff_model *m, const char *path, wff_error *err)
     }
     uint64_t stored;
     memcpy(&stored, buf + size - sizeof stored, sizeof stored);
-    if (fnv1a(FNV_START, buf, size - sizeof stored) != stored) {
+    if (wff_fnv1a(WFF_FNV_START, buf, size - sizeof stored) != stored) {
         wff_fail(err, "checkpoint %s is corrupt (checksum mismatch)", path);
         goto done;
     }

@@ -23,20 +23,10 @@
 
 #include "wovenff/text_io.h"
 
-#define FNV_START 0xcbf29ce484222325ULL
 #define PATH_MAXLEN 4096
 
-static uint64_t fnv(uint64_t h, const void *data, size_t size)
-{
-    const unsigned char *p = data;
-    for (size_t i = 0; i < size; i++) {
-        h ^= p[i];
-        h *= 0x100000001b3ULL;
-    }
-    return h;
-}
 
-uint64_t wff_hash_bytes(const void *data, size_t size) { return fnv(FNV_START, data, size); }
+uint64_t wff_hash_bytes(const void *data, size_t size) { return wff_fnv1a(WFF_FNV_START, data, size); }
 
 int wff_path_check(const char *path, const char *what, wff_error *err)
 {
@@ -326,7 +316,7 @@ int wff_file_lines(const char *path, long n, long *lines, uint64_t *hash, char *
                    size_t last_size, wff_error *err)
 {
     *lines = 0;
-    *hash = FNV_START;
+    *hash = WFF_FNV_START;
     if (last && last_size)
         last[0] = '\0';
     char *data;
@@ -340,7 +330,7 @@ int wff_file_lines(const char *path, long n, long *lines, uint64_t *hash, char *
             prev_start = line_start;
             line_start = end = i + 1;
         }
-    *hash = fnv(FNV_START, data, end);
+    *hash = wff_fnv1a(WFF_FNV_START, data, end);
     if (last && last_size && *lines > 0) {
         size_t len = end - 1 - prev_start;
         if (len >= last_size)
@@ -358,7 +348,7 @@ int wff_file_hash(const char *path, uint64_t *hash, wff_error *err)
     size_t size;
     if (wff_read_file(path, "file", (size_t)1 << 40, &data, &size, err))
         return -1;
-    *hash = fnv(FNV_START, data, size);
+    *hash = wff_fnv1a(WFF_FNV_START, data, size);
     free(data);
     return 0;
 }

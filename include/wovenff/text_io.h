@@ -13,6 +13,7 @@
 #define WOVENFF_TEXT_IO_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #include "wovenff/error.h"
@@ -83,6 +84,20 @@ int wff_parse_decimal(const char *begin, const char *end, double *value);
 const char *wff_skip_space(const char *p, const char *end);
 const char *wff_trim_end(const char *begin, const char *end);
 int wff_parse_number_span(const char *begin, const char *end, double *value);
+
+/* 64-bit FNV-1a of `size` bytes, continuing from hash h (start with
+ * WFF_FNV_START): the checksums and fingerprints of checkpoints and results
+ * files. */
+#define WFF_FNV_START 0xcbf29ce484222325ULL
+static inline uint64_t wff_fnv1a(uint64_t h, const void *data, size_t size)
+{
+    const unsigned char *b = (const unsigned char *)data;
+    for (size_t i = 0; i < size; i++) {
+        h ^= b[i];
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
 
 #ifdef __cplusplus
 }
