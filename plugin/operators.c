@@ -121,9 +121,9 @@ int wff_model_contact(wff_model *m, const double *U, double *V, double *R, doubl
         return wff_fail(err, "no projectile: set one first");
     if (!(dt > 0) || !(dt_mid > 0) || !isfinite(dt) || !isfinite(dt_mid))
         return wff_fail(err, "dt = %g s and dt_mid = %g s must be > 0 and finite", dt, dt_mid);
-    if (!isfinite(tip[0]) || !(tip[1] >= 0) || !isfinite(tip[1]))
-        return wff_fail(err, "projectile tip %g m and velocity %g m/s: finite, velocity >= 0",
-                        tip[0], tip[1]);
+    if (!isfinite(tip[0]) || !isfinite(tip[1])) /* (a rebounding projectile moves along -z) */
+        return wff_fail(err, "projectile tip %g m and velocity %g m/s must be finite", tip[0],
+                        tip[1]);
     p->tip = tip[0];
     p->velocity = tip[1];
     double *u = m->u, *v = m->v, *f = m->f, before = m->dissipated_friction;

@@ -257,6 +257,7 @@ static void free_new_arrays(wff_model *nm)
     free(nm->clamp.node);
     free(nm->clamp.normal_force);
     free(nm->bc);
+    free(nm->operator_scratch);
     wff_elements_free(&nm->el);
     wff_mesh_free(&nm->mesh);
 }

@@ -74,7 +74,8 @@ void require_finite(const char *fn, const char *name, double x)
 // stretch in [0.9, 1.5]; a preload yarn tension >= 0.
 const double kStretchMin = 0.9, kStretchMax = 1.5;
 
-void require_amplitudes_in_model(const char *fn, const wff_material &mat, const double dA[2])
+void require_amplitudes_in_model(const char *fn, const wff_material &mat, const double dA[2],
+                                 const char *where = "")
 {
     const wff_cell_type *c = mat.cell;
     if (c->n_amplitudes <= 0 || !c->reference_geometry)
@@ -84,9 +85,9 @@ void require_amplitudes_in_model(const char *fn, const wff_material &mat, const 
     for (int k = 0; k < 2; k++)
         if (!(std::fabs(dA[k]) < pitch0[k])) {
             char msg[300 + sizeof mat.source];
-            snprintf(msg, sizeof msg, "dA[%d] = %g m is outside the model: |dA_%d| must be "
-                     "below the quarter wavelength p%d_0 = %g m (material %s)", k, dA[k], k + 1,
-                     k + 1, pitch0[k], mat.source);
+            snprintf(msg, sizeof msg, "%sdA[%d] = %g m is outside the model: |dA_%d| must be "
+                     "below the quarter wavelength p%d_0 = %g m (material %s)", where, k, dA[k],
+                     k + 1, k + 1, pitch0[k], mat.source);
             wff_ff_fail(fn, msg);
         }
 }
@@ -242,12 +243,12 @@ double ffPoints(const M &material, KN<double> *const &Fv, KN<double> *const &dAv
                          p, gamma_f);
             wff_ff_fail(fn, msg);
         }
+        char where[40];
+        snprintf(where, sizeof where, "point %ld: ", p);
+        require_amplitudes_in_model(fn, *mat, dA, where);
         wff_point_result r;
-        if (wff_material_evaluate(mat, F, dA, gamma_f, 0, &r) != WFF_POINT_OK) {
-            char where[40];
-            snprintf(where, sizeof where, "point %ld: ", p);
+        if (wff_material_evaluate(mat, F, dA, gamma_f, 0, &r) != WFF_POINT_OK)
             fail_degenerate(fn, where, F, *mat);
-        }
         double *row = &(*out)[p * cols];
         for (int i = 0; i < 6; i++)
             row[i] = r.stress[i];

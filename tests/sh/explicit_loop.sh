@@ -6,7 +6,8 @@
 # the script's own energy balance stays within 1e-4 of the energies in play
 # (measured: 2.2e-5), and the files are written. Twice: the defaults
 # (preload, friction, stable step every 20 steps) on a 16 x 16 quarter, and a
-# stable step every step without preload or friction at 40 m/s.
+# stable step every step without preload or friction at 40 m/s; and a 5 m/s
+# impact to 4 ms whose projectile rebounds (moves along -z in the scripted contact).
 set -u
 fail=0
 # run NAME ARGS...: the scene into $WFF_TEST_TMP/NAME, then the checks
@@ -42,4 +43,11 @@ run() {
 }
 run defaults -n 16 -plots 0
 run every_step -n 12 -dtinterval 1 -mu 0 -preload 0 -velocity 40 -tend 2e-4 -plots 0
+# a slow impact that rebounds: the scripted contact must carry a projectile moving along -z
+run rebound -n 12 -velocity 5 -tend 4e-3 -plots 0
+awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+    { v = $col["projectile_velocity"]; if (NR == 2 || v < low) low = v }
+    END { if (!(low < 0)) { print "rebound: the projectile never moved back (lowest velocity " low " m/s)"; exit 1 }
+          print "rebound: lowest projectile velocity " low " m/s" }' \
+    "${WFF_TEST_TMP:-/tmp}/explicit_loop_rebound/history.csv" || fail=1
 exit $fail

@@ -126,6 +126,7 @@ bad() {
 bad unknown "error: unit_cell_explorer: unknown option '-bogus'" -bogus 1
 bad notnumber "error: unit_cell_explorer: -steps 'abc' is not a number" -steps abc
 bad novalue "error: unit_cell_explorer: option -steps needs a value" -plots 0 -steps
+bad strain_beyond_model "error: unit_cell_explorer: -maxstrain 0.6: must be in (0, 0.5]" -maxstrain 0.6
 
 # binding errors reach the script user
 # binding NAME PATTERN LINE: a two-line script (load, F, dA, state) plus LINE, exit 8
