@@ -226,6 +226,24 @@ int wff_remove_tree(const char *path, wff_error *err)
     return 0;
 }
 
+/* The next entry of the open folder d (named dir) other than ".", ".." and
+ * skip: its path dir/NAME into path; 1, or 0 at the end, -1 (err set) if the
+ * path is too long. */
+static int next_entry(DIR *d, const char *dir, const char *skip, char path[PATH_MAXLEN],
+                      wff_error *err)
+{
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") ||
+            (skip && !strcmp(e->d_name, skip)))
+            continue;
+        if (snprintf(path, PATH_MAXLEN, "%s/%s", dir, e->d_name) >= PATH_MAXLEN)
+            return wff_fail(err, "path too long under %s", dir);
+        return 1;
+    }
+    return 0;
+}
+
 int wff_copy_tree(const char *from, const char *to, const char *skip, wff_error *err)
 {
     if (wff_make_dirs(to, err))
@@ -233,16 +251,12 @@ int wff_copy_tree(const char *from, const char *to, const char *skip, wff_error 
     DIR *d = opendir(from);
     if (!d)
         return wff_fail(err, "cannot read folder %s: %s", from, strerror(errno));
-    int rc = 0;
-    struct dirent *e;
-    while (rc == 0 && (e = readdir(d))) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") ||
-            (skip && !strcmp(e->d_name, skip)))
-            continue;
-        char src[PATH_MAXLEN], dst[PATH_MAXLEN];
-        if (snprintf(src, sizeof src, "%s/%s", from, e->d_name) >= (int)sizeof src ||
-            snprintf(dst, sizeof dst, "%s/%s", to, e->d_name) >= (int)sizeof dst) {
-            rc = wff_fail(err, "path too long under %s", from);
+    int rc = 0, more;
+    char src[PATH_MAXLEN], dst[PATH_MAXLEN];
+    while (rc == 0 && (more = next_entry(d, from, skip, src, err)) != 0) {
+        if (more < 0 ||
+            snprintf(dst, sizeof dst, "%s/%s", to, src + strlen(from) + 1) >= (int)sizeof dst) {
+            rc = more < 0 ? -1 : wff_fail(err, "path too long under %s", to);
             break;
         }
         struct stat st;
@@ -269,18 +283,10 @@ int wff_clear_dir(const char *dir, const char *skip, wff_error *err)
     DIR *d = opendir(dir);
     if (!d)
         return wff_fail(err, "cannot read folder %s: %s", dir, strerror(errno));
-    int rc = 0;
-    struct dirent *e;
-    while (rc == 0 && (e = readdir(d))) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") ||
-            (skip && !strcmp(e->d_name, skip)))
-            continue;
-        char path[PATH_MAXLEN];
-        if (snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= (int)sizeof path)
-            rc = wff_fail(err, "path too long under %s", dir);
-        else
-            rc = wff_remove_tree(path, err);
-    }
+    int rc = 0, more;
+    char path[PATH_MAXLEN];
+    while (rc == 0 && (more = next_entry(d, dir, skip, path, err)) != 0)
+        rc = more < 0 ? -1 : wff_remove_tree(path, err);
     closedir(d);
     return rc;
 }
