@@ -54,6 +54,22 @@ for case in "200 -tend 0.45e-3 -vtkdt 1 -frame 1e-6 -plots 0" "40 -tend 0.45e-3 
     echo "limit $limit blocks: exit $rc, $(grep -m1 '^error:' "$out.log" | sed 's/.*: cannot/cannot/' | cut -c1-150)"
 done
 
+# ---- a file-size limit hitting the first checkpoint: exit 3 naming it, no "ok", and a later
+# -restart of that folder is refused with a message (exit 2), not a read error
+out="$tmp/limit_checkpoint"
+( ulimit -f 120; exec sh tools/ff.sh "$scene" $common -tend 0.2e-3 -vtkdt 1 -plots 0 -checkpoint 2 -out "$out" ) \
+    > "$out.log" 2>&1
+rc=$?
+[ "$rc" -eq 3 ] && grep -q "^error: wovenffSaveCheckpoint: cannot write checkpoint .*File too large" "$out.log" \
+    || { echo "checkpoint under a file-size limit: exit $rc"; tail -3 "$out.log"; fail=1; }
+grep -qs '"status": "ok"' "$out/summary.json" && { echo "checkpoint under a limit: summary says ok"; fail=1; }
+whole "$out" "checkpoint under a limit"
+sh tools/ff.sh "$scene" $common -tend 0.2e-3 -vtkdt 1 -plots 0 -checkpoint 2 -restart "$out" > "$out.restart.log" 2>&1
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "^error: .*-restart .*no checkpoint there" "$out.restart.log" \
+    || { echo "restart after a failed checkpoint: exit $rc"; tail -3 "$out.restart.log"; fail=1; }
+echo "checkpoint under a limit: exit 3 ($(grep -m1 '^error:' "$out.log" | cut -c1-120)); its restart refused with exit 2"
+
 # ---- kill -9 at several moments (the run with checkpoints every 4 frames)
 ref="$tmp/ref"
 sh tools/ff.sh "$scene" $common -tend 0.45e-3 -vtkdt 1e-4 -out "$ref" > "$ref.log" 2>&1 || { echo "ref run failed"; fail=1; }
