@@ -19,6 +19,7 @@
 #include <sys/statvfs.h>
 #include <sys/types.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "wovenff/text_io.h"
@@ -467,4 +468,155 @@ int wff_run_program(char *const argv[], int *status, wff_error *err)
             return wff_fail(err, "waiting for %s: %s", argv[0], strerror(errno));
     *status = WIFEXITED(ws) ? WEXITSTATUS(ws) : 128 + WTERMSIG(ws);
     return 0;
+}
+
+/* The child's side of wff_run_logged: stdin /dev/null, stdout and stderr log. */
+static void exec_logged(char *const argv[], const char *log)
+{
+    int in = open("/dev/null", O_RDONLY);
+    int out = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (out < 0) {
+        fprintf(stderr, "cannot write %s: %s\n", log, strerror(errno));
+        _exit(127);
+    }
+    if (in >= 0) {
+        dup2(in, 0);
+        close(in);
+    }
+    dup2(out, 1);
+    dup2(out, 2);
+    close(out);
+    execvp(argv[0], argv);
+    fprintf(stderr, "cannot run %s: %s\n", argv[0], strerror(errno));
+    _exit(127);
+}
+
+static int wait_status(int ws) { return WIFEXITED(ws) ? WEXITSTATUS(ws) : 128 + WTERMSIG(ws); }
+
+int wff_run_logged(char *const argv[], const char *log, int *status, wff_error *err)
+{
+    *status = -1;
+    if (!argv[0])
+        return wff_fail(err, "no program to run");
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0)
+        return wff_fail(err, "cannot start %s: %s", argv[0], strerror(errno));
+    if (pid == 0)
+        exec_logged(argv, log);
+    int ws;
+    while (waitpid(pid, &ws, 0) < 0)
+        if (errno != EINTR)
+            return wff_fail(err, "waiting for %s: %s", argv[0], strerror(errno));
+    *status = wait_status(ws);
+    return 0;
+}
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int wff_run_jobs(const char *list, int jobs, int *status, long max, long *count, wff_error *err)
+{
+    *count = 0;
+    char *text;
+    if (wff_read_text_file(list, "job list", (size_t)1 << 26, &text, err))
+        return -1;
+    /* fields in place: tabs and newlines become NULs */
+    long n = 0, nfields = 0;
+    for (char *p = text; *p; p++)
+        if (*p == '\n')
+            n++;
+    size_t len = strlen(text);
+    if (len > 0 && text[len - 1] != '\n')
+        n++;
+    for (char *p = text; *p; p++)
+        if (*p == '\t' || *p == '\n')
+            nfields++;
+    if (n > max) {
+        free(text);
+        return wff_fail(err, "%s: %ld jobs, more than the %ld expected", list, n, max);
+    }
+    char **fields = calloc((size_t)(nfields + 2 * n + 2), sizeof *fields);
+    long *start = calloc((size_t)n + 1, sizeof *start);
+    pid_t *pids = calloc((size_t)n + 1, sizeof *pids);
+    double *t0 = calloc((size_t)n + 1, sizeof *t0);
+    if (!fields || !start || !pids || !t0) {
+        free(text); free(fields); free(start); free(pids); free(t0);
+        return wff_fail(err, "out of memory for %ld jobs", n);
+    }
+    long f = 0, job = 0;
+    char *p = text;
+    while (job < n) {
+        start[job] = f;
+        for (;;) {
+            fields[f++] = p;
+            while (*p && *p != '\t' && *p != '\n')
+                p++;
+            char c = *p;
+            if (c)
+                *p++ = '\0';
+            if (c != '\t')
+                break;
+        }
+        fields[f++] = NULL;
+        if (f - start[job] < 4) {
+            int rc = wff_fail(err, "%s line %ld: expected label, log, program and arguments "
+                              "separated by tabs", list, job + 1);
+            free(text); free(fields); free(start); free(pids); free(t0);
+            return rc;
+        }
+        job++;
+    }
+    if (jobs < 1)
+        jobs = 1;
+    long next = 0, running = 0, done = 0;
+    int rc = 0;
+    for (long j = 0; j < n; j++)
+        status[j] = -1;
+    fflush(NULL);
+    while (done < n) {
+        while (running < jobs && next < n) {
+            char **job_fields = fields + start[next];
+            t0[next] = now_seconds();
+            pid_t pid = fork();
+            if (pid < 0) {
+                status[next] = 127;
+                printf("  [%ld/%ld] %s: failed (cannot start: %s)\n", ++done, n, job_fields[0],
+                       strerror(errno));
+                fflush(stdout);
+                next++;
+                continue;
+            }
+            if (pid == 0)
+                exec_logged(job_fields + 2, job_fields[1]);
+            pids[next++] = pid;
+            running++;
+        }
+        if (running == 0)
+            continue;
+        int ws;
+        pid_t pid = waitpid(-1, &ws, 0);
+        if (pid < 0) {
+            if (errno == EINTR)
+                continue;
+            rc = wff_fail(err, "waiting for the jobs of %s: %s", list, strerror(errno));
+            break;
+        }
+        for (long j = 0; j < next; j++)
+            if (pids[j] == pid) {
+                pids[j] = 0;
+                status[j] = wait_status(ws);
+                running--;
+                printf("  [%ld/%ld] %s: %s (exit %d), %.1f s\n", ++done, n, fields[start[j]],
+                       status[j] == 0 ? "ok" : "failed", status[j], now_seconds() - t0[j]);
+                fflush(stdout);
+            }
+    }
+    *count = n;
+    free(text); free(fields); free(start); free(pids); free(t0);
+    return rc;
 }

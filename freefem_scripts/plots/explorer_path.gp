@@ -1,15 +1,16 @@
 # explorer_path.gp — the unit-cell explorer's six panels for one load path,
 # drawn from the path's CSV by column name (any cell: its own diagnostics and
 # mechanisms). Called by unit_cell_explorer.edp as
-#   gnuplot -e "csv='P.csv'; out='P.png'; path='warp'; units='...'; heading='...'; dynamic=0" explorer_path.gp
+#   gnuplot -e "csv='P.csv'; out='P.png'; path='warp'; cols='...'; units='...'; heading='...'; dynamic=0" explorer_path.gp
 # csv      the path's CSV (first column the load, then time and the cell's columns)
+# cols     the CSV's column names, space-separated, in its order
 # units    the unit of every CSV column, space-separated, in the CSV's order
 # path     warp | weft | equibiaxial | equalforce | shear (sets the x axis)
 # heading  the title: path, cell, material, mode
 # dynamic  1: dynamic amplitudes (the static balance is drawn dashed beside)
 set datafile separator ','
 set datafile columnheaders
-cols = system("head -1 '" . csv . "' | tr ',' ' '")
+# cols: the CSV's column names, space-separated (given by the scene: no shell)
 has(name) = strstrt(" " . cols . " ", " " . name . " ") > 0
 
 # the x axis: strain in %, yarn tension in N or shear angle in degrees

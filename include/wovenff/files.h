@@ -85,6 +85,21 @@ void wff_lock_release(const char *dir);
  * in *status (128 + signal if killed). -1 if it could not be started. */
 int wff_run_program(char *const argv[], int *status, wff_error *err);
 
+/* The same with its stdin from /dev/null and its stdout and stderr into log
+ * (created or truncated; opened by the child: a log that cannot be opened
+ * gives status 127). */
+int wff_run_logged(char *const argv[], const char *log, int *status, wff_error *err);
+
+/* Run the jobs of the text file list, at most `jobs` at once, no shell. One
+ * job a line: label, log file, then the program and its arguments, fields
+ * separated by tabs (a tab cannot be in a path wff_path_check accepts). Each
+ * job runs as wff_run_logged; as each ends a progress line
+ * "  [done/total] label: ok|failed (exit N), S s" goes to stdout. The exit
+ * codes in status[0..] (max entries at most; 128 + signal if killed, 127 not
+ * started) in the list's order; *count the number of jobs. -1 on a list that
+ * cannot be read, a line without a program, more than max jobs. */
+int wff_run_jobs(const char *list, int jobs, int *status, long max, long *count, wff_error *err);
+
 #ifdef __cplusplus
 }
 #endif

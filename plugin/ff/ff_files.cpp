@@ -25,6 +25,11 @@
 //   string wovenffFormat(x, digits)     // %.<digits>g
 //   string wovenffPathProblem(path, what) // "" or why a typed path is refused (control chars)
 //   int wovenffGnuplot(vars, script)    // gnuplot -e vars script, no shell; its exit code
+//   int wovenffRun(argv, log)           // argv: the program and its arguments separated by
+//                                       // tabs; no shell, stdout and stderr into log; exit code
+//   int wovenffRunJobs(list, jobs, status) // the jobs of list (a line: label, log, program,
+//                                       // arguments, tab-separated), jobs at once, a progress
+//                                       // line as each ends; their exit codes in status; count
 // Knows nothing of scenes or models beyond the checkpoint call.
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
@@ -34,6 +39,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "ff_wovenff.hpp"
 
@@ -340,6 +346,43 @@ long ffGnuplot(string *const &vars, string *const &script)
     return status;
 }
 
+long ffRun(string *const &args, string *const &log)
+{
+    std::vector<std::string> words;
+    std::string a = *args;
+    size_t from = 0;
+    for (;;) {
+        size_t tab = a.find('\t', from);
+        words.push_back(a.substr(from, tab == std::string::npos ? std::string::npos : tab - from));
+        if (tab == std::string::npos)
+            break;
+        from = tab + 1;
+    }
+    if (words.empty() || words[0].empty())
+        wff_ff_fail("wovenffRun", "no program to run");
+    std::vector<char *> argv;
+    for (std::string &w : words)
+        argv.push_back(&w[0]);
+    argv.push_back(nullptr);
+    int status;
+    wff_error err;
+    if (wff_run_logged(argv.data(), log->c_str(), &status, &err))
+        return -1;
+    return status;
+}
+
+long ffRunJobs(string *const &list, const long &jobs, KN<double> *const &status)
+{
+    std::vector<int> codes(status->N() + 1);
+    long count = 0;
+    wff_error err;
+    if (wff_run_jobs(list->c_str(), (int)jobs, codes.data(), status->N(), &count, &err))
+        wff_ff_fail("wovenffRunJobs", err);
+    for (long j = 0; j < count; j++)
+        (*status)[j] = codes[j];
+    return count;
+}
+
 } // namespace
 
 void wff_ff_register_files()
@@ -377,4 +420,7 @@ void wff_ff_register_files()
     Global.Add("wovenffPathProblem", "(",
                new OneOperator2s_<string *, string *, string *>(ffPathProblem));
     Global.Add("wovenffGnuplot", "(", new OneOperator2_<long, string *, string *>(ffGnuplot));
+    Global.Add("wovenffRun", "(", new OneOperator2_<long, string *, string *>(ffRun));
+    Global.Add("wovenffRunJobs", "(",
+               new OneOperator3_<long, string *, long, KN<double> *>(ffRunJobs));
 }

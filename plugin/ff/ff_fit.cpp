@@ -46,6 +46,7 @@ using namespace Fem2D;
 namespace {
 
 // name=value words; unknown names and words without '=' stop the script.
+// out=DIR comes last: DIR is the rest of the text (a folder name may hold blanks).
 struct Options {
     std::string start, weights, out, tests, set;
     double maxiter = NAN, n = NAN, strain = NAN, shear = NAN, noise = NAN, seed = NAN;
@@ -69,6 +70,11 @@ Options parse_options(const char *fn, const string *text, const char *const *all
     std::istringstream in(*text);
     std::string word;
     while (in >> word) {
+        if (word.compare(0, 4, "out=") == 0) {   // the rest of the text: a folder may hold blanks
+            std::string rest;
+            std::getline(in, rest, '\0');
+            word += rest;
+        }
         size_t eq = word.find('=');
         std::string name = word.substr(0, eq);
         std::string value = eq == std::string::npos ? "" : word.substr(eq + 1);

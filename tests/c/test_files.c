@@ -7,9 +7,11 @@
 #include "check.h"
 #include "test_tmp.h"
 #include "wovenff/files.h"
+#include "wovenff/text_io.h"
 
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -147,6 +149,44 @@ int main(void)
     char *argv2[] = {q0, NULL};
     CHECK(&st, wff_run_program(argv2, &status, &err) == 0 && status == 127, "missing: status %d",
           status);
+
+    /* wff_run_logged: the program's output into its log, an argument with quotes verbatim */
+    test_tmp_path(dir, "it's a log.txt", a, sizeof a);
+    CHECK(&st, wff_run_logged(argv, a, &status, &err) == 0 && status == 0, "logged: status %d",
+          status);
+    char *text = NULL;
+    CHECK(&st, wff_read_text_file(a, "log", 1024, &text, &err) == 0 && text &&
+                   strcmp(text, "a'; exit 7; '") == 0, "logged output: '%s'", text ? text : "");
+    free(text);
+
+    /* wff_run_jobs: four jobs, two at once, exit codes in list order, each log its own */
+    char list[600], log[4][600], line[4][4096];
+    test_tmp_path(dir, "jobs.txt", list, sizeof list);
+    const char *progs[4] = {"true", "false", "printf\tjob %s\tthree", "no-such-program-wovenff"};
+    size_t used = 0;
+    char body[4 * 4096];
+    for (int j = 0; j < 4; j++) {
+        char name[32];
+        snprintf(name, sizeof name, "job %d.log", j);
+        test_tmp_path(dir, name, log[j], sizeof log[j]);
+        snprintf(line[j], sizeof line[j], "label%d\t%s\t%s\n", j, log[j], progs[j]);
+        used += (size_t)snprintf(body + used, sizeof body - used, "%s", line[j]);
+    }
+    CHECK(&st, wff_write_whole(list, body, used, &err) == 0, "job list: %s", err.message);
+    int codes[4] = {-9, -9, -9, -9};
+    long count = 0;
+    CHECK(&st, wff_run_jobs(list, 2, codes, 4, &count, &err) == 0 && count == 4, "jobs: %s",
+          err.message);
+    CHECK(&st, codes[0] == 0 && codes[1] == 1 && codes[2] == 0 && codes[3] == 127,
+          "job exit codes %d %d %d %d, want 0 1 0 127", codes[0], codes[1], codes[2], codes[3]);
+    text = NULL;
+    CHECK(&st, wff_read_text_file(log[2], "log", 1024, &text, &err) == 0 && text &&
+                   strcmp(text, "job three") == 0, "job 2's log: '%s'", text ? text : "");
+    free(text);
+    CHECK(&st, wff_run_jobs(list, 2, codes, 3, &count, &err) != 0, "4 jobs accepted into 3 codes");
+    CHECK(&st, wff_write_whole(list, "label\tlog only\n", 14, &err) == 0 &&
+                   wff_run_jobs(list, 1, codes, 4, &count, &err) != 0,
+          "a job without a program accepted");
 
     test_tmp_remove(dir);
     return check_summary(&st, "test_files");
