@@ -109,8 +109,10 @@ $(BUILD)/bench/%: bench/%.c $(CORE_OBJ) $(FLAGS_FILE)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) $(CORE_INC) $(DEPFLAGS) -MF $@.d -MT $@ $< $(CORE_OBJ) $(LDLIBS) -o $@
 
+# make bench QUICK=1: the reduced set (small meshes, short runs; under a minute here)
+QUICK ?= 0
 bench: all $(BENCH_BIN)
-	@sh bench/run.sh
+	@BENCH_QUICK=$(QUICK) sh bench/run.sh
 
 clean:
 	rm -rf $(BUILD)
