@@ -241,27 +241,6 @@ static int locate(const locator *L, const double p[2], double lam[3], double *di
 
 /* ---- the new model ------------------------------------------------------------------ */
 
-static void free_new_arrays(wff_model *nm)
-{
-    free(nm->u);
-    free(nm->v);
-    free(nm->f);
-    free(nm->mass);
-    free(nm->dof_kind);
-    free(nm->v_prescribed);
-    free(nm->gamma_f);
-    free(nm->reaction);
-    free(nm->projectile.candidates);
-    free(nm->projectile.contact_node);
-    free(nm->projectile.impulse);
-    free(nm->clamp.node);
-    free(nm->clamp.normal_force);
-    free(nm->bc);
-    free(nm->operator_scratch);
-    wff_elements_free(&nm->el);
-    wff_mesh_free(&nm->mesh);
-}
-
 /* The old mesh's groups in the new one: by name, else by tag (edge label or
  * triangle region) under the old name. A group a boundary condition uses
  * that is in neither way is an error. */
@@ -591,7 +570,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     wff_model old = *m;
     *m = nm;
     m->em.mat = &m->mat;
-    free_new_arrays(&old); /* the old one's arrays (same list) */
+    wff_model_free(&old); /* the old one's arrays (a copy of the struct: m keeps the rest) */
     rep.before = e_before;
     rep.after = e_after;
     if (report)
@@ -602,6 +581,6 @@ fail_prefixed:
     wff_fail(err, "wff_model_remesh: %s", why);
 fail:
     locator_free(&L);
-    free_new_arrays(&nm);
+    wff_model_free(&nm);
     return -1;
 }
