@@ -137,13 +137,21 @@ static void check_amplitude_tangent(check_state *st, const cell_case *c, const w
     const wff_cell_type *cell = mat->cell;
     if (cell->n_amplitudes == 0)
         return;
-    double worst_R = 0, worst_K = 0, worst_block = 0;
+    double worst_R = 0, worst_K = 0, worst_block = 0, worst_default = 0;
     int block_used = 0;
     const double h = 1e-5 * c->amplitude_range;
+    /* the same cell without the op: wff_amplitude_tangent's default */
+    wff_cell_type bare = *cell;
+    bare.amplitude_tangent = NULL;
+    bare.amplitude_tangent_block = NULL;
+    wff_material bare_mat = *mat;
+    bare_mat.cell = &bare;
     for (int s = 0; s < N_STATES; s++) {
-        double F[6], dA[2], gf, R[2], K[4], R_eval[2], K_fd[4];
+        double F[6], dA[2], gf, R[2], K[4], R_eval[2], K_fd[4], R_def[2], K_def[4];
         random_state(r, c, F, dA, &gf);
         int rc = wff_amplitude_tangent(mat, F, dA, gf, R, K);
+        CHECK(st, wff_amplitude_tangent(&bare_mat, F, dA, gf, R_def, K_def) == WFF_POINT_OK,
+              "%s: default tangent at state %d", c->material, s);
         CHECK(st, rc == WFF_POINT_OK, "%s: tangent at state %d: status %d", c->material, s, rc);
         residual_at(mat, F, dA, gf, R_eval);
         double sR = fmax(max_abs(R_eval, 2), 1e-6 * residual_scale);
@@ -160,10 +168,14 @@ static void check_amplitude_tangent(check_state *st, const cell_case *c, const w
             for (int k = 0; k < 2; k++)
                 K_fd[2 * k + m] = (Rd[0][k] - 8 * Rd[1][k] + 8 * Rd[2][k] - Rd[3][k]) / (12 * h);
         }
-        double e = 0, sK = max_abs(K_fd, 4);
-        for (int i = 0; i < 4; i++)
+        double e = 0, e_def = 0, sK = max_abs(K_fd, 4);
+        for (int i = 0; i < 4; i++) {
             e = fmax(e, fabs(K[i] - K_fd[i]) / sK);
+            e_def = fmax(e_def, fabs(K_def[i] - K_fd[i]) / sK);
+        }
         worst_K = fmax(worst_K, e);
+        worst_default = fmax(worst_default, e_def);
+        worst_R = fmax(worst_R, fmax(fabs(R_def[0] - R_eval[0]), fabs(R_def[1] - R_eval[1])) / sR);
     }
     if (cell->amplitude_tangent_block) {
         for (int s = 0; s < N_STATES / WFF_BLOCK; s++) {
@@ -198,10 +210,11 @@ static void check_amplitude_tangent(check_state *st, const cell_case *c, const w
             }
         }
     }
-    printf("  %-48s amplitude tangent: %s %.1e vs central differences, residual %.1e, "
-           "blocked %s%.1e\n", c->material, cell->amplitude_tangent ? "exact" : "(default)",
-           worst_K, worst_R, !cell->amplitude_tangent_block ? "(none) "
-                             : block_used ? "" : "(declined) ", worst_block);
+    printf("  %-48s amplitude tangent: %s %.1e vs central differences (default %.1e), "
+           "residual %.1e, blocked %s%.1e\n", c->material,
+           cell->amplitude_tangent ? "exact" : "(default)", worst_K, worst_default, worst_R,
+           !cell->amplitude_tangent_block ? "(none) " : block_used ? "" : "(declined) ",
+           worst_block);
     CHECK(st, !cell->amplitude_tangent_block || cell->amplitude_tangent,
           "%s: a blocked tangent without the scalar one", c->material);
     CHECK(st, worst_R <= 1e-12, "%s: the tangent's residual differs from evaluate's by %.3g",
@@ -212,6 +225,8 @@ static void check_amplitude_tangent(check_state *st, const cell_case *c, const w
           worst_K);
     CHECK(st, worst_block <= 1e-11, "%s: blocked tangent differs from the scalar one by %.3g",
           c->material, worst_block);
+    CHECK(st, worst_default <= 1e-3, "%s: the default tangent vs central differences of R: "
+          "relative error %.3g", c->material, worst_default);
 }
 
 void cell_suite_check(check_state *st, const cell_case *c, const wff_material *material)
