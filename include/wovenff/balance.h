@@ -66,7 +66,7 @@ int wff_shear_static(const wff_material *mat, double gamma, double dA[2],
  * WFF_BALANCE_STEP_TOLERANCE (the step is applied: with the exact tangent the
  * error left is of the order of its square); a step is limited to
  * WFF_BALANCE_STEP_LIMIT (the compaction exponential is steep). */
-#define WFF_BALANCE_MAX_ITERATIONS 20
+#define WFF_BALANCE_MAX_ITERATIONS 50
 #define WFF_BALANCE_STEP_TOLERANCE 1e-13 /* m: amplitudes are ~1e-5 m */
 #define WFF_BALANCE_STEP_LIMIT 1e-5      /* m */
 
