@@ -2,7 +2,8 @@
  * exact amplitude tangent. The blocked triangle path (tri_block_static_forces)
  * gives the plain reference path's forces, energies, balanced amplitudes and
  * γᶠ to round-off over several passes; the Newton is warm-started (a repeated
- * pass takes one tangent per point) and balances every point; a Newton that
+ * pass takes one tangent per point) and balances every point; a cell without
+ * the tangent ops (finite-difference default) gives the same balance; a Newton that
  * cannot converge stops the run naming the element, the point, the residual
  * left and the iterations spent (a singular tangent: one; a wrong one: the
  * bound). Knows the elements and the model, not the cells' internals. */
@@ -148,6 +149,43 @@ static void check_block_vs_plain(check_state *st)
     wff_model_free(&b);
 }
 
+/* A cell without the tangent ops gets the finite-difference default: the same
+ * balance (to the Newton tolerance) as with the exact tangent. */
+static void check_default_tangent(check_state *st)
+{
+    wff_model a, b;
+    wff_error err;
+    int rc = static_model(&a, KEVLAR, &err) || static_model(&b, KEVLAR, &err);
+    CHECK(st, rc == 0, "%s", err.message);
+    if (rc)
+        return;
+    wff_cell_type bare = *b.mat.cell;
+    bare.amplitude_tangent = NULL;
+    bare.amplitude_tangent_block = NULL;
+    b.mat.cell = &bare;
+    size_t nd = (size_t)a.n_dofs, np = (size_t)(3 * a.el.n_tris);
+    double *fa = calloc(nd, sizeof(double)), *fb = calloc(nd, sizeof(double));
+    wff_force_totals ta, tb;
+    deform(&a, 0.02);
+    deform(&b, 0.02);
+    wff_elements_forces(&a.el, &a.em, a.mesh.xy, a.u, a.gamma_f, 0, fa, &ta);
+    wff_elements_forces(&b.el, &b.em, b.mesh.xy, b.u, b.gamma_f, 0, fb, &tb);
+    double sf, sa;
+    double df = max_abs_diff(fb, fa, nd, &sf) / sf;
+    double da = max_abs_diff(b.el.point_dA, a.el.point_dA, 2 * np, &sa);
+    printf("  default (finite-difference) tangent: forces %.1e, amplitudes %.1e m from the exact "
+           "tangent's; %.2f vs %.2f iterations per point\n", df, da,
+           (double)tb.amplitude_iterations / (double)np, (double)ta.amplitude_iterations / (double)np);
+    CHECK(st, ta.bad_element < 0 && tb.bad_element < 0, "default tangent: bad element %d / %d",
+          ta.bad_element, tb.bad_element);
+    CHECK(st, df <= 1e-9 && da <= 1e-12, "default tangent: forces %.3g, amplitudes %.3g m off",
+          df, da);
+    free(fa);
+    free(fb);
+    wff_model_free(&a);
+    wff_model_free(&b);
+}
+
 /* Tangents that make Newton fail: singular (zero), and four times too stiff
  * (quarter steps: linear convergence, too slow for the bound). */
 static int zero_tangent(const void *params, const double F[6], const double dA[2], double gf,
@@ -217,6 +255,7 @@ int main(void)
 {
     check_state st = {0, 0};
     check_block_vs_plain(&st);
+    check_default_tangent(&st);
     wff_cell_type zero, stiff, block;
     check_failure(&st, "zero (singular)", &zero, 1);
     check_failure(&st, "stiff (4x, plain)", &stiff, WFF_BALANCE_MAX_ITERATIONS);
