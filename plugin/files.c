@@ -452,22 +452,11 @@ void wff_lock_release(const char *dir)
 
 int wff_run_program(char *const argv[], int *status, wff_error *err)
 {
+    long pid;
     *status = -1;
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid < 0)
-        return wff_fail(err, "cannot start %s: %s", argv[0], strerror(errno));
-    if (pid == 0) {
-        execvp(argv[0], argv);
-        fprintf(stderr, "cannot run %s: %s\n", argv[0], strerror(errno));
-        _exit(127);
-    }
-    int ws;
-    while (waitpid(pid, &ws, 0) < 0)
-        if (errno != EINTR)
-            return wff_fail(err, "waiting for %s: %s", argv[0], strerror(errno));
-    *status = WIFEXITED(ws) ? WEXITSTATUS(ws) : 128 + WTERMSIG(ws);
-    return 0;
+    if (wff_start_program(argv, &pid, err))
+        return -1;
+    return wff_wait_program(pid, status, err);
 }
 
 int wff_start_program(char *const argv[], long *pid, wff_error *err)
