@@ -81,10 +81,11 @@ echo "scene_default $scene_wall s ($scene_cpu s CPU): $scene_summary"
 
 echo "== 2d. the strip scene at its defaults, start to plots; -amplitudes static against dynamic"
 rm -rf "$out/runs/strip_default"
-t0=$(now)
+t0=$(now); children_cpu; c0=$cpu
 if ff freefem_scripts/strip_tension.edp -out "$out/runs/strip_default" > "$out/runs/strip_default.log" 2>&1
-then strip_wall=$(elapsed "$t0"); echo "strip_default $strip_wall s"
-else strip_wall=""; echo "strip_default FAILED (see $out/runs/strip_default.log)"; fi
+then strip_wall=$(elapsed "$t0"); children_cpu; strip_cpu=$(awk -v a="$c0" -v b="$cpu" 'BEGIN { printf "%.2f", b - a }')
+     echo "strip_default $strip_wall s ($strip_cpu s CPU)"
+else strip_wall=""; strip_cpu=""; echo "strip_default FAILED (see $out/runs/strip_default.log)"; fi
 # per step: full mode takes part 3's mesh_default and amplitudes_static runs (to 2.5 ms);
 # quick mode runs this pair to 0.5 ms
 amp_dynamic=runs/mesh_default/summary.json; amp_static=runs/amplitudes_static/summary.json
@@ -141,7 +142,7 @@ fi # quick
     echo "scene_wall_seconds $scene_wall"
     echo "scene_cpu_seconds $scene_cpu"
     echo "scene_summary $scene_summary"
-    [ -n "$strip_wall" ] && echo "strip_wall_seconds $strip_wall"
+    [ -n "$strip_wall" ] && echo "strip_wall_seconds $strip_wall" && echo "strip_cpu_seconds $strip_cpu"
     echo "amplitudes_dynamic_summary $amp_dynamic"
     echo "amplitudes_static_summary $amp_static"
 } > "$out/scenes.txt"

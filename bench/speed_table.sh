@@ -15,6 +15,7 @@
 #     scene_cpu_seconds S      the same, user + system CPU of every process
 #     scene_summary TEXT       its "peak displacement ... %" summary
 #     strip_wall_seconds S     the strip scene at its defaults, start to plots
+#     strip_cpu_seconds S      the same, user + system CPU
 #     amplitudes_dynamic_summary FILE   summary.json of a run with -amplitudes dynamic
 #     amplitudes_static_summary FILE    the same run with -amplitudes static
 #                    (FILE relative to IN unless absolute)
@@ -130,8 +131,10 @@ BEGIN {
         ", \"summary_same\": " (sum == "" ? "null" : same),
         (sc == "" ? "" : sprintf(" (%.3g s CPU)", sc)) (sum == "" ? "" : same == "true" ? ", summary same" : ", **summary differs**: " sum))
     tv = ("strip_wall_seconds" in S) ? S["strip_wall_seconds"] : ""
+    tc = ("strip_cpu_seconds" in S) ? S["strip_cpu_seconds"] : ""
     row("strip_scene_default", "the strip scene (640 quads, §2.3) at its quasi-static default, start to plots", "s",
-        tv, "", div(tv, 20), "<=", 20, "<= 20 s", "value", "", "")
+        tv, "", div(tv, 20), "<=", 20, "<= 20 s", "value", "\"cpu_seconds\": " jnum(tc),
+        tc == "" ? "" : sprintf(" (%.3g s CPU)", tc))
     mb = t1 ? num(K[t1], "model_bytes_per_element") : ""; rss = t1 ? num(K[t1], "peak_rss_bytes_per_element") : ""
     row("memory_per_element", "memory per element (the model'\''s arrays; tri3, ~50k)", "B", mb, "", div(mb, 1024),
         "<=", 1024, "<= 1 KB", "value", "\"peak_rss_bytes_per_element\": " jnum(rss),

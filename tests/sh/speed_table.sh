@@ -42,6 +42,7 @@ printf '{\n  "status": "ok",\n  "steps": 500,\n  "wall_seconds": 3.0,\n  "x": 1\
     echo "scene_cpu_seconds 3.9"
     echo "scene_summary $expected"
     echo "strip_wall_seconds 19.5"
+    echo "strip_cpu_seconds 19.25"
     echo "amplitudes_dynamic_summary dyn.json"
     echo "amplitudes_static_summary $tmp/a/sta.json"
 } > "$tmp/a/scenes.txt"
@@ -67,6 +68,7 @@ check "static / dynamic = 3" [ "$(field "$j" amplitudes_static_vs_dynamic ratio)
 check "scene 4 s = 1.0 of its limit" [ "$(field "$j" scene_make_run ratio)" = 1.000 ]
 check "scene summary same" [ "$(field "$j" scene_make_run summary_same)" = true ]
 check "strip 19.5 / 20" [ "$(field "$j" strip_scene_default ratio)" = 0.975 ]
+check "strip CPU 19.25 s" [ "$(field "$j" strip_scene_default cpu_seconds)" = 19.25 ]
 check "memory 256 B" [ "$(field "$j" memory_per_element value)" = 256 ]
 check "peak RSS 700 B" [ "$(field "$j" memory_per_element peak_rss_bytes_per_element)" = 700 ]
 m="$tmp/a/speed.md"
