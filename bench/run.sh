@@ -94,6 +94,9 @@ scene no_shear_flow -set gammadot_0=0
 scene clamp_friction -clamp friction
 scene linear_yarns -material freefem_scripts/materials/kevlar_linear.txt -preload 0
 scene contact_all_nodes -contact all
+scene zonal_2cm -zonal 0.02          # King within 2 cm of the impact point, fitted linear yarns beyond
+scene zonal_4cm -zonal 0.04
+scene zonal_8cm -zonal 0.08
 [ "$quick" = 1 ] || scene threads_2 -threads 2
 
 fi # tables_only
