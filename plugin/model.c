@@ -74,9 +74,7 @@ static void stored_energy_now(wff_model *m)
     m->internal_energy = t.bad_element >= 0 ? 0 : t.internal_energy;
 }
 
-/* zones.c (declared there): the masses changed with a zone's material or
- * preload; the fabric mass, the clamp's shares and the stored energy follow. */
-int wff_model_masses_changed(wff_model *m, wff_error *err);
+/* The masses changed with a zone's material or preload (zones.h). */
 int wff_model_masses_changed(wff_model *m, wff_error *err)
 {
     wff_zones_masses(m);

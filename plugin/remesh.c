@@ -477,7 +477,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
         wff_mesh_free(new_mesh);
         return wff_fail(err, "wff_model_remesh: the model has zonal materials (%d zones); "
                         "a mesh transfer does not carry zones: run without -adapt or "
-                        "without zones", m->zones ? wff_model_zone_count(m) : 1);
+                        "without zones", wff_model_zone_count(m));
     }
     wff_model nm = *m; /* every scalar: settings, preload, accumulators, projectile */
     nm.mesh = *new_mesh;

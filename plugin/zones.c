@@ -20,10 +20,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* model.c: the masses changed (a zone's material or preload): masses, fabric
- * mass, the clamp's shares and the stored energy before the run again. */
-int wff_model_masses_changed(wff_model *m, wff_error *err);
-
 typedef struct wff_zone {
     wff_material mat;         /* zone 0: unused (the model's m->mat) */
     int preload;              /* WFF_ZONE_PRELOAD_* */

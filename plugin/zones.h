@@ -39,5 +39,9 @@ int wff_zones_preload_changed(wff_model *m, wff_error *err);
 /* The zones' materials, preloads and element assignment folded into hash g
  * (g unchanged without zones: checkpoints of one-material models as before). */
 uint64_t wff_zones_fingerprint(const wff_model *m, uint64_t g);
+/* model.c: the masses changed (a zone's material or preload): masses, fabric
+ * mass, the clamp's shares and the stored energy before the run again; -1
+ * (err set) if the clamp's shares fail. */
+int wff_model_masses_changed(wff_model *m, wff_error *err);
 
 #endif
