@@ -7,6 +7,10 @@
 //   int n = wovenffZoneRegion(md, "ply", "other.txt", "shared");
 //       the elements of a physical surface by name, or of a region label
 //       given as its number ("3")
+//   int n = wovenffZoneElements(md, sel, "other.txt", "shared");
+//       sel: one value per element of the model (triangles, then quadrilaterals, as
+//       wovenffGet(md, "elements") counts them), nonzero = in the zone: a predicate
+//       the script computes
 //   int k = wovenffZoneCount(md);       // zones, zone 0 (the model's material) included
 //   int n = wovenffZoneSize(md, k);     // elements of zone k
 // Each returns the number of elements it selected; every failure names the
@@ -83,6 +87,30 @@ long ffZoneRegion(const long &id, string *const &region, string *const &material
     return n;
 }
 
+long ffZoneElements(const long &id, KN<double> *const &selected, string *const &material,
+                    string *const &words)
+{
+    const char *fn = "wovenffZoneElements";
+    wff_model *m = wff_ff_model(id, fn);
+    long n_el = m->el.n_tris + m->el.n_quads;
+    if (selected->N() != n_el)
+        wff_ff_model_fail(fn, "the selection has " + std::to_string(selected->N()) +
+                          " values: one per element of the model, " + std::to_string(n_el), id);
+    int preload = WFF_ZONE_PRELOAD_SHARED;
+    zone_words(fn, words, nullptr, &preload, id);
+    std::string flags((size_t)n_el, '\0');
+    for (long e = 0; e < n_el; e++) {
+        wff_ff_require_finite(fn, "selection", (*selected)[e], id);
+        flags[(size_t)e] = (*selected)[e] != 0;
+    }
+    wff_error err;
+    int n = wff_model_zone_elements(m, (const unsigned char *)flags.data(), material->c_str(),
+                                    preload, &err);
+    if (n < 0)
+        wff_ff_model_fail(fn, err.message, id);
+    return n;
+}
+
 long ffZoneCount(const long &id)
 {
     return wff_model_zone_count(wff_ff_model(id, "wovenffZoneCount"));
@@ -106,6 +134,8 @@ void wff_ff_register_zones()
                new OneOperator4_<long, long, KN<double> *, string *, string *>(ffZoneDisc));
     Global.Add("wovenffZoneRegion", "(",
                new OneOperator4_<long, long, string *, string *, string *>(ffZoneRegion));
+    Global.Add("wovenffZoneElements", "(",
+               new OneOperator4_<long, long, KN<double> *, string *, string *>(ffZoneElements));
     Global.Add("wovenffZoneCount", "(", new OneOperator1_<long, long>(ffZoneCount));
     Global.Add("wovenffZoneSize", "(", new OneOperator2_<long, long, long>(ffZoneSize));
 }
