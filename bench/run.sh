@@ -134,8 +134,10 @@ scene no_shear_flow -set gammadot_0=0
 scene clamp_friction -clamp friction
 scene linear_yarns -material freefem_scripts/materials/kevlar_linear.txt -preload 0
 scene contact_all_nodes -contact all
+scene zonal_2cm -zonal 0.02          # King within 2 cm of the impact point, fitted linear yarns beyond
+scene zonal_4cm -zonal 0.04
+scene zonal_8cm -zonal 0.08
 scene threads_2 -threads 2
-# -zonal rows (issue 12 item 7): scene zonal_<R> -zonal <R> for R = 2, 4, 8 cm go here
 fi # quick
 
 {   # the speed table's scene figures (bench/speed_table.sh reads them)
@@ -230,7 +232,7 @@ set logscale xy; set grid; set xrange [$xlo:$xhi]; set yrange [$ylo:$yhi]; set f
 set key at screen 0.74, screen 0.91 left top Left reverse samplen 1 noenhanced
 set label 1 "$keytext" at screen 0.74, screen 0.80 left front font 'DejaVu Sans Mono,8' noenhanced
 # numerical knobs (same physics) and physics changes (another answer) apart
-num(n) = (n eq 'clamp_friction' || n eq 'linear_yarns' || n eq 'no_bending' || n eq 'no_locking' || n eq 'no_shear_flow') ? 0 : 1
+num(n) = (n eq 'clamp_friction' || n eq 'linear_yarns' || n eq 'no_bending' || n eq 'no_locking' || n eq 'no_shear_flow' || n[1:6] eq 'zonal_') ? 0 : 1
 plot '$out/pareto_labels.csv' using 3:4:(\$7 > 0 ? \$5 - \$3 : 1/0):(\$6 - \$4) with vectors nohead lc rgb 'gray60' notitle, \
      '' using 3:(num(strcol(2)) ? \$4 : 1/0) with points pt 7 ps 1.3 lc 1 title 'numerical knobs (same physics)', \
      '' using 3:(num(strcol(2)) ? 1/0 : \$4) with points pt 5 ps 1.1 lc 7 title 'physics left out or changed', \

@@ -4,6 +4,7 @@
  * atomic save (text_io.c) and a load that says which input differs. Knows the
  * model's arrays; nothing of how they evolve, of cells by name or of FreeFEM. */
 #include "solver_internal.h"
+#include "zones.h"
 #include "wovenff/text_io.h"
 
 #include <stdint.h>
@@ -62,6 +63,7 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     g = wff_fnv1a(WFF_FNV_START, cell, strlen(cell));
     g = wff_fnv1a(g, &m->mat.areal_density, sizeof(double));
     g = wff_fnv1a(g, m->mat.params, sizeof m->mat.params);
+    g = wff_zones_fingerprint(m, g); /* the zones' materials (unchanged without zones) */
     h->material_hash = g;
     h->mass_hash = wff_fnv1a(WFF_FNV_START, m->mass, sizeof(double) * (size_t)m->n_dofs);
     g = wff_fnv1a(WFF_FNV_START, m->dof_kind, (size_t)m->n_dofs);

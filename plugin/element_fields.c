@@ -6,6 +6,7 @@
  * through their names tables and evaluate (via the elements); nothing of the
  * integrator, contact or FreeFEM. */
 #include "solver_internal.h"
+#include "zones.h"
 #include "wovenff/state.h"
 
 #include <math.h>
@@ -91,7 +92,9 @@ int wff_model_element_values(const wff_model *m, const char *name, double *out,
             }
         } else {
             wff_point_result r;
-            if (wff_element_center_eval(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, e, &r) !=
+            wff_element_material zone;
+            const wff_element_material *em = wff_zones_element_material(m, e, &zone);
+            if (wff_element_center_eval(&m->el, em, m->mesh.xy, m->u, m->gamma_f, e, &r) !=
                 WFF_POINT_OK) {
                 int tri = e < m->el.n_tris;
                 return wff_fail(err, "element field '%s': %s %d is degenerate (yarns collapsed "
@@ -102,10 +105,12 @@ int wff_model_element_values(const wff_model *m, const char *name, double *out,
                 value = r.stress[code];
             else if (code == EF_W)
                 value = r.energy;
-            else if (code < EF_DIAG)
-                value = r.diag[cell->yarn_tension_diag[code - EF_TENSION]];
+            else if (code < EF_DIAG) /* (a zone's cell: its own tension, 0 if none) */
+                value = em->mat->cell->yarn_tension_diag[code - EF_TENSION] >= 0
+                            ? r.diag[em->mat->cell->yarn_tension_diag[code - EF_TENSION]] : 0;
             else
-                value = r.diag[code - EF_DIAG];
+                value = wff_zones_diag(m, e, code - EF_DIAG) >= 0
+                            ? r.diag[wff_zones_diag(m, e, code - EF_DIAG)] : 0;
         }
         out[e] = value;
     }

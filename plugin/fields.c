@@ -4,6 +4,7 @@
  * the state; changes nothing. Knows cells only through their names tables;
  * nothing of the integrator, contact or FreeFEM. */
 #include "solver_internal.h"
+#include "zones.h"
 #include "wovenff/state.h"
 
 #include <math.h>
@@ -82,8 +83,11 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
             value = M_PI_2 - atan2(sqrt(cx * cx + cy * cy + cz * cz), dot);
         } else {
             wff_point_result r;
-            wff_element_center_eval(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, e, &r);
-            value = energy ? r.energy : r.diag[diag];
+            wff_element_material zone;
+            wff_element_center_eval(&m->el, wff_zones_element_material(m, e, &zone), m->mesh.xy,
+                                    m->u, m->gamma_f, e, &r);
+            int d = wff_zones_diag(m, e, diag); /* a zone's cell may lack it: 0 there */
+            value = energy ? r.energy : d >= 0 ? r.diag[d] : 0;
         }
         int nn = e < m->el.n_tris ? 3 : 4;
         const int *node = e < m->el.n_tris ? m->el.tri + 3 * e : m->el.quad + 4 * (e - m->el.n_tris);
@@ -113,7 +117,7 @@ int wff_model_energy_split(const wff_model *m, double *out)
     int n = cell->n_mech < WFF_MECH_MAX ? cell->n_mech : WFF_MECH_MAX;
     double mech[WFF_MECH_MAX] = {0};
     if (n > 0)
-        wff_elements_energy_split(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, mech);
+        wff_zones_energy_split(m, m->u, m->gamma_f, mech);
     for (int k = 0; k < n; k++)
         out[k] = m->symmetry_factor * mech[k];
     return n;

@@ -6,6 +6,7 @@
  * step and contact.c once a step; knows nothing of cells by name, of output
  * fields, of checkpoints or of FreeFEM. */
 #include "solver_internal.h"
+#include "zones.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -64,7 +65,7 @@ int wff_force_pass(wff_model *m, const double *u, double *f, double *gamma_f, do
 {
     memset(f, 0, sizeof(double) * (size_t)m->n_dofs);
     wff_force_totals t;
-    wff_elements_forces(&m->el, &m->em, m->mesh.xy, u, gamma_f, dt_flow, f, &t);
+    wff_zones_forces(m, u, gamma_f, dt_flow, f, &t);
     if (accumulate) {
         m->element_steps += m->el.n_tris + m->el.n_quads;
         m->amplitude_iterations += t.amplitude_iterations;
@@ -181,7 +182,7 @@ double wff_clamp_correct(const wff_model *m, double *v, double dt_mid)
 static int update_time_step(wff_model *m, wff_error *err)
 {
     int worst;
-    double dt = wff_elements_stable_step(&m->el, &m->em, m->mesh.xy, m->u, &worst);
+    double dt = wff_zones_stable_step(m, m->u, &worst);
     if (!(dt > 0) || !isfinite(dt)) {
         char name[96];
         element_name(m, worst, name, sizeof name);
@@ -257,7 +258,7 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
 double wff_model_step_estimate(const wff_model *m)
 {
     int worst;
-    return m->dt_factor * wff_elements_stable_step(&m->el, &m->em, m->mesh.xy, m->u, &worst);
+    return m->dt_factor * wff_zones_stable_step(m, m->u, &worst);
 }
 
 int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err)

@@ -5,6 +5,7 @@
  * nothing of how a step is taken (integrator.c), of contact (contact.c),
  * of output fields or checkpoints, of cells by name or of FreeFEM. */
 #include "solver_internal.h"
+#include "zones.h"
 #include "wovenff/material.h"
 
 #include <math.h>
@@ -29,6 +30,7 @@ void wff_model_free(wff_model *m)
     free(m->clamp.normal_force);
     free(m->operator_scratch);
     free(m->bc);
+    wff_zones_free(m);
     wff_elements_free(&m->el);
     wff_mesh_free(&m->mesh);
     memset(m, 0, sizeof *m);
@@ -68,8 +70,19 @@ static void stored_energy_now(wff_model *m)
         return;
     wff_force_totals t;
     memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
-    wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, 0, m->f, &t);
+    wff_zones_forces(m, m->u, m->gamma_f, 0, m->f, &t);
     m->internal_energy = t.bad_element >= 0 ? 0 : t.internal_energy;
+}
+
+/* The masses changed with a zone's material or preload (zones.h). */
+int wff_model_masses_changed(wff_model *m, wff_error *err)
+{
+    wff_zones_masses(m);
+    sum_fabric_mass(m);
+    if (m->clamp.n && share_clamp_force(m, err))
+        return -1;
+    stored_energy_now(m);
+    return 0;
 }
 
 int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *material_path,
@@ -145,6 +158,8 @@ int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[
             m->u[D * n + 3] = dA0[0];
             m->u[D * n + 4] = dA0[1];
         }
+    if (m->zones && wff_zones_preload_changed(m, err)) /* matched zone preloads follow */
+        return -1;
     stored_energy_now(m);
     return 0;
 }
@@ -434,11 +449,14 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
             return wff_fail(err, "amplitude_mass_factor = %g: must be >= 1 (1 is the paper's "
                             "1/6 of the displacement mass)", value);
         m->em.amplitude_mass_factor = value;
-        wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
+        wff_zones_masses(m);
     } else if (strcmp(key, "static_amplitudes") == 0) {
         if (value != 0 && value != 1)
             return wff_fail(err, "static_amplitudes = %g: must be 0 (dynamic nodal amplitudes, "
                             "the paper) or 1 (balanced at every point, King 2005)", value);
+        if (value == 1 && m->zones)
+            return wff_fail(err, "static_amplitudes: the model has zonal materials; zones keep "
+                            "the amplitudes dynamic");
         if (value == 1 && m->mat.cell->n_amplitudes == 0)
             return wff_fail(err, "static_amplitudes: cell '%s' has no amplitudes",
                             m->mat.cell->name);

@@ -9,6 +9,7 @@
  * numbers. Knows the model; nothing of cells by name, of output fields, of
  * checkpoints or of FreeFEM. */
 #include "solver_internal.h"
+#include "zones.h"
 
 #include <float.h>
 #include <math.h>
@@ -72,7 +73,7 @@ int wff_model_stable_step(const wff_model *m, const double *U, double *dt, int *
                           wff_error *err)
 {
     int w = -1;
-    *dt = wff_elements_stable_step(&m->el, &m->em, m->mesh.xy, U ? U : m->u, &w);
+    *dt = wff_zones_stable_step(m, U ? U : m->u, &w);
     if (worst)
         *worst = w;
     if (!(*dt > 0) || !isfinite(*dt))

@@ -12,6 +12,7 @@
  * a failure frees what was built and leaves the old model as it was. A
  * per-node or per-point array added to wff_model must be added here. */
 #include "solver_internal.h"
+#include "zones.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -472,6 +473,12 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
                      wff_error *err)
 {
     wff_remesh_report rep = {0, 0, 0, 0, 0};
+    if (m->zones) { /* (m unchanged: the new mesh is freed, as on any failure) */
+        wff_mesh_free(new_mesh);
+        return wff_fail(err, "wff_model_remesh: the model has zonal materials (%d zones); "
+                        "a mesh transfer does not carry zones: run without -adapt or "
+                        "without zones", wff_model_zone_count(m));
+    }
     wff_model nm = *m; /* every scalar: settings, preload, accumulators, projectile */
     nm.mesh = *new_mesh;
     memset(new_mesh, 0, sizeof *new_mesh);

@@ -5,6 +5,7 @@
  * elements' force pass and a cell's reference geometry; nothing of how a
  * step is taken, of contact, of FreeFEM. */
 #include "solver_internal.h"
+#include "zones.h"
 #include "wovenff/state.h"
 
 #include <math.h>
@@ -75,7 +76,7 @@ static int forces_now(wff_model *m, wff_error *err)
 {
     wff_force_totals t;
     memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
-    wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, 0, m->f, &t);
+    wff_zones_forces(m, m->u, m->gamma_f, 0, m->f, &t);
     if (t.bad_element >= 0) {
         int e = t.bad_element, tri = e < m->el.n_tris;
         const int *node = tri ? m->el.tri + 3 * e : m->el.quad + 4 * (e - m->el.n_tris);

@@ -147,6 +147,8 @@ typedef struct wff_model {
                                  transfers since the start, J (model part) */
     int n_bc;                 /* boundary conditions set so far, in order (remesh.c) */
     wff_bc_record *bc;
+    struct wff_zones *zones;  /* per-region materials (plugin/zones.c); NULL: the model's
+                                 material everywhere, the plain path */
 } wff_model;
 
 /* Create a model from a mesh file (.geo or .msh, see mesh.h; mesh_options
@@ -396,6 +398,42 @@ typedef struct wff_remesh_report {
 } wff_remesh_report;
 int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report,
                      wff_error *err);
+
+/* Zonal materials (plugin/zones.c, docs/model.md "Zonal materials"). Every element
+ * starts with the model's material (zone 0); each call gives the elements it
+ * selects (tris first, then quads, as everywhere) a material of their own, a new
+ * zone (a later call wins where two select the same element). Before the first
+ * step; the masses, the clamp's share by mass and the stored energy follow.
+ * preload: WFF_ZONE_PRELOAD_SHARED, the zone's cell sees the model's preload
+ * F_pre; WFF_ZONE_PRELOAD_MATCHED, it sees its own diagonal preload, solved so
+ * that its membrane forces per mesh width (P F_preᵀ / J_pre) equal the model's
+ * cell's at the model's preload (only for a cell without amplitudes and a
+ * diagonal model preload): the zones' boundary is in equilibrium at t = 0, and
+ * it is solved again when the preload is set again. The lumped masses of every
+ * zone are its ρ_A / J_pre of the model's preload (the mesh is the fabric's
+ * preloaded configuration whichever preload a zone's cell sees). Refused: a zone
+ * cell with amplitudes where the model's cell has none, static amplitudes,
+ * more than WFF_ZONES_MAX zones; a mesh transfer (wff_model_remesh) of a model
+ * with zones is refused too. Returns the number of elements selected (0 is
+ * allowed: the zone is empty) or -1 (err set). */
+#define WFF_ZONES_MAX 8
+enum { WFF_ZONE_PRELOAD_SHARED = 0, WFF_ZONE_PRELOAD_MATCHED = 1 };
+/* selected: one flag per element (nonzero: in the zone). */
+int wff_model_zone_elements(wff_model *m, const unsigned char *selected,
+                            const char *material_path, int preload, wff_error *err);
+/* The elements of the physical surface named `group` (or of region tag
+ * group_tag when group is NULL or empty: a FreeFEM region label). */
+int wff_model_zone_region(wff_model *m, const char *group, int group_tag,
+                          const char *material_path, int preload, wff_error *err);
+/* The elements whose centre (mean of its nodes, reference configuration) is
+ * farther than `radius` (m) from (x, y) (outside = 1) or within it (0). */
+int wff_model_zone_disc(wff_model *m, double x, double y, double radius, int outside,
+                        const char *material_path, int preload, wff_error *err);
+/* Zones (1 + the calls so far: zone 0 is the model's material) and the elements
+ * of zone k (0 for k out of range); the material of zone k (NULL outside). */
+int wff_model_zone_count(const wff_model *m);
+int wff_model_zone_size(const wff_model *m, int zone);
+const wff_material *wff_model_zone_material(const wff_model *m, int zone);
 
 #ifdef __cplusplus
 }

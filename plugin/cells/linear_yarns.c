@@ -145,6 +145,53 @@ static int linear_evaluate_shared(const void *params, const double F[6], int n_p
     return WFF_POINT_OK;
 }
 
+/* Lane b of a block: linear_evaluate's formulas for one triangle. A function
+ * of its own so that its locals are plain scalars once inlined (inside an
+ * `omp simd` body they would become per-lane arrays). */
+WFF_INLINE void linear_tri_lane(const linear_params *c, double slack, wff_tri_block *blk, int b)
+{
+    const double unit_pitch[FAMILIES] = {1, 1}, no_spars[FAMILIES] = {0, 0},
+                 unit_scale[FAMILIES] = {1, 1};
+    const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
+                         blk->F[3][b], blk->F[4][b], blk->F[5][b]};
+    wff_yarn_frame fr;
+    blk->degenerate[b] = wff_yarn_kinematics(unit_pitch, F, &fr) != WFF_POINT_OK;
+    double s0 = fr.p[0] - 1, s1 = fr.p[1] - 1; /* strains; slack (tension_only): none below 0,
+                                                  written branch-free (a && or fmin
+                                                  keeps gcc from vectorising the lanes) */
+    s0 = (s0 < 0) & (slack != 0) ? 0.0 : s0;
+    s1 = (s1 < 0) & (slack != 0) ? 0.0 : s1;
+    double force[FAMILIES] = {c->stiffness[0] * s0, c->stiffness[1] * s1};
+    double energy = 0.5 * c->stiffness[0] * s0 * s0 + 0.5 * c->stiffness[1] * s1 * s1;
+    double shear = c->shear_stiffness * fr.gamma, q[FAMILIES][FAMILIES], stress[6];
+#pragma GCC unroll 2
+    for (int f = 0; f < FAMILIES; f++)
+        wff_q_coefficients(&fr, f, force[f], shear, no_spars, &q[f][f], &q[f][1 - f]);
+    wff_stress_from_q(&fr, q, unit_scale, stress);
+#pragma GCC unroll 6
+    for (int i = 0; i < 6; i++)
+        blk->stress[i][b] = stress[i];
+    blk->energy[b] = energy + 0.5 * c->shear_stiffness * fr.gamma * fr.gamma;
+}
+
+/* Fast path for blocks of linear triangles (the far field of a zonal model):
+ * one loop over the lanes, vectorised by gcc (libmvec's atan, sqrt and
+ * divisions in vector registers); no state, residuals and dissipation 0.
+ * Always handles the block. */
+static int linear_evaluate_tri_block(const void *params, double dt, wff_tri_block *blk)
+{
+    (void)dt; /* no flow */
+    const linear_params local = *(const linear_params *)params; /* stays in registers */
+    const double slack = local.tension_only;
+    memset(blk->residual, 0, sizeof blk->residual); /* (outside the lanes' loop: a store
+                                                     gcc makes a memset stops it vectorising) */
+    memset(blk->dissipated, 0, sizeof blk->dissipated);
+#pragma omp simd
+    for (int b = 0; b < WFF_BLOCK; b++)
+        linear_tri_lane(&local, slack, blk, b);
+    return 0;
+}
+
 static void linear_energy_split(const void *params, const double F[6], const double dA[2],
                                 double gamma_f, double *mech)
 {
@@ -239,5 +286,6 @@ static const wff_cell_type linear_yarns = {
     .wave_speeds = linear_wave_speeds,
     .energy_split = linear_energy_split,
     .evaluate_shared = linear_evaluate_shared,
+    .evaluate_tri_block = linear_evaluate_tri_block,
 };
 WFF_REGISTER_CELL(linear_yarns);

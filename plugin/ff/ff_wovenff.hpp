@@ -35,6 +35,7 @@ void wff_ff_register_materials(); // ff_materials.cpp: the material handle table
 void wff_ff_register_files();   // ff_files.cpp: checked writes, folders, locks, no shell
 void wff_ff_register_checks(); // ff_checks.cpp: checks a scene makes before it runs
 void wff_ff_register_background(); // ff_background.cpp: programs started without waiting
+void wff_ff_register_zones();  // ff_zones.cpp: zonal materials
 
 // Record "fn: message" as the last error and stop the script (exit code 8
 // unless it catches the error). Never returns.

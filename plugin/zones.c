@@ -1,0 +1,518 @@
+/* zones.c: per-region materials. A model may give sets of its elements
+ * materials of their own (zones); zone 0 is the model's material. The zones
+ * are kept as one wff_elements set per zone (the zone's elements copied out of
+ * the mesh at assignment, node numbers the model's), so the element kernels
+ * run unchanged on each; the model's own m->el stays the whole mesh (geometry
+ * and output). The force pass, masses, stable step and energy split loop over
+ * the zones; γᶠ is gathered from the model's array into a zone's and scattered
+ * back around each pass. A zone's cell may see its own diagonal preload,
+ * matched to the model cell's membrane forces at the model's preload
+ * (docs/model.md "Zonal materials"). Knows the model, elements and cells
+ * through their tables; nothing of the integrator's step, contact, output
+ * files or FreeFEM. Without zones (m->zones NULL) every function is the plain
+ * call the model made before zones existed. */
+#include "zones.h"
+#include "wovenff/material.h"
+#include "wovenff/text_io.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct wff_zone {
+    wff_material mat;         /* zone 0: unused (the model's m->mat) */
+    int preload;              /* WFF_ZONE_PRELOAD_* */
+    double F_pre[4];          /* matched: the zone cell's own preload */
+    int n_elements, n_tris;   /* built: elements (model numbering, ascending: tris first) */
+    int *element;
+    int *tri, *quad;          /* connectivity copies the zone's wff_elements points into */
+    wff_elements el;
+    double *gamma_f;          /* the zone's γᶠ (3 per tri, then 4 per quad) */
+} wff_zone;
+
+struct wff_zones {
+    int n;                    /* zones, zone 0 included */
+    int n_el;                 /* elements of the model */
+    int *element_zone;        /* per element: its zone */
+    double *mass;             /* one zone's masses (5 per node) */
+    wff_zone zone[WFF_ZONES_MAX];
+};
+
+static void zone_unbuild(wff_zone *z)
+{
+    free(z->element);
+    free(z->tri);
+    free(z->quad);
+    free(z->gamma_f);
+    wff_elements_free(&z->el);
+    z->element = z->tri = z->quad = NULL;
+    z->gamma_f = NULL;
+    z->n_elements = z->n_tris = 0;
+}
+
+void wff_zones_free(wff_model *m)
+{
+    struct wff_zones *Z = m->zones;
+    if (!Z)
+        return;
+    for (int k = 0; k < Z->n; k++)
+        zone_unbuild(&Z->zone[k]);
+    free(Z->element_zone);
+    free(Z->mass);
+    free(Z);
+    m->zones = NULL;
+}
+
+/* What zone k's elements see: the model's settings, the zone's material and,
+ * when matched, its preload. */
+static void zone_material(const wff_model *m, int k, wff_element_material *em)
+{
+    const wff_zone *z = &m->zones->zone[k];
+    *em = m->em;
+    if (k == 0)
+        return;
+    em->mat = &z->mat;
+    if (z->preload == WFF_ZONE_PRELOAD_MATCHED) {
+        memcpy(em->F_pre, z->F_pre, sizeof em->F_pre);
+        em->J_pre = z->F_pre[0] * z->F_pre[3] - z->F_pre[1] * z->F_pre[2];
+    }
+}
+
+static size_t point_base(int e, int n_tris)
+{
+    return e < n_tris ? (size_t)WFF_TRI_POINTS * (size_t)e
+                      : (size_t)WFF_TRI_POINTS * (size_t)n_tris +
+                            (size_t)WFF_QUAD_POINTS * (size_t)(e - n_tris);
+}
+
+/* γᶠ of zone z's elements from (to_model 0) or into (1) the model's array. */
+static void zone_gamma(const wff_model *m, wff_zone *z, double *gamma_f, int to_model)
+{
+    int nt = m->el.n_tris;
+    for (int i = 0; i < z->n_elements; i++) {
+        int e = z->element[i];
+        int np = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
+        double *global = gamma_f + point_base(e, nt), *local = z->gamma_f + point_base(i, z->n_tris);
+        for (int q = 0; q < np; q++) {
+            if (to_model)
+                global[q] = local[q];
+            else
+                local[q] = global[q];
+        }
+    }
+}
+
+/* The zones' element sets from element_zone. */
+static int build(wff_model *m, wff_error *err)
+{
+    struct wff_zones *Z = m->zones;
+    int nt = m->el.n_tris;
+    for (int k = 0; k < Z->n; k++) {
+        wff_zone *z = &Z->zone[k];
+        zone_unbuild(z);
+        int count = 0, tris = 0;
+        for (int e = 0; e < Z->n_el; e++)
+            if (Z->element_zone[e] == k) {
+                count++;
+                tris += e < nt;
+            }
+        if (count == 0)
+            continue;
+        int quads = count - tris;
+        z->element = malloc(sizeof(int) * (size_t)count);
+        z->tri = malloc(sizeof(int) * 3 * (size_t)(tris ? tris : 1));
+        z->quad = malloc(sizeof(int) * 4 * (size_t)(quads ? quads : 1));
+        z->gamma_f = malloc(sizeof(double) * (point_base(count, tris) + 1));
+        if (!z->element || !z->tri || !z->quad || !z->gamma_f) {
+            zone_unbuild(z);
+            return wff_fail(err, "zones: out of memory for zone %d (%d elements)", k, count);
+        }
+        int i = 0;
+        for (int e = 0; e < Z->n_el; e++) {
+            if (Z->element_zone[e] != k)
+                continue;
+            if (e < nt)
+                memcpy(z->tri + 3 * i, m->mesh.tri + 3 * e, 3 * sizeof(int));
+            else
+                memcpy(z->quad + 4 * (i - tris), m->mesh.quad + 4 * (e - nt), 4 * sizeof(int));
+            z->element[i++] = e;
+        }
+        z->n_elements = count;
+        z->n_tris = tris;
+        if (wff_elements_init(&z->el, m->mesh.xy, tris, z->tri, quads, z->quad, err)) {
+            zone_unbuild(z);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* Membrane forces per mesh width σ11 = P11 / λ2, σ22 = P22 / λ1 (σ = P F_preᵀ /
+ * J_pre for a diagonal F_pre = diag(λ1, λ2)) of material mat at the preload
+ * diag(a), amplitudes dA, γᶠ = 0. */
+static int preload_forces(const wff_material *mat, const double a[2], const double dA[2],
+                          double sigma[2])
+{
+    const double F[6] = {a[0], 0, 0, a[1], 0, 0};
+    wff_point_result r;
+    if (wff_material_evaluate(mat, F, dA, 0, 0, &r) != WFF_POINT_OK)
+        return -1;
+    sigma[0] = r.stress[0] / a[1];
+    sigma[1] = r.stress[3] / a[0];
+    return isfinite(sigma[0]) && isfinite(sigma[1]) ? 0 : -1;
+}
+
+/* Zone k's diagonal preload whose membrane forces are the model cell's at the
+ * model's preload: Newton on diag(a1, a2), central-difference Jacobian. */
+static int match_preload(wff_model *m, int k, wff_error *err)
+{
+    wff_zone *z = &m->zones->zone[k];
+    const double *Fp = m->em.F_pre;
+    if (Fp[1] != 0 || Fp[2] != 0)
+        return wff_fail(err, "zone %d (%s): a matched preload needs a diagonal model preload "
+                        "(F_pre = [%g %g; %g %g])", k, z->mat.source, Fp[0], Fp[1], Fp[2], Fp[3]);
+    const double a_model[2] = {Fp[0], Fp[3]};
+    const double dA0[2] = {m->n_nodes ? m->u[3] : 0, m->n_nodes ? m->u[4] : 0}, none[2] = {0, 0};
+    double target[2], s[2];
+    if (preload_forces(&m->mat, a_model, dA0, target))
+        return wff_fail(err, "zone %d: the model's cell fails at its preload", k);
+    double a[2] = {a_model[0], a_model[1]};
+    double scale = fmax(fmax(fabs(target[0]), fabs(target[1])), 1e-3); /* N/m */
+    for (int it = 0; it < 100; it++) {
+        if (preload_forces(&z->mat, a, none, s))
+            break;
+        double r[2] = {s[0] - target[0], s[1] - target[1]};
+        if (fabs(r[0]) <= 1e-11 * scale && fabs(r[1]) <= 1e-11 * scale) {
+            z->F_pre[0] = a[0], z->F_pre[1] = z->F_pre[2] = 0, z->F_pre[3] = a[1];
+            return 0;
+        }
+        double J[2][2];
+        for (int j = 0; j < 2; j++) {
+            const double h = 1e-7 * a[j];
+            double ap[2] = {a[0], a[1]}, am[2] = {a[0], a[1]}, sp[2], sm[2];
+            ap[j] += h, am[j] -= h;
+            if (preload_forces(&z->mat, ap, none, sp) || preload_forces(&z->mat, am, none, sm))
+                it = 1000;
+            for (int i = 0; i < 2; i++)
+                J[i][j] = (sp[i] - sm[i]) / (2 * h);
+        }
+        double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+        if (it >= 1000 || !(fabs(det) > 0))
+            break;
+        double d0 = -(J[1][1] * r[0] - J[0][1] * r[1]) / det;
+        double d1 = -(-J[1][0] * r[0] + J[0][0] * r[1]) / det;
+        double big = fmax(fabs(d0) / a[0], fabs(d1) / a[1]), cut = big > 0.05 ? 0.05 / big : 1;
+        a[0] += cut * d0, a[1] += cut * d1;
+    }
+    return wff_fail(err, "zone %d (%s): no diagonal preload of cell '%s' gives the model's "
+                    "preload membrane forces %g, %g N/m (cell '%s' at stretch %g, %g)", k,
+                    z->mat.source, z->mat.cell->name, target[0], target[1], m->mat.cell->name,
+                    a_model[0], a_model[1]);
+}
+
+int wff_zones_preload_changed(wff_model *m, wff_error *err)
+{
+    struct wff_zones *Z = m->zones;
+    if (!Z)
+        return 0;
+    for (int k = 1; k < Z->n; k++)
+        if (Z->zone[k].preload == WFF_ZONE_PRELOAD_MATCHED && match_preload(m, k, err))
+            return -1;
+    return wff_model_masses_changed(m, err);
+}
+
+int wff_model_zone_elements(wff_model *m, const unsigned char *selected,
+                            const char *material_path, int preload, wff_error *err)
+{
+    if (m->step > 0 || m->v_half_valid)
+        return wff_fail(err, "zone material '%s': the run has started (step %ld); give the "
+                        "zones their materials before the first step", material_path, m->step);
+    if (m->em.static_amplitudes)
+        return wff_fail(err, "zone material '%s': static amplitudes are on; zones keep the "
+                        "amplitudes dynamic (set static_amplitudes 0)", material_path);
+    if (preload != WFF_ZONE_PRELOAD_SHARED && preload != WFF_ZONE_PRELOAD_MATCHED)
+        return wff_fail(err, "zone material '%s': preload mode %d: must be 0 (shared) or 1 "
+                        "(matched)", material_path, preload);
+    int n_el = m->el.n_tris + m->el.n_quads;
+    if (m->zones && m->zones->n >= WFF_ZONES_MAX)
+        return wff_fail(err, "zone material '%s': %d zones already, the most a model has",
+                        material_path, WFF_ZONES_MAX);
+    wff_material mat;
+    if (wff_material_load(material_path, &mat, err))
+        return -1;
+    if (mat.cell->n_amplitudes > 0 && m->mat.cell->n_amplitudes == 0)
+        return wff_fail(err, "zone material '%s': cell '%s' has crimp amplitudes and the "
+                        "model's cell '%s' has none (its amplitude DOFs are fixed): give "
+                        "the model the cell with amplitudes and the zones the others",
+                        material_path, mat.cell->name, m->mat.cell->name);
+    if (preload == WFF_ZONE_PRELOAD_MATCHED && mat.cell->n_amplitudes > 0)
+        return wff_fail(err, "zone material '%s': a matched preload is for a cell without "
+                        "amplitudes (cell '%s' has them: use the shared preload)",
+                        material_path, mat.cell->name);
+    int fresh = m->zones == NULL;
+    if (fresh) {
+        struct wff_zones *Z = calloc(1, sizeof *Z);
+        if (Z) {
+            Z->element_zone = calloc((size_t)(n_el ? n_el : 1), sizeof(int));
+            Z->mass = malloc(sizeof(double) * (size_t)m->n_dofs);
+        }
+        if (!Z || !Z->element_zone || !Z->mass) {
+            if (Z)
+                free(Z->element_zone), free(Z->mass);
+            free(Z);
+            return wff_fail(err, "zone material '%s': out of memory", material_path);
+        }
+        Z->n = 1;
+        Z->n_el = n_el;
+        m->zones = Z;
+    }
+    struct wff_zones *Z = m->zones;
+    int k = Z->n, count = 0;
+    wff_zone *z = &Z->zone[k];
+    memset(z, 0, sizeof *z);
+    z->mat = mat;
+    z->preload = preload;
+    Z->n++;
+    if (preload == WFF_ZONE_PRELOAD_MATCHED && match_preload(m, k, err)) {
+        Z->n--;
+        if (fresh)
+            wff_zones_free(m);
+        return -1;
+    }
+    for (int e = 0; e < n_el; e++)
+        if (selected[e]) {
+            Z->element_zone[e] = k;
+            count++;
+        }
+    if (build(m, err) || wff_model_masses_changed(m, err))
+        return -1;
+    return count;
+}
+
+int wff_model_zone_region(wff_model *m, const char *group, int group_tag,
+                          const char *material_path, int preload, wff_error *err)
+{
+    int tag = group_tag;
+    if (group && group[0]) {
+        tag = wff_mesh_group_tag(&m->mesh, 2, group);
+        if (tag < 0)
+            return wff_fail(err, "zone material '%s': no physical surface named '%s' in the "
+                            "mesh", material_path, group);
+    }
+    int nt = m->el.n_tris, n_el = nt + m->el.n_quads, count = 0;
+    unsigned char *sel = calloc((size_t)(n_el ? n_el : 1), 1);
+    if (!sel)
+        return wff_fail(err, "out of memory");
+    for (int e = 0; e < n_el; e++) {
+        int region = e < nt ? m->mesh.tri_region[e] : m->mesh.quad_region[e - nt];
+        sel[e] = region == tag;
+        count += sel[e];
+    }
+    if (count == 0) {
+        free(sel);
+        return wff_fail(err, "zone material '%s': no element in region %d%s%s", material_path,
+                        tag, group && group[0] ? " " : "", group && group[0] ? group : "");
+    }
+    int n = wff_model_zone_elements(m, sel, material_path, preload, err);
+    free(sel);
+    return n;
+}
+
+int wff_model_zone_disc(wff_model *m, double x, double y, double radius, int outside,
+                        const char *material_path, int preload, wff_error *err)
+{
+    if (!(radius >= 0) || !isfinite(radius) || !isfinite(x) || !isfinite(y))
+        return wff_fail(err, "zone material '%s': disc centre (%g, %g) m, radius %g m: must "
+                        "be finite, radius >= 0", material_path, x, y, radius);
+    int nt = m->el.n_tris, n_el = nt + m->el.n_quads;
+    unsigned char *sel = calloc((size_t)(n_el ? n_el : 1), 1);
+    if (!sel)
+        return wff_fail(err, "out of memory");
+    for (int e = 0; e < n_el; e++) {
+        int nn = e < nt ? 3 : 4;
+        const int *node = e < nt ? m->mesh.tri + 3 * e : m->mesh.quad + 4 * (e - nt);
+        double cx = 0, cy = 0;
+        for (int a = 0; a < nn; a++) {
+            cx += m->mesh.xy[2 * node[a]] / nn;
+            cy += m->mesh.xy[2 * node[a] + 1] / nn;
+        }
+        int beyond = hypot(cx - x, cy - y) > radius;
+        sel[e] = outside ? beyond : !beyond;
+    }
+    int n = wff_model_zone_elements(m, sel, material_path, preload, err);
+    free(sel);
+    return n;
+}
+
+int wff_model_zone_count(const wff_model *m)
+{
+    return m->zones ? m->zones->n : 1;
+}
+
+int wff_model_zone_size(const wff_model *m, int zone)
+{
+    if (!m->zones)
+        return zone == 0 ? m->el.n_tris + m->el.n_quads : 0;
+    return zone >= 0 && zone < m->zones->n ? m->zones->zone[zone].n_elements : 0;
+}
+
+const wff_material *wff_model_zone_material(const wff_model *m, int zone)
+{
+    if (zone == 0)
+        return &m->mat;
+    return m->zones && zone > 0 && zone < m->zones->n ? &m->zones->zone[zone].mat : NULL;
+}
+
+void wff_zones_forces(wff_model *m, const double *u, double *gamma_f, double dt, double *f,
+                      wff_force_totals *totals)
+{
+    struct wff_zones *Z = m->zones;
+    if (!Z) {
+        wff_elements_forces(&m->el, &m->em, m->mesh.xy, u, gamma_f, dt, f, totals);
+        return;
+    }
+    totals->internal_energy = totals->dissipated = 0;
+    totals->bad_element = -1;
+    totals->bad_point = 0;
+    totals->bad_status = WFF_POINT_OK;
+    totals->bad_residual = 0;
+    totals->bad_iterations = 0;
+    totals->amplitude_iterations = 0;
+    for (int k = 0; k < Z->n; k++) {
+        wff_zone *z = &Z->zone[k];
+        if (z->n_elements == 0)
+            continue;
+        wff_element_material em;
+        zone_material(m, k, &em);
+        z->el.n_threads = m->el.n_threads <= z->el.max_threads ? m->el.n_threads : 1;
+        zone_gamma(m, z, gamma_f, 0);
+        wff_force_totals t;
+        wff_elements_forces(&z->el, &em, m->mesh.xy, u, z->gamma_f, dt, f, &t);
+        zone_gamma(m, z, gamma_f, 1);
+        totals->internal_energy += t.internal_energy;
+        totals->dissipated += t.dissipated;
+        totals->amplitude_iterations += t.amplitude_iterations;
+        if (t.bad_element >= 0 && totals->bad_element < 0) {
+            totals->bad_element = z->element[t.bad_element];
+            totals->bad_point = t.bad_point;
+            totals->bad_status = t.bad_status;
+            totals->bad_residual = t.bad_residual;
+            totals->bad_iterations = t.bad_iterations;
+        }
+    }
+}
+
+void wff_zones_masses(wff_model *m)
+{
+    struct wff_zones *Z = m->zones;
+    if (!Z) {
+        wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
+        return;
+    }
+    memset(m->mass, 0, sizeof(double) * (size_t)m->n_dofs);
+    for (int k = 0; k < Z->n; k++) {
+        wff_zone *z = &Z->zone[k];
+        if (z->n_elements == 0)
+            continue;
+        wff_element_material em = m->em; /* ρ_A of the zone over J_pre of the model */
+        em.mat = k == 0 ? &m->mat : &z->mat;
+        wff_elements_masses(&z->el, &em, m->n_nodes, Z->mass);
+        for (int i = 0; i < m->n_dofs; i++)
+            m->mass[i] += Z->mass[i];
+    }
+}
+
+double wff_zones_stable_step(const wff_model *m, const double *u, int *worst)
+{
+    const struct wff_zones *Z = m->zones;
+    if (!Z)
+        return wff_elements_stable_step(&m->el, &m->em, m->mesh.xy, u, worst);
+    double dt = INFINITY;
+    *worst = -1;
+    for (int k = 0; k < Z->n; k++) {
+        const wff_zone *z = &Z->zone[k];
+        if (z->n_elements == 0)
+            continue;
+        wff_element_material em;
+        zone_material(m, k, &em);
+        int w = -1;
+        double dz = wff_elements_stable_step(&z->el, &em, m->mesh.xy, u, &w);
+        if (!(dz >= dt) || *worst < 0) { /* a NaN wins: it is reported */
+            dt = dz;
+            *worst = w >= 0 && w < z->n_elements ? z->element[w] : -1;
+        }
+    }
+    return dt;
+}
+
+void wff_zones_energy_split(const wff_model *m, const double *u, const double *gamma_f,
+                            double *mech)
+{
+    const struct wff_zones *Z = m->zones;
+    if (!Z) {
+        wff_elements_energy_split(&m->el, &m->em, m->mesh.xy, u, gamma_f, mech);
+        return;
+    }
+    const wff_cell_type *base = m->mat.cell;
+    for (int j = 0; j < base->n_mech && j < WFF_MECH_MAX; j++)
+        mech[j] = 0;
+    for (int k = 0; k < Z->n; k++) {
+        wff_zone *z = (wff_zone *)&Z->zone[k]; /* its γᶠ scratch only */
+        if (z->n_elements == 0)
+            continue;
+        wff_element_material em;
+        zone_material(m, k, &em);
+        zone_gamma(m, z, (double *)gamma_f, 0);
+        double part[WFF_MECH_MAX] = {0};
+        wff_elements_energy_split(&z->el, &em, m->mesh.xy, u, z->gamma_f, part);
+        const wff_cell_type *cell = em.mat->cell;
+        for (int i = 0; i < cell->n_mech && i < WFF_MECH_MAX; i++)
+            for (int j = 0; j < base->n_mech && j < WFF_MECH_MAX; j++)
+                if (strcmp(cell->mech_names[i], base->mech_names[j]) == 0)
+                    mech[j] += part[i];
+    }
+}
+
+const wff_element_material *wff_zones_element_material(const wff_model *m, int e,
+                                                       wff_element_material *scratch)
+{
+    if (!m->zones || e < 0 || e >= m->zones->n_el || m->zones->element_zone[e] == 0)
+        return &m->em;
+    zone_material(m, m->zones->element_zone[e], scratch);
+    return scratch;
+}
+
+int wff_zones_diag(const wff_model *m, int e, int diag)
+{
+    if (!m->zones || diag < 0)
+        return diag;
+    wff_element_material scratch;
+    const wff_cell_type *cell = wff_zones_element_material(m, e, &scratch)->mat->cell;
+    const wff_cell_type *base = m->mat.cell;
+    if (cell == base)
+        return diag;
+    for (int d = 0; d < cell->n_diag; d++)
+        if (strcmp(cell->diag_names[d], base->diag_names[diag]) == 0)
+            return d;
+    return -1;
+}
+
+uint64_t wff_zones_fingerprint(const wff_model *m, uint64_t g)
+{
+    const struct wff_zones *Z = m->zones;
+    if (!Z)
+        return g;
+    g = wff_fnv1a(g, &Z->n, sizeof Z->n);
+    g = wff_fnv1a(g, Z->element_zone, sizeof(int) * (size_t)Z->n_el);
+    for (int k = 1; k < Z->n; k++) {
+        const wff_zone *z = &Z->zone[k];
+        g = wff_fnv1a(g, z->mat.cell->name, strlen(z->mat.cell->name));
+        g = wff_fnv1a(g, &z->mat.areal_density, sizeof(double));
+        g = wff_fnv1a(g, z->mat.params, sizeof z->mat.params);
+        g = wff_fnv1a(g, &z->preload, sizeof(int));
+        if (z->preload == WFF_ZONE_PRELOAD_MATCHED)
+            g = wff_fnv1a(g, z->F_pre, sizeof z->F_pre);
+    }
+    return g;
+}

@@ -1,0 +1,47 @@
+/* zones.h: what the solver's files share about per-region materials
+ * (plugin/zones.c; the public calls are in include/wovenff/solver.h). Every
+ * function takes the plain path, the very call the model made before zones
+ * existed, when the model has none (m->zones == NULL). */
+#ifndef WFF_ZONES_H
+#define WFF_ZONES_H
+
+#include <stdint.h>
+
+#include "solver_internal.h"
+
+/* Free the zones (wff_model_free). */
+void wff_zones_free(wff_model *m);
+/* The element force pass: wff_elements_forces over each zone with its own
+ * material and preload, adding into f (not zeroed here), γᶠ (the model's
+ * layout, 3 per tri then 4 per quad) advanced by dt; totals summed, a bad
+ * element numbered in the model. */
+void wff_zones_forces(wff_model *m, const double *u, double *gamma_f, double dt, double *f,
+                      wff_force_totals *totals);
+/* Lumped masses of every zone into m->mass (zeroed first). */
+void wff_zones_masses(wff_model *m);
+/* The smallest stable step over the zones; *worst the model's element. */
+double wff_zones_stable_step(const wff_model *m, const double *u, int *worst);
+/* Energy per mechanism in the order of the model's cell's mech_names; a zone
+ * of another cell adds each of its mechanisms to the one of the same name
+ * (one without a namesake is left out). */
+void wff_zones_energy_split(const wff_model *m, const double *u, const double *gamma_f,
+                            double *mech);
+/* The material and preload element e (model numbering) sees: &m->em, or
+ * *scratch filled for its zone. */
+const wff_element_material *wff_zones_element_material(const wff_model *m, int e,
+                                                       wff_element_material *scratch);
+/* Index in element e's cell's diagnostics of the model cell's diagnostic
+ * `diag` (the same name), or -1 when that cell has none of the name. */
+int wff_zones_diag(const wff_model *m, int e, int diag);
+/* The model's preload changed: matched zone preloads solved again, masses set;
+ * -1 (err set) if a match fails. */
+int wff_zones_preload_changed(wff_model *m, wff_error *err);
+/* The zones' materials, preloads and element assignment folded into hash g
+ * (g unchanged without zones: checkpoints of one-material models as before). */
+uint64_t wff_zones_fingerprint(const wff_model *m, uint64_t g);
+/* model.c: the masses changed (a zone's material or preload): masses, fabric
+ * mass, the clamp's shares and the stored energy before the run again; -1
+ * (err set) if the clamp's shares fail. */
+int wff_model_masses_changed(wff_model *m, wff_error *err);
+
+#endif
