@@ -366,12 +366,16 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
  * one F. A function of its own so that its locals are plain scalars once
  * inlined (inside an `omp simd` body they would become per-lane arrays). */
 WFF_INLINE void king_tri_lane(const king_params *k, const wff_shear_flow *flow,
-                              const double scale[FAMILIES], wff_tri_block *blk, int b)
+                              const double scale[FAMILIES], wff_tri_block *blk,
+                              double degenerate[WFF_BLOCK], int b)
 {
     const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
                          blk->F[3][b], blk->F[4][b], blk->F[5][b]};
     wff_yarn_frame fr;
-    blk->degenerate[b] = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
+    (void)wff_yarn_kinematics(k->pitch0, F, &fr);
+    /* its test as a double: an int in the lane loop would make gcc take 16 lanes for
+     * 512-bit vectors, more than the block has, and fall back to 256-bit halves */
+    degenerate[b] = fr.p[0] > 0 && fr.p[1] > 0 && fr.sin_t > 0 ? 0.0 : 1.0;
     double q[FAMILIES][FAMILIES] = {{0, 0}, {0, 0}}, energy = 0, dissipated = 0;
 #pragma GCC unroll 3
     for (int p = 0; p < 3; p++) {
@@ -416,9 +420,12 @@ static int king_evaluate_tri_block(const void *params, double dt, wff_tri_block 
     const double inv_cell = 1 / k->cell_area, third = 1.0 / 3.0;
     const double scale[FAMILIES] = {k->pitch0[0] * inv_cell * third,
                                     k->pitch0[1] * inv_cell * third};
+    double degenerate[WFF_BLOCK];
 #pragma omp simd
     for (int b = 0; b < WFF_BLOCK; b++)
-        king_tri_lane(k, &flow, scale, blk, b);
+        king_tri_lane(k, &flow, scale, blk, degenerate, b);
+    for (int b = 0; b < WFF_BLOCK; b++)
+        blk->degenerate[b] = degenerate[b] != 0;
     return 0;
 }
 
