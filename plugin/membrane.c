@@ -833,6 +833,77 @@ int wff_element_center_eval(const wff_elements *el, const wff_element_material *
     return em->mat->cell->evaluate(em->mat->params, Fe, dA, gf, 0, out);
 }
 
+/* An element's stable step from its size and its cell's wave speeds:
+ * membrane waves alone: dt_m = h/c; amplitude oscillator alone: dt_A = 2/ω.
+ * Coupled (∂R/∂F ≠ 0), the largest frequency of a positive semi-definite
+ * stiffness [[K_mm, K_ma], [K_am, K_aa]] is at most the sum of the blocks'
+ * (|xᵀK_ma y|² ≤ xᵀK_mm x · yᵀK_aa y), so ω² ≤ ω_m² + ω_A² and
+ * dt = 1/sqrt(1/dt_m² + 1/dt_A²): a bound where min(dt_m, dt_A) was a few
+ * percent optimistic when the two are close. */
+static inline double element_stable_dt(double size, double speed, double omega,
+                                       double amplitude_factor, int static_amplitudes)
+{
+    double dt = size / speed;
+    if (omega > 0 && !static_amplitudes) {
+        double dt_amp = 2 / omega * sqrt(amplitude_factor);
+        dt = 1 / sqrt(1 / (dt * dt) + 1 / (dt_amp * dt_amp));
+    }
+    return dt;
+}
+
+/* The stable-step scan over triangles e0 .. e0 + n − 1 through the cell's
+ * wave_speeds_block: each lane the centre state of wff_element_center_state
+ * (F, mean ΔA) with the preload applied, the same sums in the same order; the
+ * smallest step and its element into *mine, *mine_e as the scalar scan does
+ * (elements in order, a NaN step taken). Lanes past n repeat the last element.
+ * Returns -1 if the cell declines these parameters (nothing done). */
+static int tri_block_stable_step(const wff_elements *el, const wff_element_material *em,
+                                 const double *X, const double *u, int e0, int n,
+                                 double amplitude_factor, double *mine, int *mine_e)
+{
+    const wff_material *mat = em->mat;
+    const double *Fp = em->F_pre;
+    wff_wave_block blk;
+#pragma omp simd
+    for (int j = 0; j < WFF_BLOCK; j++) {
+        int e = e0 + (j < n ? j : n - 1);
+        const int *node = el->tri + 3 * e;
+        const double *g = el->tri_grad + 6 * e;
+        double F0 = 0, F1 = 0, F2 = 0, F3 = 0, F4 = 0, F5 = 0, dA0 = 0, dA1 = 0;
+        for (int a = 0; a < 3; a++) {
+            const double *ua = u + D * node[a];
+            double x = X[2 * node[a]] + ua[0], y = X[2 * node[a] + 1] + ua[1], z = ua[2];
+            F0 += x * g[2 * a];
+            F1 += x * g[2 * a + 1];
+            F2 += y * g[2 * a];
+            F3 += y * g[2 * a + 1];
+            F4 += z * g[2 * a];
+            F5 += z * g[2 * a + 1];
+            dA0 += ua[3] / 3;
+            dA1 += ua[4] / 3;
+        }
+        blk.F[0][j] = F0 * Fp[0] + F1 * Fp[2];
+        blk.F[1][j] = F0 * Fp[1] + F1 * Fp[3];
+        blk.F[2][j] = F2 * Fp[0] + F3 * Fp[2];
+        blk.F[3][j] = F2 * Fp[1] + F3 * Fp[3];
+        blk.F[4][j] = F4 * Fp[0] + F5 * Fp[2];
+        blk.F[5][j] = F4 * Fp[1] + F5 * Fp[3];
+        blk.dA[0][j] = dA0;
+        blk.dA[1][j] = dA1;
+    }
+    if (mat->cell->wave_speeds_block(mat->params, mat->areal_density, &blk) != 0)
+        return -1;
+    for (int j = 0; j < n; j++) {
+        double dt = element_stable_dt(el->size[e0 + j], blk.membrane_speed[j],
+                                      blk.amplitude_omega[j], amplitude_factor, 0);
+        if (!(dt >= *mine)) { /* also catches NaN */
+            *mine = dt;
+            *mine_e = e0 + j;
+        }
+    }
+    return 0;
+}
+
 double wff_elements_stable_step(const wff_elements *el, const wff_element_material *em,
                                 const double *X, const double *u, int *worst)
 {
@@ -841,29 +912,36 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
     double best = INFINITY;
     int n = el->n_tris + el->n_quads, best_e = -1;
     int threads = el->n_threads > 1 && n >= 64 * WFF_BLOCK ? el->n_threads : 1;
+    /* triangles in blocks through the cell's vectorised wave speeds where it has them
+     * (not for static amplitudes, whose mean ΔA is the points', nor the reference path) */
+    const int use_block = mat->cell->wave_speeds_block && !em->static_amplitudes &&
+                          !em->reference_path;
+    const int n_blocks = use_block ? (el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK : 0;
+    int first_scalar = use_block ? el->n_tris : 0;
 #pragma omp parallel num_threads(threads) if (threads > 1)
     {
         double mine = INFINITY;
         int mine_e = -1;
 #pragma omp for schedule(static)
-        for (int e = 0; e < n; e++) {
+        for (int blk = 0; blk < n_blocks; blk++) {
+            int e0 = blk * WFF_BLOCK;
+            int nb = el->n_tris - e0 < WFF_BLOCK ? el->n_tris - e0 : WFF_BLOCK;
+            if (tri_block_stable_step(el, em, X, u, e0, nb, amplitude_factor, &mine,
+                                      &mine_e) != 0) {
+#pragma omp atomic write
+                first_scalar = 0; /* declined (by the parameters: every block alike) */
+            }
+        }
+#pragma omp for schedule(static)
+        for (int e = first_scalar; e < n; e++) {
             double F[6], Fe[6], dA[2], speed, omega;
             wff_element_center_state(el, X, u, e, F, dA);
             if (em->static_amplitudes)
                 static_mean_dA(el, e, dA);
             preload_apply(em, F, Fe);
             mat->cell->wave_speeds(mat->params, mat->areal_density, Fe, dA, &speed, &omega);
-            /* membrane waves alone: dt_m = h/c; amplitude oscillator alone: dt_A = 2/ω.
-             * Coupled (∂R/∂F ≠ 0), the largest frequency of a positive semi-definite
-             * stiffness [[K_mm, K_ma], [K_am, K_aa]] is at most the sum of the blocks'
-             * (|xᵀK_ma y|² ≤ xᵀK_mm x · yᵀK_aa y), so ω² ≤ ω_m² + ω_A² and
-             * dt = 1/sqrt(1/dt_m² + 1/dt_A²): a bound where min(dt_m, dt_A) was a few
-             * percent optimistic when the two are close. */
-            double dt = el->size[e] / speed;
-            if (omega > 0 && !em->static_amplitudes) {
-                double dt_amp = 2 / omega * sqrt(amplitude_factor);
-                dt = 1 / sqrt(1 / (dt * dt) + 1 / (dt_amp * dt_amp));
-            }
+            double dt = element_stable_dt(el->size[e], speed, omega, amplitude_factor,
+                                          em->static_amplitudes);
             if (!(dt >= mine)) { /* also catches NaN */
                 mine = dt;
                 mine_e = e;

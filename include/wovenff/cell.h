@@ -111,6 +111,15 @@ typedef struct wff_tangent_block {
     int degenerate[WFF_BLOCK];       /* out: 1 where evaluate() would say degenerate */
 } wff_tangent_block;
 
+/* A block of WFF_BLOCK states for wave_speeds_block, structure of arrays:
+ * index [component][lane]. */
+typedef struct wff_wave_block {
+    double F[6][WFF_BLOCK];                 /* in: F seen by the cell (preload applied) */
+    double dA[2][WFF_BLOCK];                /* in: amplitudes, m */
+    double membrane_speed[WFF_BLOCK];       /* out: as wave_speeds, m/s */
+    double amplitude_omega[WFF_BLOCK];      /* out: as wave_speeds, rad/s */
+} wff_wave_block;
+
 /* A material: the cell that models it and that cell's parameters. */
 typedef struct wff_material {
     const wff_cell_type *cell;
@@ -225,6 +234,14 @@ struct wff_cell_type {
      * Returns 0, or −1 when these parameters need the general path (on params
      * only, never the state). Agrees with amplitude_tangent to round-off. */
     int (*amplitude_tangent_block)(const void *params, wff_tangent_block *block);
+
+    /* Optional: wave_speeds for a whole block of states at once, vectorised
+     * across the lanes (the stable-step scan). Returns 0 when it handled the
+     * block, −1 when these parameters need wave_speeds (the answer depends on
+     * params only). Must agree with wave_speeds to round-off, lane by lane
+     * (tested); a table that replaces wave_speeds must replace or clear this
+     * too. */
+    int (*wave_speeds_block)(const void *params, double areal_density, wff_wave_block *block);
 };
 
 /* Registry. Cells register with WFF_REGISTER_CELL in their own file; the

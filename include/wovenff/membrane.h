@@ -56,7 +56,8 @@ typedef struct wff_element_material {
     double F_pre[4];      /* row-major 2×2 */
     double J_pre;         /* det F_pre */
     int reference_path;   /* 1: always the cell's plain evaluate(), even where it offers
-                             evaluate_shared (for checks and benchmarks) */
+                             evaluate_shared (for checks and benchmarks), and its plain
+                             wave_speeds() in the stable-step scan */
     double amplitude_mass_factor; /* scales the amplitude masses (eq. 12's 1/6); 0 means 1.
                              Larger is cheaper (the amplitude step limit grows as its
                              square root) and less faithful to the amplitude inertia */

@@ -328,23 +328,23 @@ static void king_energy_split(const void *params, const double F[6], const doubl
  * geometric, shear and locking terms; speed = sqrt(S/ρ_A). Amplitudes:
  * Gershgorin bound of the 2×2 Hessian ∂²W_cell/∂A_k∂A_m over the lumped mass
  * ρ_A/6 per unit area. */
-static void king_wave_speeds(const void *params, double areal_density, const double F[6],
-                             const double dA[2], double *membrane_speed,
-                             double *amplitude_omega)
+WFF_INLINE void king_wave_speeds_at(const king_params *k, double areal_density,
+                                    const double F[6], const double dA[2],
+                                    double locking_exponent, double flow_exponent,
+                                    double *membrane_speed, double *amplitude_omega)
 {
-    const king_params *k = params;
     wff_yarn_frame fr;
-    if (wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK) {
-        *membrane_speed = *amplitude_omega = INFINITY;
-        return;
-    }
+    const int degenerate = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
     const wff_shear_flow held = king_flow(k, 0);
     king_point pt;
-    king_point_at(k, &fr, dA, 0, &held, k->locking_exponent, k->flow_exponent, &pt);
+    king_point_at(k, &fr, dA, 0, &held, locking_exponent, flow_exponent, &pt);
     const double compaction_stiffness = pt.compaction.stiffness; /* ∂F_I/∂I */
-    double sn = fmax(fr.sin_t, 0.05);
+    /* maxima as comparisons (fmax would not vectorise; the same value here: the
+     * first operand is never NaN) */
+    double sn = fr.sin_t > 0.05 ? fr.sin_t : 0.05;
     double shear = k->shear_stiffness / (sn * sn); /* torsional, per rad², N·m */
     double membrane = 0, amplitude = 0;
+#pragma GCC unroll 2
     for (int f = 0; f < FAMILIES; f++) {
         int l = 1 - f;
         const king_family *y = &pt.yarn[f];
@@ -358,16 +358,54 @@ static void king_wave_speeds(const void *params, double areal_density, const dou
          * cell (2 k p_f⁰² / 4p1⁰p2⁰ = k p_f⁰/2p_l⁰), the spars across, shear */
         double s_f = (2 * axial * k->pitch0[f] * k->pitch0[f] +
                       4 * lock_stiff * k->pitch0[l] * k->pitch0[l] + shear) / k->cell_area;
-        membrane = fmax(membrane, s_f);
+        membrane = s_f > membrane ? s_f : membrane;
         double a_diag = 2 * (k->yarn_stiffness[f] * y->sin_b * y->sin_b +
                              fabs(y->tension) * y->cos_b * y->cos_b / L) +
                         2 * k->bending_stiffness[f] * y->cos_b * y->cos_b / (L * L) +
                         4 * fabs(y->moment) / (L * L) + compaction_stiffness +
                         2 * (lock_stiff + y->lock.force / y->spar_length) * (1 + k->lever);
-        amplitude = fmax(amplitude, a_diag + compaction_stiffness);
+        double a_f = a_diag + compaction_stiffness;
+        amplitude = a_f > amplitude ? a_f : amplitude;
     }
-    *membrane_speed = sqrt(membrane / areal_density);
-    *amplitude_omega = sqrt(amplitude / k->cell_area / (areal_density / 6));
+    double speed = sqrt(membrane / areal_density);
+    double omega = sqrt(amplitude / k->cell_area / (areal_density / 6));
+    *membrane_speed = degenerate ? INFINITY : speed;
+    *amplitude_omega = degenerate ? INFINITY : omega;
+}
+
+static void king_wave_speeds(const void *params, double areal_density, const double F[6],
+                             const double dA[2], double *membrane_speed,
+                             double *amplitude_omega)
+{
+    const king_params *k = params;
+    king_wave_speeds_at(k, areal_density, F, dA, k->locking_exponent, k->flow_exponent,
+                        membrane_speed, amplitude_omega);
+}
+
+/* Lane b of a wave-speed block (king_wave_speeds_at, c = 2 and n = 1). */
+WFF_INLINE void king_wave_lane(const king_params *k, double areal_density, wff_wave_block *blk,
+                               int b)
+{
+    const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
+                         blk->F[3][b], blk->F[4][b], blk->F[5][b]};
+    const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
+    double speed, omega;
+    king_wave_speeds_at(k, areal_density, F, dA, 2.0, 1.0, &speed, &omega);
+    blk->membrane_speed[b] = speed;
+    blk->amplitude_omega[b] = omega;
+}
+
+/* The stable-step scan's blocked path: king_wave_speeds on WFF_BLOCK states in
+ * one vectorised loop; declines as king_evaluate_tri_block does. */
+static int king_wave_speeds_block(const void *params, double areal_density, wff_wave_block *blk)
+{
+    const king_params local = *(const king_params *)params, *k = &local;
+    if (k->locking_exponent != 2 || k->flow_exponent != 1)
+        return -1;
+#pragma omp simd
+    for (int b = 0; b < WFF_BLOCK; b++)
+        king_wave_lane(k, areal_density, blk, b);
+    return 0;
 }
 
 /* Shared-kinematics fast path (docs/model.md §11): n points sharing one F, the
@@ -416,12 +454,16 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
  * one F. A function of its own so that its locals are plain scalars once
  * inlined (inside an `omp simd` body they would become per-lane arrays). */
 WFF_INLINE void king_tri_lane(const king_params *k, const wff_shear_flow *flow,
-                              const double scale[FAMILIES], wff_tri_block *blk, int b)
+                              const double scale[FAMILIES], wff_tri_block *blk,
+                              double degenerate[WFF_BLOCK], int b)
 {
     const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
                          blk->F[3][b], blk->F[4][b], blk->F[5][b]};
     wff_yarn_frame fr;
-    blk->degenerate[b] = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
+    (void)wff_yarn_kinematics(k->pitch0, F, &fr);
+    /* its test as a double: an int in the lane loop would make gcc take 16 lanes for
+     * 512-bit vectors, more than the block has, and fall back to 256-bit halves */
+    degenerate[b] = fr.p[0] > 0 && fr.p[1] > 0 && fr.sin_t > 0 ? 0.0 : 1.0;
     double q[FAMILIES][FAMILIES] = {{0, 0}, {0, 0}}, energy = 0, dissipated = 0;
 #pragma GCC unroll 3
     for (int p = 0; p < 3; p++) {
@@ -466,9 +508,12 @@ static int king_evaluate_tri_block(const void *params, double dt, wff_tri_block 
     const double inv_cell = 1 / k->cell_area, third = 1.0 / 3.0;
     const double scale[FAMILIES] = {k->pitch0[0] * inv_cell * third,
                                     k->pitch0[1] * inv_cell * third};
+    double degenerate[WFF_BLOCK];
 #pragma omp simd
     for (int b = 0; b < WFF_BLOCK; b++)
-        king_tri_lane(k, &flow, scale, blk, b);
+        king_tri_lane(k, &flow, scale, blk, degenerate, b);
+    for (int b = 0; b < WFF_BLOCK; b++)
+        blk->degenerate[b] = degenerate[b] != 0;
     return 0;
 }
 
@@ -582,5 +627,6 @@ static const wff_cell_type king_plain = {
     .reference_geometry = king_reference_geometry,
     .amplitude_tangent = king_amplitude_tangent,
     .amplitude_tangent_block = king_amplitude_tangent_block,
+    .wave_speeds_block = king_wave_speeds_block,
 };
 WFF_REGISTER_CELL(king_plain);

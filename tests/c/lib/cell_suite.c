@@ -444,10 +444,47 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
         CHECK(st, worst_block <= 1e-11, "%s: blocked path differs from evaluate by %.3g",
               c->material, worst_block);
     }
+    /* the optional blocked wave speeds too, lane by lane (or it declines the parameters) */
+    double worst_waves = 0;
+    int waves_used = 0;
+    if (cell->wave_speeds_block) {
+        for (int s = 0; s < N_STATES / WFF_BLOCK; s++) {
+            wff_wave_block wb;
+            for (int j = 0; j < WFF_BLOCK; j++) {
+                double F[6], dA[2], gf;
+                random_state(&r, c, F, dA, &gf);
+                for (int i = 0; i < 6; i++)
+                    wb.F[i][j] = F[i];
+                wb.dA[0][j] = dA[0];
+                wb.dA[1][j] = dA[1];
+            }
+            int handled = cell->wave_speeds_block(mat.params, mat.areal_density, &wb) == 0;
+            CHECK(st, s == 0 || handled == waves_used,
+                  "%s: the blocked wave speeds decline some states and not others", c->material);
+            waves_used = handled;
+            if (!handled)
+                continue;
+            for (int j = 0; j < WFF_BLOCK; j++) {
+                double F[6], dA[2] = {wb.dA[0][j], wb.dA[1][j]}, speed, omega;
+                for (int i = 0; i < 6; i++)
+                    F[i] = wb.F[i][j];
+                cell->wave_speeds(mat.params, mat.areal_density, F, dA, &speed, &omega);
+                double e = fabs(wb.membrane_speed[j] - speed) / speed;
+                if (cell->n_amplitudes)
+                    e = fmax(e, fabs(wb.amplitude_omega[j] - omega) / omega);
+                else
+                    e = fmax(e, wb.amplitude_omega[j] == omega ? 0 : INFINITY);
+                worst_waves = fmax(worst_waves, isnan(e) ? INFINITY : e);
+            }
+        }
+        CHECK(st, worst_waves <= 1e-12, "%s: blocked wave speeds differ from wave_speeds by %.3g",
+              c->material, worst_waves);
+    }
     printf("  %-48s FD stress %.1e, FD residual %.1e, objectivity %.1e, swap %.1e, split %.1e, "
-           "fast path %.1e, blocked %s%.1e\n", c->material, worst_P, worst_R, worst_obj,
-           worst_swap, worst_split, worst_fast,
-           !cell->evaluate_tri_block ? "(none) " : block_used ? "" : "(declined) ", worst_block);
+           "fast path %.1e, blocked %s%.1e, blocked waves %s%.1e\n", c->material, worst_P,
+           worst_R, worst_obj, worst_swap, worst_split, worst_fast,
+           !cell->evaluate_tri_block ? "(none) " : block_used ? "" : "(declined) ", worst_block,
+           !cell->wave_speeds_block ? "(none) " : waves_used ? "" : "(declined) ", worst_waves);
     if (c->energy_exact) {
         CHECK(st, worst_P <= 1e-6, "%s: P vs dW/dF relative error %.3g", c->material, worst_P);
         CHECK(st, worst_R <= 1e-6, "%s: R vs -dW/ddA relative error %.3g", c->material, worst_R);
