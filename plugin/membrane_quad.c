@@ -1,9 +1,10 @@
 /* Quads on the blocked fast path (docs/model.md §8, §11). A bilinear quad's
  * four 2×2 Gauss points each have their own F, so nothing is shared per
- * element as on triangles: points are gathered WFF_BLOCK at a time (two quads
- * a block) into the cell's evaluate_point_block (structure of arrays,
- * vectorised across the lanes), and each lane's mesh-frame force
- * coefficients −w P F_preᵀ / J_pre are scattered to its quad's nodes.
+ * element as on triangles: a block holds WFF_BLOCK quads, one a lane; their
+ * nodes are gathered once, then each Gauss point q of the block's quads goes
+ * through the cell's evaluate_point_block (structure of arrays, vectorised
+ * across the lanes) and its forces −w P F_preᵀ ∇N / J_pre are summed per
+ * lane and node, scattered once per quad at the end.
  * Threaded like the triangle pass: static schedule, per-thread force buffers
  * (el->thread_f) added in thread order, so a thread count repeats bit for bit.
  *
@@ -19,9 +20,6 @@
 #endif
 
 #define D WFF_DOFS_PER_NODE
-#define QUADS_PER_BLOCK (WFF_BLOCK / WFF_QUAD_POINTS)
-
-_Static_assert(WFF_BLOCK % WFF_QUAD_POINTS == 0, "a block holds whole quads");
 
 /* N_a at Gauss point q: corners (ξ, η) = (−1,−1), (1,−1), (1,1), (−1,1), points
  * at (±1/√3, ±1/√3) in the same order (membrane.c's quad_shape). */
@@ -51,102 +49,126 @@ static void note_bad_point(quad_sums *s, int e, int q, int status)
     }
 }
 
-/* Quads e0 .. e0 + nq − 1 (nq ≤ QUADS_PER_BLOCK) through the cell's point block.
- * Lanes of a missing quad repeat the last quad (a valid state, results dropped). */
+/* Quads e0 .. e0 + n − 1 (n ≤ WFF_BLOCK), one quad a lane: the nodes gathered
+ * once, then for each Gauss point q a block of the n quads' point q through
+ * the cell, its forces summed per lane and node; one update of f per node at
+ * the end. Lanes past n repeat the last quad (a valid state, results dropped). */
 static void quad_block(const wff_elements *el, const wff_element_material *em,
                        const double N[WFF_QUAD_POINTS][4], const double *X, const double *u,
-                       double *gamma_f, double dt, double *f, int e0, int nq, quad_sums *sums)
+                       double *gamma_f, double dt, double *f, int e0, int n, quad_sums *sums)
 {
     const wff_material *mat = em->mat;
     const double *Fp = em->F_pre;
+    const double inv_J = 1 / em->J_pre;
+    const int amplitudes = mat->cell->n_amplitudes;
     double *gf = gamma_f + WFF_TRI_POINTS * el->n_tris; /* the quads' points */
-    wff_point_block blk;
-    blk.n = WFF_QUAD_POINTS * nq;
-    int finite[WFF_BLOCK];
+    double x[4][D][WFF_BLOCK];   /* x, y, z, ΔA1, ΔA2 at node a of each lane's quad */
+    double acc[4][D][WFF_BLOCK]; /* force on node a of each lane's quad */
+    double lane_energy[WFF_BLOCK], lane_dissipated[WFF_BLOCK], gf_new[WFF_QUAD_POINTS][WFF_BLOCK];
+    int status[WFF_QUAD_POINTS][WFF_BLOCK]; /* WFF_POINT_* per point */
 #pragma omp simd
     for (int j = 0; j < WFF_BLOCK; j++) {
-        int eq = j / WFF_QUAD_POINTS, q = j % WFF_QUAD_POINTS;
-        int e = e0 + (eq < nq ? eq : nq - 1);
+        int e = e0 + (j < n ? j : n - 1);
         const int *node = el->quad + 4 * e;
-        const double *g = el->quad_grad + 32 * e + 8 * q;
-        double F0 = 0, F1 = 0, F2 = 0, F3 = 0, F4 = 0, F5 = 0, dA0 = 0, dA1 = 0, state = 0;
         for (int a = 0; a < 4; a++) {
             const double *ua = u + D * node[a];
-            double x = X[2 * node[a]] + ua[0], y = X[2 * node[a] + 1] + ua[1], z = ua[2];
-            F0 += x * g[2 * a];
-            F1 += x * g[2 * a + 1];
-            F2 += y * g[2 * a];
-            F3 += y * g[2 * a + 1];
-            F4 += z * g[2 * a];
-            F5 += z * g[2 * a + 1];
-            dA0 += N[q][a] * ua[3];
-            dA1 += N[q][a] * ua[4];
+            x[a][0][j] = X[2 * node[a]] + ua[0];
+            x[a][1][j] = X[2 * node[a] + 1] + ua[1];
+            x[a][2][j] = ua[2];
+            x[a][3][j] = ua[3];
+            x[a][4][j] = ua[4];
+            for (int c = 0; c < D; c++)
+                acc[a][c][j] = 0;
         }
-        /* F_eff = F F_pre */
-        blk.F[0][j] = F0 * Fp[0] + F1 * Fp[2];
-        blk.F[1][j] = F0 * Fp[1] + F1 * Fp[3];
-        blk.F[2][j] = F2 * Fp[0] + F3 * Fp[2];
-        blk.F[3][j] = F2 * Fp[1] + F3 * Fp[3];
-        blk.F[4][j] = F4 * Fp[0] + F5 * Fp[2];
-        blk.F[5][j] = F4 * Fp[1] + F5 * Fp[3];
-        blk.dA[0][j] = dA0;
-        blk.dA[1][j] = dA1;
-        blk.gamma_f[j] = gf[4 * e + q];
-        state += F0 + F1 + F2 + F3 + F4 + F5 + dA0 + dA1;
-        finite[j] = state - state == 0; /* false for NaN and ±inf (isfinite does not vectorise) */
+        lane_energy[j] = lane_dissipated[j] = 0;
     }
-    mat->cell->evaluate_point_block(mat->params, dt, &blk); /* accepted: asked before the pass */
-    /* per lane: force coefficients −w P_mesh (P_mesh = P F_preᵀ / J_pre), amplitude
-     * weights w / J_pre, and whether the lane is sound */
-    double fx[6][WFF_BLOCK], wa[WFF_BLOCK];
-    int ok[WFF_BLOCK];
-    const double inv_J = 1 / em->J_pre;
+    wff_point_block blk;
+    blk.n = n;
+    for (int q = 0; q < WFF_QUAD_POINTS; q++) {
+        int finite[WFF_BLOCK];
 #pragma omp simd
-    for (int j = 0; j < WFF_BLOCK; j++) {
-        int eq = j / WFF_QUAD_POINTS, q = j % WFF_QUAD_POINTS;
-        int e = e0 + (eq < nq ? eq : nq - 1);
-        double w = el->quad_weight[4 * e + q];
-        double s = -w * inv_J;
-        for (int i = 0; i < 3; i++) {
-            double p0 = blk.stress[2 * i][j], p1 = blk.stress[2 * i + 1][j];
-            fx[2 * i][j] = s * (p0 * Fp[0] + p1 * Fp[1]);
-            fx[2 * i + 1][j] = s * (p0 * Fp[2] + p1 * Fp[3]);
-        }
-        wa[j] = w * inv_J;
-        double sum = blk.energy[j] + blk.dissipated[j] + blk.residual[0][j] + blk.residual[1][j];
-        for (int i = 0; i < 6; i++)
-            sum += blk.stress[i][j];
-        ok[j] = finite[j] & !blk.degenerate[j] & (sum - sum == 0);
-    }
-    const int amplitudes = mat->cell->n_amplitudes;
-    for (int eq = 0; eq < nq; eq++) {
-        int e = e0 + eq;
-        const int *node = el->quad + 4 * e;
-        for (int q = 0; q < WFF_QUAD_POINTS; q++) {
-            int j = WFF_QUAD_POINTS * eq + q;
-            if (!ok[j]) { /* as the plain path: this point is skipped, the others count */
-                note_bad_point(sums, e, q, !finite[j] || !blk.degenerate[j]
-                                               ? WFF_POINT_NONFINITE : WFF_POINT_DEGENERATE);
-                continue;
-            }
+        for (int j = 0; j < WFF_BLOCK; j++) {
+            int e = e0 + (j < n ? j : n - 1);
             const double *g = el->quad_grad + 32 * e + 8 * q;
-            for (int b = 0; b < 4; b++) {
-                double *fb = f + D * node[b];
-                double gx = g[2 * b], gy = g[2 * b + 1];
-                fb[0] += fx[0][j] * gx + fx[1][j] * gy;
-                fb[1] += fx[2][j] * gx + fx[3][j] * gy;
-                fb[2] += fx[4][j] * gx + fx[5][j] * gy;
-                if (amplitudes) {
-                    double wn = wa[j] * N[q][b];
-                    fb[3] += wn * blk.residual[0][j];
-                    fb[4] += wn * blk.residual[1][j];
-                }
+            double F0 = 0, F1 = 0, F2 = 0, F3 = 0, F4 = 0, F5 = 0, dA0 = 0, dA1 = 0;
+            for (int a = 0; a < 4; a++) {
+                double gx = g[2 * a], gy = g[2 * a + 1];
+                F0 += x[a][0][j] * gx;
+                F1 += x[a][0][j] * gy;
+                F2 += x[a][1][j] * gx;
+                F3 += x[a][1][j] * gy;
+                F4 += x[a][2][j] * gx;
+                F5 += x[a][2][j] * gy;
+                dA0 += N[q][a] * x[a][3][j];
+                dA1 += N[q][a] * x[a][4][j];
             }
-            gf[4 * e + q] = blk.gamma_f[j];
-            double w = el->quad_weight[4 * e + q];
-            sums->energy += w * blk.energy[j];
-            sums->dissipated += w * blk.dissipated[j];
+            /* F_eff = F F_pre */
+            blk.F[0][j] = F0 * Fp[0] + F1 * Fp[2];
+            blk.F[1][j] = F0 * Fp[1] + F1 * Fp[3];
+            blk.F[2][j] = F2 * Fp[0] + F3 * Fp[2];
+            blk.F[3][j] = F2 * Fp[1] + F3 * Fp[3];
+            blk.F[4][j] = F4 * Fp[0] + F5 * Fp[2];
+            blk.F[5][j] = F4 * Fp[1] + F5 * Fp[3];
+            blk.dA[0][j] = dA0;
+            blk.dA[1][j] = dA1;
+            blk.gamma_f[j] = gf[4 * e + q];
+            double state = F0 + F1 + F2 + F3 + F4 + F5 + dA0 + dA1;
+            finite[j] = state - state == 0; /* false for NaN and ±inf (isfinite does not vectorise) */
         }
+        mat->cell->evaluate_point_block(mat->params, dt, &blk); /* accepted: asked before the pass */
+        /* per lane: the point's force −w P_mesh ∇N_b (P_mesh = P F_preᵀ / J_pre) and
+         * amplitude force w N_b R_k / J_pre on each node b, where the point is sound
+         * (a failed point adds nothing, as on the plain path) */
+#pragma omp simd
+        for (int j = 0; j < WFF_BLOCK; j++) {
+            int e = e0 + (j < n ? j : n - 1);
+            const double *g = el->quad_grad + 32 * e + 8 * q;
+            double w = el->quad_weight[4 * e + q];
+            double sum = blk.energy[j] + blk.dissipated[j] + blk.residual[0][j] + blk.residual[1][j];
+            for (int i = 0; i < 6; i++)
+                sum += blk.stress[i][j];
+            int sound = finite[j] & !blk.degenerate[j] & (sum - sum == 0);
+            status[q][j] = sound ? WFF_POINT_OK
+                         : !finite[j] || !blk.degenerate[j] ? WFF_POINT_NONFINITE
+                                                            : WFF_POINT_DEGENERATE;
+            double s = sound ? -w * inv_J : 0, wa = sound && amplitudes ? w * inv_J : 0;
+            double fx[6];
+            for (int i = 0; i < 3; i++) {
+                double p0 = sound ? blk.stress[2 * i][j] : 0;
+                double p1 = sound ? blk.stress[2 * i + 1][j] : 0;
+                fx[2 * i] = s * (p0 * Fp[0] + p1 * Fp[1]);
+                fx[2 * i + 1] = s * (p0 * Fp[2] + p1 * Fp[3]);
+            }
+            double r0 = wa * (sound ? blk.residual[0][j] : 0);
+            double r1 = wa * (sound ? blk.residual[1][j] : 0);
+            for (int b = 0; b < 4; b++) {
+                double gx = g[2 * b], gy = g[2 * b + 1];
+                acc[b][0][j] += fx[0] * gx + fx[1] * gy;
+                acc[b][1][j] += fx[2] * gx + fx[3] * gy;
+                acc[b][2][j] += fx[4] * gx + fx[5] * gy;
+                acc[b][3][j] += N[q][b] * r0;
+                acc[b][4][j] += N[q][b] * r1;
+            }
+            gf_new[q][j] = sound ? blk.gamma_f[j] : gf[4 * e + q];
+            lane_energy[j] += sound ? w * blk.energy[j] : 0;
+            lane_dissipated[j] += sound ? w * blk.dissipated[j] : 0;
+        }
+    }
+    for (int j = 0; j < n; j++) {
+        int e = e0 + j;
+        const int *node = el->quad + 4 * e;
+        for (int b = 0; b < 4; b++) {
+            double *fb = f + D * node[b];
+            for (int c = 0; c < D; c++)
+                fb[c] += acc[b][c][j];
+        }
+        for (int q = 0; q < WFF_QUAD_POINTS; q++) {
+            gf[4 * e + q] = gf_new[q][j];
+            if (status[q][j] != WFF_POINT_OK)
+                note_bad_point(sums, e, q, status[q][j]);
+        }
+        sums->energy += lane_energy[j];
+        sums->dissipated += lane_dissipated[j];
     }
 }
 
@@ -176,7 +198,7 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
         return -1;
     double N[WFF_QUAD_POINTS][4];
     quad_gauss_shapes(N);
-    const int n_blocks = (el->n_quads + QUADS_PER_BLOCK - 1) / QUADS_PER_BLOCK;
+    const int n_blocks = (el->n_quads + WFF_BLOCK - 1) / WFF_BLOCK;
     /* small meshes are not worth a thread team (a quad costs about as much as
      * four triangles' points, hence the lower count than the triangle pass) */
     int threads = el->n_threads > 1 && el->n_quads >= 32 * WFF_BLOCK ? el->n_threads : 1;
@@ -197,9 +219,9 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
         quad_sums sums = {0, 0, -1, -1, 0};
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
-            int e0 = blk * QUADS_PER_BLOCK;
-            int nq = el->n_quads - e0 < QUADS_PER_BLOCK ? el->n_quads - e0 : QUADS_PER_BLOCK;
-            quad_block(el, em, N, X, u, gamma_f, dt, ft, e0, nq, &sums);
+            int e0 = blk * WFF_BLOCK;
+            int n = el->n_quads - e0 < WFF_BLOCK ? el->n_quads - e0 : WFF_BLOCK;
+            quad_block(el, em, N, X, u, gamma_f, dt, ft, e0, n, &sums);
         }
         part[t] = sums;
         /* (past the loop's barrier) the other threads' buffers into f, a slice of
