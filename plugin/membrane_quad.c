@@ -1,10 +1,11 @@
 /* Quads on the blocked fast path (docs/model.md §8, §11). A bilinear quad's
  * four 2×2 Gauss points each have their own F, so nothing is shared per
  * element as on triangles: a block holds WFF_BLOCK quads, one a lane; their
- * nodes are gathered once, then each Gauss point q of the block's quads goes
- * through the cell's evaluate_point_block (structure of arrays, vectorised
- * across the lanes) and its forces −w P F_preᵀ ∇N / J_pre are summed per
- * lane and node, scattered once per quad at the end.
+ * nodes are gathered once, F at each Gauss point follows from the bilinear
+ * map (no stored gradients gathered), then each Gauss point q of the block's
+ * quads goes through the cell's evaluate_point_block (structure of arrays,
+ * vectorised across the lanes) and its forces −w P F_preᵀ ∇N / J_pre are
+ * summed per lane and node, scattered once per quad at the end.
  * Threaded like the triangle pass: static schedule, per-thread force buffers
  * (el->thread_f) added in thread order, so a thread count repeats bit for bit.
  *
@@ -21,16 +22,28 @@
 
 #define D WFF_DOFS_PER_NODE
 
-/* N_a at Gauss point q: corners (ξ, η) = (−1,−1), (1,−1), (1,1), (−1,1), points
- * at (±1/√3, ±1/√3) in the same order (membrane.c's quad_shape). */
-static void quad_gauss_shapes(double N[WFF_QUAD_POINTS][4])
+/* The bilinear quad at its 2×2 Gauss points: corners (ξ_a, η_a) = (−1,−1), (1,−1),
+ * (1,1), (−1,1), points (ξ_q, η_q) = (±1/√3, ±1/√3) in the same order
+ * (membrane.c's quad_shape). N[q][a] = N_a, dN[q][a][r] = ∂N_a/∂ξ_r at point q. */
+typedef struct quad_gauss {
+    double xi[WFF_QUAD_POINTS], eta[WFF_QUAD_POINTS];
+    double N[WFF_QUAD_POINTS][4];
+    double dN[WFF_QUAD_POINTS][4][2];
+} quad_gauss;
+
+static void quad_gauss_init(quad_gauss *t)
 {
     static const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
     const double g = 0.57735026918962576451; /* 1/√3 */
-    for (int q = 0; q < WFF_QUAD_POINTS; q++)
-        for (int a = 0; a < 4; a++)
-            N[q][a] = 0.25 * (1 + corner[a][0] * g * corner[q][0]) *
-                      (1 + corner[a][1] * g * corner[q][1]);
+    for (int q = 0; q < WFF_QUAD_POINTS; q++) {
+        t->xi[q] = g * corner[q][0];
+        t->eta[q] = g * corner[q][1];
+        for (int a = 0; a < 4; a++) {
+            t->N[q][a] = 0.25 * (1 + corner[a][0] * t->xi[q]) * (1 + corner[a][1] * t->eta[q]);
+            t->dN[q][a][0] = 0.25 * corner[a][0] * (1 + corner[a][1] * t->eta[q]);
+            t->dN[q][a][1] = 0.25 * corner[a][1] * (1 + corner[a][0] * t->xi[q]);
+        }
+    }
 }
 
 /* Sums one thread gathers over its quads. */
@@ -49,81 +62,107 @@ static void note_bad_point(quad_sums *s, int e, int q, int status)
     }
 }
 
-/* Quads e0 .. e0 + n − 1 (n ≤ WFF_BLOCK), one quad a lane: the nodes gathered
- * once, then for each Gauss point q a block of the n quads' point q through
- * the cell, its forces summed per lane and node; one update of f per node at
+/* Quads e0 .. e0 + n − 1 (n ≤ WFF_BLOCK), one quad a lane. The nodes are
+ * gathered once; the bilinear map's derivatives are affine in (ξ, η):
+ *   ∂x/∂ξ = a₁ + η a₁₂,  ∂x/∂η = a₂ + ξ a₁₂,
+ *   a₁ = ¼(−x₀+x₁+x₂−x₃), a₂ = ¼(−x₀−x₁+x₂+x₃), a₁₂ = ¼(x₀−x₁+x₂−x₃),
+ * the same for the reference X (the Jacobian J = ∂X/∂ξ), so at each point
+ *   F = (∂x/∂ξ) J⁻¹,   w = det J (Gauss weight 1),
+ *   f_b = −w P_mesh ∇_X N_b = −P_mesh adj(J)ᵀ ∇_ξ N_b   (w J⁻¹ = adj J),
+ * with no stored gradients to gather (the plain path's ∇_X N_a = J⁻ᵀ ∇_ξ N_a,
+ * the same to round-off). For each point q the lanes' point q goes through
+ * the cell; forces are summed per lane and node, f updated once per node at
  * the end. Lanes past n repeat the last quad (a valid state, results dropped). */
 static void quad_block(const wff_elements *el, const wff_element_material *em,
-                       const double N[WFF_QUAD_POINTS][4], const double *X, const double *u,
-                       double *gamma_f, double dt, double *f, int e0, int n, quad_sums *sums)
+                       const quad_gauss *t, const double *X, const double *u, double *gamma_f,
+                       double dt, double *f, int e0, int n, quad_sums *sums)
 {
     const wff_material *mat = em->mat;
     const double *Fp = em->F_pre;
     const double inv_J = 1 / em->J_pre;
     const int amplitudes = mat->cell->n_amplitudes;
     double *gf = gamma_f + WFF_TRI_POINTS * el->n_tris; /* the quads' points */
-    double x[4][D][WFF_BLOCK];   /* x, y, z, ΔA1, ΔA2 at node a of each lane's quad */
+    const int *quad = el->quad;
+    double dx[3][3][WFF_BLOCK];  /* a₁, a₂, a₁₂ of x (3 components) */
+    double dX[3][2][WFF_BLOCK];  /* a₁, a₂, a₁₂ of X (2 components) */
+    double amp[4][2][WFF_BLOCK]; /* ΔA1, ΔA2 at the nodes */
     double acc[4][D][WFF_BLOCK]; /* force on node a of each lane's quad */
     double lane_energy[WFF_BLOCK], lane_dissipated[WFF_BLOCK], gf_new[WFF_QUAD_POINTS][WFF_BLOCK];
     int status[WFF_QUAD_POINTS][WFF_BLOCK]; /* WFF_POINT_* per point */
 #pragma omp simd
     for (int j = 0; j < WFF_BLOCK; j++) {
         int e = e0 + (j < n ? j : n - 1);
-        const int *node = el->quad + 4 * e;
+        /* integer indices, not pointers: gcc turns these into vector gathers */
+        double xn[4][3], Xn[4][2];
         for (int a = 0; a < 4; a++) {
-            const double *ua = u + D * node[a];
-            x[a][0][j] = X[2 * node[a]] + ua[0];
-            x[a][1][j] = X[2 * node[a] + 1] + ua[1];
-            x[a][2][j] = ua[2];
-            x[a][3][j] = ua[3];
-            x[a][4][j] = ua[4];
+            int nd = quad[4 * e + a];
+            Xn[a][0] = X[2 * nd];
+            Xn[a][1] = X[2 * nd + 1];
+            xn[a][0] = Xn[a][0] + u[D * nd];
+            xn[a][1] = Xn[a][1] + u[D * nd + 1];
+            xn[a][2] = u[D * nd + 2];
+            amp[a][0][j] = u[D * nd + 3];
+            amp[a][1][j] = u[D * nd + 4];
             for (int c = 0; c < D; c++)
                 acc[a][c][j] = 0;
+        }
+        for (int i = 0; i < 3; i++) {
+            dx[0][i][j] = 0.25 * (-xn[0][i] + xn[1][i] + xn[2][i] - xn[3][i]);
+            dx[1][i][j] = 0.25 * (-xn[0][i] - xn[1][i] + xn[2][i] + xn[3][i]);
+            dx[2][i][j] = 0.25 * (xn[0][i] - xn[1][i] + xn[2][i] - xn[3][i]);
+        }
+        for (int i = 0; i < 2; i++) {
+            dX[0][i][j] = 0.25 * (-Xn[0][i] + Xn[1][i] + Xn[2][i] - Xn[3][i]);
+            dX[1][i][j] = 0.25 * (-Xn[0][i] - Xn[1][i] + Xn[2][i] + Xn[3][i]);
+            dX[2][i][j] = 0.25 * (Xn[0][i] - Xn[1][i] + Xn[2][i] - Xn[3][i]);
         }
         lane_energy[j] = lane_dissipated[j] = 0;
     }
     wff_point_block blk;
     blk.n = n;
     for (int q = 0; q < WFF_QUAD_POINTS; q++) {
+        const double xi = t->xi[q], eta = t->eta[q];
         int finite[WFF_BLOCK];
+        double adj[2][2][WFF_BLOCK], det[WFF_BLOCK]; /* adj J = det J · J⁻¹ */
 #pragma omp simd
         for (int j = 0; j < WFF_BLOCK; j++) {
             int e = e0 + (j < n ? j : n - 1);
-            const double *g = el->quad_grad + 32 * e + 8 * q;
-            double F0 = 0, F1 = 0, F2 = 0, F3 = 0, F4 = 0, F5 = 0, dA0 = 0, dA1 = 0;
+            /* J = ∂X/∂ξ: J[i][r] = ∂X_i/∂ξ_r */
+            double J00 = dX[0][0][j] + eta * dX[2][0][j], J01 = dX[1][0][j] + xi * dX[2][0][j];
+            double J10 = dX[0][1][j] + eta * dX[2][1][j], J11 = dX[1][1][j] + xi * dX[2][1][j];
+            double dj = J00 * J11 - J01 * J10, inv = 1 / dj;
+            det[j] = dj;
+            adj[0][0][j] = J11, adj[0][1][j] = -J01, adj[1][0][j] = -J10, adj[1][1][j] = J00;
+            double Fm[6]; /* F = (∂x/∂ξ) J⁻¹ */
+            for (int i = 0; i < 3; i++) {
+                double d0 = dx[0][i][j] + eta * dx[2][i][j], d1 = dx[1][i][j] + xi * dx[2][i][j];
+                Fm[2 * i] = (d0 * J11 - d1 * J10) * inv;
+                Fm[2 * i + 1] = (d1 * J00 - d0 * J01) * inv;
+            }
+            double dA0 = 0, dA1 = 0;
             for (int a = 0; a < 4; a++) {
-                double gx = g[2 * a], gy = g[2 * a + 1];
-                F0 += x[a][0][j] * gx;
-                F1 += x[a][0][j] * gy;
-                F2 += x[a][1][j] * gx;
-                F3 += x[a][1][j] * gy;
-                F4 += x[a][2][j] * gx;
-                F5 += x[a][2][j] * gy;
-                dA0 += N[q][a] * x[a][3][j];
-                dA1 += N[q][a] * x[a][4][j];
+                dA0 += t->N[q][a] * amp[a][0][j];
+                dA1 += t->N[q][a] * amp[a][1][j];
             }
             /* F_eff = F F_pre */
-            blk.F[0][j] = F0 * Fp[0] + F1 * Fp[2];
-            blk.F[1][j] = F0 * Fp[1] + F1 * Fp[3];
-            blk.F[2][j] = F2 * Fp[0] + F3 * Fp[2];
-            blk.F[3][j] = F2 * Fp[1] + F3 * Fp[3];
-            blk.F[4][j] = F4 * Fp[0] + F5 * Fp[2];
-            blk.F[5][j] = F4 * Fp[1] + F5 * Fp[3];
+            for (int i = 0; i < 3; i++) {
+                blk.F[2 * i][j] = Fm[2 * i] * Fp[0] + Fm[2 * i + 1] * Fp[2];
+                blk.F[2 * i + 1][j] = Fm[2 * i] * Fp[1] + Fm[2 * i + 1] * Fp[3];
+            }
             blk.dA[0][j] = dA0;
             blk.dA[1][j] = dA1;
             blk.gamma_f[j] = gf[4 * e + q];
-            double state = F0 + F1 + F2 + F3 + F4 + F5 + dA0 + dA1;
+            double state = Fm[0] + Fm[1] + Fm[2] + Fm[3] + Fm[4] + Fm[5] + dA0 + dA1;
             finite[j] = state - state == 0; /* false for NaN and ±inf (isfinite does not vectorise) */
         }
         mat->cell->evaluate_point_block(mat->params, dt, &blk); /* accepted: asked before the pass */
-        /* per lane: the point's force −w P_mesh ∇N_b (P_mesh = P F_preᵀ / J_pre) and
-         * amplitude force w N_b R_k / J_pre on each node b, where the point is sound
-         * (a failed point adds nothing, as on the plain path) */
+        /* per lane: the point's force −P_mesh adj(J)ᵀ ∇_ξ N_b (P_mesh = P F_preᵀ / J_pre)
+         * and amplitude force w N_b R_k / J_pre on each node b, where the point is
+         * sound (a failed point adds nothing, as on the plain path) */
 #pragma omp simd
         for (int j = 0; j < WFF_BLOCK; j++) {
             int e = e0 + (j < n ? j : n - 1);
-            const double *g = el->quad_grad + 32 * e + 8 * q;
-            double w = el->quad_weight[4 * e + q];
+            double gamma_before = gf[4 * e + q], w = det[j];
             double sum = blk.energy[j] + blk.dissipated[j] + blk.residual[0][j] + blk.residual[1][j];
             for (int i = 0; i < 6; i++)
                 sum += blk.stress[i][j];
@@ -131,32 +170,33 @@ static void quad_block(const wff_elements *el, const wff_element_material *em,
             status[q][j] = sound ? WFF_POINT_OK
                          : !finite[j] || !blk.degenerate[j] ? WFF_POINT_NONFINITE
                                                             : WFF_POINT_DEGENERATE;
-            double s = sound ? -w * inv_J : 0, wa = sound && amplitudes ? w * inv_J : 0;
-            double fx[6];
+            double s = sound ? -inv_J : 0, wa = sound && amplitudes ? w * inv_J : 0;
+            double H[3][2]; /* −P_mesh adj(J)ᵀ */
             for (int i = 0; i < 3; i++) {
                 double p0 = sound ? blk.stress[2 * i][j] : 0;
                 double p1 = sound ? blk.stress[2 * i + 1][j] : 0;
-                fx[2 * i] = s * (p0 * Fp[0] + p1 * Fp[1]);
-                fx[2 * i + 1] = s * (p0 * Fp[2] + p1 * Fp[3]);
+                double m0 = s * (p0 * Fp[0] + p1 * Fp[1]), m1 = s * (p0 * Fp[2] + p1 * Fp[3]);
+                H[i][0] = m0 * adj[0][0][j] + m1 * adj[0][1][j];
+                H[i][1] = m0 * adj[1][0][j] + m1 * adj[1][1][j];
             }
             double r0 = wa * (sound ? blk.residual[0][j] : 0);
             double r1 = wa * (sound ? blk.residual[1][j] : 0);
             for (int b = 0; b < 4; b++) {
-                double gx = g[2 * b], gy = g[2 * b + 1];
-                acc[b][0][j] += fx[0] * gx + fx[1] * gy;
-                acc[b][1][j] += fx[2] * gx + fx[3] * gy;
-                acc[b][2][j] += fx[4] * gx + fx[5] * gy;
-                acc[b][3][j] += N[q][b] * r0;
-                acc[b][4][j] += N[q][b] * r1;
+                double g0 = t->dN[q][b][0], g1 = t->dN[q][b][1];
+                acc[b][0][j] += H[0][0] * g0 + H[0][1] * g1;
+                acc[b][1][j] += H[1][0] * g0 + H[1][1] * g1;
+                acc[b][2][j] += H[2][0] * g0 + H[2][1] * g1;
+                acc[b][3][j] += t->N[q][b] * r0;
+                acc[b][4][j] += t->N[q][b] * r1;
             }
-            gf_new[q][j] = sound ? blk.gamma_f[j] : gf[4 * e + q];
+            gf_new[q][j] = sound ? blk.gamma_f[j] : gamma_before;
             lane_energy[j] += sound ? w * blk.energy[j] : 0;
             lane_dissipated[j] += sound ? w * blk.dissipated[j] : 0;
         }
     }
     for (int j = 0; j < n; j++) {
         int e = e0 + j;
-        const int *node = el->quad + 4 * e;
+        const int *node = quad + 4 * e;
         for (int b = 0; b < 4; b++) {
             double *fb = f + D * node[b];
             for (int c = 0; c < D; c++)
@@ -196,8 +236,8 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
     if (el->n_quads == 0 || !em->mat->cell->evaluate_point_block || em->reference_path ||
         em->static_amplitudes || !cell_takes_points(em, dt))
         return -1;
-    double N[WFF_QUAD_POINTS][4];
-    quad_gauss_shapes(N);
+    quad_gauss gauss;
+    quad_gauss_init(&gauss);
     const int n_blocks = (el->n_quads + WFF_BLOCK - 1) / WFF_BLOCK;
     /* small meshes are not worth a thread team (a quad costs about as much as
      * four triangles' points, hence the lower count than the triangle pass) */
@@ -221,7 +261,7 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
         for (int blk = 0; blk < n_blocks; blk++) {
             int e0 = blk * WFF_BLOCK;
             int n = el->n_quads - e0 < WFF_BLOCK ? el->n_quads - e0 : WFF_BLOCK;
-            quad_block(el, em, N, X, u, gamma_f, dt, ft, e0, n, &sums);
+            quad_block(el, em, &gauss, X, u, gamma_f, dt, ft, e0, n, &sums);
         }
         part[t] = sums;
         /* (past the loop's barrier) the other threads' buffers into f, a slice of
