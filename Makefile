@@ -63,7 +63,8 @@ $(BUILD)/plugin/%.o: plugin/%.c $(FLAGS_FILE)
 	$(CC) $(CFLAGS) $(CORE_INC) $(DEPFLAGS) -c $< -o $@
 
 # The per-element kernels: built for this machine's vector unit (see KERNEL_ARCH).
-KERNEL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard plugin/cells/*.c) plugin/membrane.c)
+KERNEL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard plugin/cells/*.c) plugin/membrane.c \
+                                         plugin/membrane_quad.c)
 $(KERNEL_OBJ): CFLAGS += $(KERNEL_OPT)
 
 $(BUILD)/tests/c/lib/%.o: tests/c/lib/%.c $(FLAGS_FILE)

@@ -2,6 +2,7 @@
  * stable step. See include/wovenff/membrane.h for the formulas. */
 #include "wovenff/membrane.h"
 #include "wovenff/balance.h"
+#include "membrane_quad.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -652,7 +653,10 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
         }
     }
 
-    for (int e = 0; e < el->n_quads; e++) {
+    /* quads: the blocked path (membrane_quad.c) where it applies, else point by point */
+    const int quads_blocked =
+        wff_quad_block_forces(el, em, X, u, gamma_f, dt, f, &energy, &dissipated, totals) == 0;
+    for (int e = 0; !quads_blocked && e < el->n_quads; e++) {
         const int *node = el->quad + 4 * e;
         int id = el->n_tris + e;
         for (int q = 0; q < WFF_QUAD_POINTS; q++) {

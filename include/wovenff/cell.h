@@ -10,8 +10,8 @@
  *
  *   required   parse, evaluate, wave_speeds
  *   optional   energy_split, evaluate_shared, evaluate_tri_block,
- *              reference_geometry, amplitude_tangent, amplitude_tangent_block
- *              (NULL when absent)
+ *              reference_geometry, amplitude_tangent, amplitude_tangent_block,
+ *              evaluate_point_block (NULL when absent)
  *
  * and registers itself by name in its own source file with
  * WFF_REGISTER_CELL(table). Nothing outside that file names a cell: the
@@ -33,10 +33,11 @@
  *   - Exact derivatives. With dt = 0, stress = dW/dF and residual = −dW/d(dA)
  *     (central differences), zero at the reference state; objective; the
  *     energy split adds up to the energy.
- *   - Fast paths agree. evaluate_shared and evaluate_tri_block give
- *     evaluate()'s results to round-off, state update included.
- *     evaluate_tri_block may decline a block (return −1) depending on the
- *     parameters only, never on the state: a caller asks once per pass.
+ *   - Fast paths agree. evaluate_shared, evaluate_tri_block and
+ *     evaluate_point_block give evaluate()'s results to round-off, state
+ *     update included. The blocked ops may decline a block (return −1)
+ *     depending on the parameters only, never on the state: a caller asks
+ *     once per pass.
  *   - Exact tangent. amplitude_tangent gives evaluate()'s residual (dt = 0)
  *     and its Jacobian ∂R_k/∂ΔA_m (central differences of R, tested on
  *     random states); amplitude_tangent_block the same per lane, to
@@ -98,6 +99,23 @@ typedef struct wff_tri_block {
     int degenerate[WFF_BLOCK];              /* out: 1 where a yarn collapsed or the yarns
                                                are parallel (outputs then meaningless) */
 } wff_tri_block;
+
+/* A block of independent material points, each with its own F (the Gauss
+ * points of bilinear quads), structure of arrays: index [component][lane].
+ * Lanes from n to WFF_BLOCK − 1 are padding the caller fills with a valid
+ * state. */
+typedef struct wff_point_block {
+    int n;                                  /* lanes in use */
+    double F[6][WFF_BLOCK];                 /* F seen by the cell (preload applied) */
+    double dA[2][WFF_BLOCK];                /* amplitude changes ΔA_k, m */
+    double gamma_f[WFF_BLOCK];              /* in: state, out: updated */
+    double stress[6][WFF_BLOCK];            /* out: P, N/m */
+    double residual[2][WFF_BLOCK];          /* out: R_k, N/m² */
+    double energy[WFF_BLOCK];               /* out: W, J/m² */
+    double dissipated[WFF_BLOCK];           /* out: dissipation of this update, J/m² */
+    int degenerate[WFF_BLOCK];              /* out: 1 where a yarn collapsed or the yarns
+                                               are parallel (outputs then meaningless) */
+} wff_point_block;
 
 /* A block of WFF_BLOCK material points for amplitude_tangent_block, structure
  * of arrays: index [component][lane], every lane a point of its own (all
@@ -220,6 +238,13 @@ struct wff_cell_type {
      * (m) of the two families; a point's amplitudes are A_k⁰ + ΔA_k. NULL when
      * the cell has no such geometry (nothing is drawn). */
     void (*reference_geometry)(const void *params, double pitch0[2], double amplitude0[2]);
+
+    /* Optional: a block of independent points (each its own F, ΔA, γᶠ; the
+     * Gauss points of quads), vectorised across the lanes like
+     * evaluate_tri_block. Returns 0 when it handled the block, −1 when these
+     * parameters need evaluate() (params only, never the state). Must agree
+     * with evaluate() to round-off, γᶠ update included (tested). */
+    int (*evaluate_point_block)(const void *params, double dt, wff_point_block *block);
 
     /* Optional (cells with amplitudes). The amplitude residual R_k at one
      * point with γᶠ held, as evaluate() gives it with dt = 0, into residual,

@@ -517,6 +517,49 @@ static int king_evaluate_tri_block(const void *params, double dt, wff_tri_block 
     return 0;
 }
 
+/* Lane b of a point block: one material point with its own F (a quad's Gauss
+ * point), king_point_at once, its stress; plain scalars once inlined. */
+WFF_INLINE void king_point_lane(const king_params *k, const wff_shear_flow *flow,
+                                const double scale[FAMILIES], wff_point_block *blk, int b)
+{
+    const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
+                         blk->F[3][b], blk->F[4][b], blk->F[5][b]};
+    wff_yarn_frame fr;
+    blk->degenerate[b] = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
+    const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
+    king_point pt;
+    king_point_at(k, &fr, dA, blk->gamma_f[b], flow, 2.0, 1.0, &pt);
+    blk->residual[0][b] = pt.residual[0];
+    blk->residual[1][b] = pt.residual[1];
+    blk->gamma_f[b] = pt.gamma_f;
+    double stress[6];
+    wff_stress_from_q(&fr, pt.q, scale, stress);
+#pragma GCC unroll 6
+    for (int i = 0; i < 6; i++)
+        blk->stress[i][b] = stress[i];
+    const double inv_cell = 1 / k->cell_area;
+    blk->energy[b] = pt.energy * inv_cell;
+    blk->dissipated[b] = pt.dissipated * inv_cell;
+}
+
+/* Blocked independent points (docs/model.md §11): WFF_BLOCK points at once,
+ * the whole model inside one loop over the lanes, as king_evaluate_tri_block
+ * does for triangles; c = 2 and n = 1 as constants, other parameter sets go
+ * back to king_evaluate. */
+static int king_evaluate_point_block(const void *params, double dt, wff_point_block *blk)
+{
+    const king_params local = *(const king_params *)params, *k = &local;
+    if (k->locking_exponent != 2 || k->flow_exponent != 1)
+        return -1;
+    const wff_shear_flow flow = king_flow(k, dt);
+    const double inv_cell = 1 / k->cell_area;
+    const double scale[FAMILIES] = {k->pitch0[0] * inv_cell, k->pitch0[1] * inv_cell};
+#pragma omp simd
+    for (int b = 0; b < WFF_BLOCK; b++)
+        king_point_lane(k, &flow, scale, blk, b);
+    return 0;
+}
+
 /* The amplitude residual and its exact tangent at one point (king_residual_tangent_at);
  * γᶠ does not enter R. */
 static int king_amplitude_tangent(const void *params, const double F[6], const double dA[2],
@@ -625,6 +668,7 @@ static const wff_cell_type king_plain = {
     .evaluate_shared = king_evaluate_shared,
     .evaluate_tri_block = king_evaluate_tri_block,
     .reference_geometry = king_reference_geometry,
+    .evaluate_point_block = king_evaluate_point_block,
     .amplitude_tangent = king_amplitude_tangent,
     .amplitude_tangent_block = king_amplitude_tangent_block,
     .wave_speeds_block = king_wave_speeds_block,

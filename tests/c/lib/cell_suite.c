@@ -480,6 +480,52 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
         CHECK(st, worst_waves <= 1e-12, "%s: blocked wave speeds differ from wave_speeds by %.3g",
               c->material, worst_waves);
     }
+    /* the optional point block too, lane by lane, γᶠ update included (or it declines) */
+    double worst_points = 0;
+    int points_used = 0;
+    if (cell->evaluate_point_block) {
+        for (int s = 0; s < N_STATES / WFF_BLOCK; s++) {
+            wff_point_block blk;
+            double gf0[WFF_BLOCK], dt = s % 2 ? 2e-7 : 0;
+            blk.n = WFF_BLOCK;
+            for (int j = 0; j < WFF_BLOCK; j++) {
+                double F[6], dA[2];
+                random_state(&r, c, F, dA, &gf0[j]);
+                for (int i = 0; i < 6; i++)
+                    blk.F[i][j] = F[i];
+                blk.dA[0][j] = dA[0];
+                blk.dA[1][j] = dA[1];
+                blk.gamma_f[j] = gf0[j];
+            }
+            int handled = cell->evaluate_point_block(mat.params, dt, &blk) == 0;
+            CHECK(st, s == 0 || handled == points_used,
+                  "%s: the point block declines some states and not others", c->material);
+            points_used = handled;
+            if (!handled)
+                continue;
+            for (int j = 0; j < WFF_BLOCK; j++) {
+                double F[6], dA[2] = {blk.dA[0][j], blk.dA[1][j]}, e = 0;
+                for (int i = 0; i < 6; i++)
+                    F[i] = blk.F[i][j];
+                CHECK(st, !blk.degenerate[j], "point block lane %d flagged degenerate", j);
+                wff_material_evaluate(&mat, F, dA, gf0[j], dt, &out);
+                double sP = fmax(max_abs(out.stress, 6), 1e-6 * stress_scale);
+                for (int i = 0; i < 6; i++)
+                    e = fmax(e, fabs(blk.stress[i][j] - out.stress[i]) / sP);
+                for (int k = 0; k < cell->n_amplitudes; k++)
+                    e = fmax(e, fabs(blk.residual[k][j] - out.residual[k]) /
+                                    fmax(fabs(out.residual[k]), 1e-6 * residual_scale));
+                e = fmax(e, fabs(blk.gamma_f[j] - out.gamma_f) / fmax(fabs(out.gamma_f), 1e-3));
+                e = fmax(e, fabs(blk.energy[j] - out.energy) / fmax(fabs(out.energy), 1e-300));
+                e = fmax(e, fabs(blk.dissipated[j] - out.dissipated) / fmax(fabs(out.energy), 1e-300));
+                worst_points = fmax(worst_points, e);
+            }
+        }
+        CHECK(st, worst_points <= 1e-11, "%s: point block differs from evaluate by %.3g",
+              c->material, worst_points);
+        printf("  %-48s point block %s%.1e\n", c->material, points_used ? "" : "(declined) ",
+               worst_points);
+    }
     printf("  %-48s FD stress %.1e, FD residual %.1e, objectivity %.1e, swap %.1e, split %.1e, "
            "fast path %.1e, blocked %s%.1e, blocked waves %s%.1e\n", c->material, worst_P,
            worst_R, worst_obj, worst_swap, worst_split, worst_fast,

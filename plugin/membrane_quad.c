@@ -1,0 +1,295 @@
+/* Quads on the blocked fast path (docs/model.md §8, §11). A bilinear quad's
+ * four 2×2 Gauss points each have their own F, so nothing is shared per
+ * element as on triangles: a block holds WFF_BLOCK quads, one a lane; their
+ * nodes are gathered once, F at each Gauss point follows from the bilinear
+ * map (no stored gradients gathered), then each Gauss point q of the block's
+ * quads goes through the cell's evaluate_point_block (structure of arrays,
+ * vectorised across the lanes) and its forces −w P F_preᵀ ∇N / J_pre are
+ * summed per lane and node, scattered once per quad at the end.
+ * Threaded like the triangle pass: static schedule, per-thread force buffers
+ * (el->thread_f) added in thread order, so a thread count repeats bit for bit.
+ *
+ * It knows the element geometry (wff_elements) and the cell's ops table only:
+ * nothing of the integrator, contact, I/O or the binding. The plain per-point
+ * reference path stays in membrane.c (wff_elements_forces). */
+#include "membrane_quad.h"
+
+#include <math.h>
+#include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#define D WFF_DOFS_PER_NODE
+
+/* The bilinear quad at its 2×2 Gauss points: corners (ξ_a, η_a) = (−1,−1), (1,−1),
+ * (1,1), (−1,1), points (ξ_q, η_q) = (±1/√3, ±1/√3) in the same order
+ * (membrane.c's quad_shape). N[q][a] = N_a, dN[q][a][r] = ∂N_a/∂ξ_r at point q. */
+typedef struct quad_gauss {
+    double xi[WFF_QUAD_POINTS], eta[WFF_QUAD_POINTS];
+    double N[WFF_QUAD_POINTS][4];
+    double dN[WFF_QUAD_POINTS][4][2];
+} quad_gauss;
+
+static void quad_gauss_init(quad_gauss *t)
+{
+    static const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    const double g = 0.57735026918962576451; /* 1/√3 */
+    for (int q = 0; q < WFF_QUAD_POINTS; q++) {
+        t->xi[q] = g * corner[q][0];
+        t->eta[q] = g * corner[q][1];
+        for (int a = 0; a < 4; a++) {
+            t->N[q][a] = 0.25 * (1 + corner[a][0] * t->xi[q]) * (1 + corner[a][1] * t->eta[q]);
+            t->dN[q][a][0] = 0.25 * corner[a][0] * (1 + corner[a][1] * t->eta[q]);
+            t->dN[q][a][1] = 0.25 * corner[a][1] * (1 + corner[a][0] * t->xi[q]);
+        }
+    }
+}
+
+/* Sums one thread gathers over its quads. */
+typedef struct quad_sums {
+    double energy, dissipated;
+    int bad_element, bad_point, bad_status; /* bad_element: quad index, −1 if none */
+} quad_sums;
+
+static void note_bad_point(quad_sums *s, int e, int q, int status)
+{
+    if (s->bad_element < 0 || e < s->bad_element ||
+        (e == s->bad_element && q < s->bad_point)) {
+        s->bad_element = e;
+        s->bad_point = q;
+        s->bad_status = status;
+    }
+}
+
+/* Quads e0 .. e0 + n − 1 (n ≤ WFF_BLOCK), one quad a lane. The nodes are
+ * gathered once; the bilinear map's derivatives are affine in (ξ, η):
+ *   ∂x/∂ξ = a₁ + η a₁₂,  ∂x/∂η = a₂ + ξ a₁₂,
+ *   a₁ = ¼(−x₀+x₁+x₂−x₃), a₂ = ¼(−x₀−x₁+x₂+x₃), a₁₂ = ¼(x₀−x₁+x₂−x₃),
+ * the same for the reference X (the Jacobian J = ∂X/∂ξ), so at each point
+ *   F = (∂x/∂ξ) J⁻¹,   w = det J (Gauss weight 1),
+ *   f_b = −w P_mesh ∇_X N_b = −P_mesh adj(J)ᵀ ∇_ξ N_b   (w J⁻¹ = adj J),
+ * with no stored gradients to gather (the plain path's ∇_X N_a = J⁻ᵀ ∇_ξ N_a,
+ * the same to round-off). For each point q the lanes' point q goes through
+ * the cell; forces are summed per lane and node, f updated once per node at
+ * the end. Lanes past n repeat the last quad (a valid state, results dropped). */
+static void quad_block(const wff_elements *el, const wff_element_material *em,
+                       const quad_gauss *t, const double *X, const double *u, double *gamma_f,
+                       double dt, double *f, int e0, int n, quad_sums *sums)
+{
+    const wff_material *mat = em->mat;
+    const double *Fp = em->F_pre;
+    const double inv_J = 1 / em->J_pre;
+    const int amplitudes = mat->cell->n_amplitudes;
+    double *gf = gamma_f + WFF_TRI_POINTS * el->n_tris; /* the quads' points */
+    const int *quad = el->quad;
+    double dx[3][3][WFF_BLOCK];  /* a₁, a₂, a₁₂ of x (3 components) */
+    double dX[3][2][WFF_BLOCK];  /* a₁, a₂, a₁₂ of X (2 components) */
+    double amp[4][2][WFF_BLOCK]; /* ΔA1, ΔA2 at the nodes */
+    double acc[4][D][WFF_BLOCK]; /* force on node a of each lane's quad */
+    double lane_energy[WFF_BLOCK], lane_dissipated[WFF_BLOCK], gf_new[WFF_QUAD_POINTS][WFF_BLOCK];
+    int status[WFF_QUAD_POINTS][WFF_BLOCK]; /* WFF_POINT_* per point */
+#pragma omp simd
+    for (int j = 0; j < WFF_BLOCK; j++) {
+        int e = e0 + (j < n ? j : n - 1);
+        /* integer indices, not pointers: gcc turns these into vector gathers */
+        double xn[4][3], Xn[4][2];
+        for (int a = 0; a < 4; a++) {
+            int nd = quad[4 * e + a];
+            Xn[a][0] = X[2 * nd];
+            Xn[a][1] = X[2 * nd + 1];
+            xn[a][0] = Xn[a][0] + u[D * nd];
+            xn[a][1] = Xn[a][1] + u[D * nd + 1];
+            xn[a][2] = u[D * nd + 2];
+            amp[a][0][j] = u[D * nd + 3];
+            amp[a][1][j] = u[D * nd + 4];
+            for (int c = 0; c < D; c++)
+                acc[a][c][j] = 0;
+        }
+        for (int i = 0; i < 3; i++) {
+            dx[0][i][j] = 0.25 * (-xn[0][i] + xn[1][i] + xn[2][i] - xn[3][i]);
+            dx[1][i][j] = 0.25 * (-xn[0][i] - xn[1][i] + xn[2][i] + xn[3][i]);
+            dx[2][i][j] = 0.25 * (xn[0][i] - xn[1][i] + xn[2][i] - xn[3][i]);
+        }
+        for (int i = 0; i < 2; i++) {
+            dX[0][i][j] = 0.25 * (-Xn[0][i] + Xn[1][i] + Xn[2][i] - Xn[3][i]);
+            dX[1][i][j] = 0.25 * (-Xn[0][i] - Xn[1][i] + Xn[2][i] + Xn[3][i]);
+            dX[2][i][j] = 0.25 * (Xn[0][i] - Xn[1][i] + Xn[2][i] - Xn[3][i]);
+        }
+        lane_energy[j] = lane_dissipated[j] = 0;
+    }
+    wff_point_block blk;
+    blk.n = n;
+    for (int q = 0; q < WFF_QUAD_POINTS; q++) {
+        const double xi = t->xi[q], eta = t->eta[q];
+        int finite[WFF_BLOCK];
+        double adj[2][2][WFF_BLOCK], det[WFF_BLOCK]; /* adj J = det J · J⁻¹ */
+#pragma omp simd
+        for (int j = 0; j < WFF_BLOCK; j++) {
+            int e = e0 + (j < n ? j : n - 1);
+            /* J = ∂X/∂ξ: J[i][r] = ∂X_i/∂ξ_r */
+            double J00 = dX[0][0][j] + eta * dX[2][0][j], J01 = dX[1][0][j] + xi * dX[2][0][j];
+            double J10 = dX[0][1][j] + eta * dX[2][1][j], J11 = dX[1][1][j] + xi * dX[2][1][j];
+            double dj = J00 * J11 - J01 * J10, inv = 1 / dj;
+            det[j] = dj;
+            adj[0][0][j] = J11, adj[0][1][j] = -J01, adj[1][0][j] = -J10, adj[1][1][j] = J00;
+            double Fm[6]; /* F = (∂x/∂ξ) J⁻¹ */
+            for (int i = 0; i < 3; i++) {
+                double d0 = dx[0][i][j] + eta * dx[2][i][j], d1 = dx[1][i][j] + xi * dx[2][i][j];
+                Fm[2 * i] = (d0 * J11 - d1 * J10) * inv;
+                Fm[2 * i + 1] = (d1 * J00 - d0 * J01) * inv;
+            }
+            double dA0 = 0, dA1 = 0;
+            for (int a = 0; a < 4; a++) {
+                dA0 += t->N[q][a] * amp[a][0][j];
+                dA1 += t->N[q][a] * amp[a][1][j];
+            }
+            /* F_eff = F F_pre */
+            for (int i = 0; i < 3; i++) {
+                blk.F[2 * i][j] = Fm[2 * i] * Fp[0] + Fm[2 * i + 1] * Fp[2];
+                blk.F[2 * i + 1][j] = Fm[2 * i] * Fp[1] + Fm[2 * i + 1] * Fp[3];
+            }
+            blk.dA[0][j] = dA0;
+            blk.dA[1][j] = dA1;
+            blk.gamma_f[j] = gf[4 * e + q];
+            double state = Fm[0] + Fm[1] + Fm[2] + Fm[3] + Fm[4] + Fm[5] + dA0 + dA1;
+            finite[j] = state - state == 0; /* false for NaN and ±inf (isfinite does not vectorise) */
+        }
+        mat->cell->evaluate_point_block(mat->params, dt, &blk); /* accepted: asked before the pass */
+        /* per lane: the point's force −P_mesh adj(J)ᵀ ∇_ξ N_b (P_mesh = P F_preᵀ / J_pre)
+         * and amplitude force w N_b R_k / J_pre on each node b, where the point is
+         * sound (a failed point adds nothing, as on the plain path) */
+#pragma omp simd
+        for (int j = 0; j < WFF_BLOCK; j++) {
+            int e = e0 + (j < n ? j : n - 1);
+            double gamma_before = gf[4 * e + q], w = det[j];
+            double sum = blk.energy[j] + blk.dissipated[j] + blk.residual[0][j] + blk.residual[1][j];
+            for (int i = 0; i < 6; i++)
+                sum += blk.stress[i][j];
+            int sound = finite[j] & !blk.degenerate[j] & (sum - sum == 0);
+            status[q][j] = sound ? WFF_POINT_OK
+                         : !finite[j] || !blk.degenerate[j] ? WFF_POINT_NONFINITE
+                                                            : WFF_POINT_DEGENERATE;
+            double s = sound ? -inv_J : 0, wa = sound && amplitudes ? w * inv_J : 0;
+            double H[3][2]; /* −P_mesh adj(J)ᵀ */
+            for (int i = 0; i < 3; i++) {
+                double p0 = sound ? blk.stress[2 * i][j] : 0;
+                double p1 = sound ? blk.stress[2 * i + 1][j] : 0;
+                double m0 = s * (p0 * Fp[0] + p1 * Fp[1]), m1 = s * (p0 * Fp[2] + p1 * Fp[3]);
+                H[i][0] = m0 * adj[0][0][j] + m1 * adj[0][1][j];
+                H[i][1] = m0 * adj[1][0][j] + m1 * adj[1][1][j];
+            }
+            double r0 = wa * (sound ? blk.residual[0][j] : 0);
+            double r1 = wa * (sound ? blk.residual[1][j] : 0);
+            for (int b = 0; b < 4; b++) {
+                double g0 = t->dN[q][b][0], g1 = t->dN[q][b][1];
+                acc[b][0][j] += H[0][0] * g0 + H[0][1] * g1;
+                acc[b][1][j] += H[1][0] * g0 + H[1][1] * g1;
+                acc[b][2][j] += H[2][0] * g0 + H[2][1] * g1;
+                acc[b][3][j] += t->N[q][b] * r0;
+                acc[b][4][j] += t->N[q][b] * r1;
+            }
+            gf_new[q][j] = sound ? blk.gamma_f[j] : gamma_before;
+            lane_energy[j] += sound ? w * blk.energy[j] : 0;
+            lane_dissipated[j] += sound ? w * blk.dissipated[j] : 0;
+        }
+    }
+    for (int j = 0; j < n; j++) {
+        int e = e0 + j;
+        const int *node = quad + 4 * e;
+        for (int b = 0; b < 4; b++) {
+            double *fb = f + D * node[b];
+            for (int c = 0; c < D; c++)
+                fb[c] += acc[b][c][j];
+        }
+        for (int q = 0; q < WFF_QUAD_POINTS; q++) {
+            gf[4 * e + q] = gf_new[q][j];
+            if (status[q][j] != WFF_POINT_OK)
+                note_bad_point(sums, e, q, status[q][j]);
+        }
+        sums->energy += lane_energy[j];
+        sums->dissipated += lane_dissipated[j];
+    }
+}
+
+/* Whether the cell takes these parameters: one block of a valid state (the
+ * unstrained preloaded point), results dropped. */
+static int cell_takes_points(const wff_element_material *em, double dt)
+{
+    wff_point_block probe;
+    memset(&probe, 0, sizeof probe);
+    for (int j = 0; j < WFF_BLOCK; j++) {
+        probe.F[0][j] = em->F_pre[0];
+        probe.F[1][j] = em->F_pre[1];
+        probe.F[2][j] = em->F_pre[2];
+        probe.F[3][j] = em->F_pre[3];
+    }
+    probe.n = WFF_BLOCK;
+    return em->mat->cell->evaluate_point_block(em->mat->params, dt, &probe) == 0;
+}
+
+int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em,
+                          const double *X, const double *u, double *gamma_f, double dt,
+                          double *f, double *energy, double *dissipated,
+                          wff_force_totals *totals)
+{
+    if (el->n_quads == 0 || !em->mat->cell->evaluate_point_block || em->reference_path ||
+        em->static_amplitudes || !cell_takes_points(em, dt))
+        return -1;
+    quad_gauss gauss;
+    quad_gauss_init(&gauss);
+    const int n_blocks = (el->n_quads + WFF_BLOCK - 1) / WFF_BLOCK;
+    /* small meshes are not worth a thread team (a quad costs about as much as
+     * four triangles' points, hence the lower count than the triangle pass) */
+    int threads = el->n_threads > 1 && el->n_quads >= 32 * WFF_BLOCK ? el->n_threads : 1;
+    quad_sums part[WFF_MAX_THREADS];
+    int team = 1;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    {
+#ifdef _OPENMP
+        int t = omp_get_thread_num();
+#pragma omp single
+        team = omp_get_num_threads();
+#else
+        int t = 0;
+#endif
+        double *ft = t == 0 ? f : el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
+        if (t > 0)
+            memset(ft, 0, sizeof(double) * (size_t)el->n_dofs);
+        quad_sums sums = {0, 0, -1, -1, 0};
+#pragma omp for schedule(static)
+        for (int blk = 0; blk < n_blocks; blk++) {
+            int e0 = blk * WFF_BLOCK;
+            int n = el->n_quads - e0 < WFF_BLOCK ? el->n_quads - e0 : WFF_BLOCK;
+            quad_block(el, em, &gauss, X, u, gamma_f, dt, ft, e0, n, &sums);
+        }
+        part[t] = sums;
+        /* (past the loop's barrier) the other threads' buffers into f, a slice of
+         * the DOFs per thread, buffers in thread order */
+        if (team > 1) {
+            const size_t n_dofs = (size_t)el->n_dofs;
+#pragma omp for schedule(static)
+            for (size_t i = 0; i < n_dofs; i++) {
+                double extra = 0;
+                for (int k = 1; k < team; k++)
+                    extra += el->thread_f[(size_t)(k - 1) * n_dofs + i];
+                f[i] += extra;
+            }
+        }
+    }
+    quad_sums all = {0, 0, -1, -1, 0};
+    for (int t = 0; t < team; t++) { /* in thread order: the same sums every run */
+        all.energy += part[t].energy;
+        all.dissipated += part[t].dissipated;
+        if (part[t].bad_element >= 0)
+            note_bad_point(&all, part[t].bad_element, part[t].bad_point, part[t].bad_status);
+    }
+    *energy += all.energy;
+    *dissipated += all.dissipated;
+    if (all.bad_element >= 0 && totals->bad_element < 0) {
+        totals->bad_element = el->n_tris + all.bad_element;
+        totals->bad_point = all.bad_point;
+        totals->bad_status = all.bad_status;
+    }
+    return 0;
+}
