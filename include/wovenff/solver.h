@@ -145,6 +145,12 @@ typedef struct wff_model {
                                  transfers since the start, J (model part) */
     int n_bc;                 /* boundary conditions set so far, in order (remesh.c) */
     wff_bc_record *bc;
+    /* The model's own order (plugin/renumber.c, include/wovenff/renumber.h):
+     * every array above is in it; NULL when the mesh's own order is kept. */
+    int *node_user;           /* per model node: the caller's node (0-based) */
+    int *node_model;          /* per caller's node: the model's */
+    int *element_user;        /* per model element (tris, then quads): the caller's */
+    int *element_model;       /* per caller's element: the model's */
 } wff_model;
 
 /* Create a model from a mesh file (.geo or .msh, see mesh.h; mesh_options
