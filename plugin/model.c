@@ -41,7 +41,7 @@ int wff_model_create(wff_model *m, const char *mesh_path, const wff_mesh_options
     wff_mesh mesh;
     if (wff_mesh_load(mesh_path, mesh_options, &mesh, err))
         return -1;
-    if (wff_model_create_from_mesh(m, &mesh, material_path, err)) {
+    if (wff_model_create_ordered(m, &mesh, material_path, 1, err)) {
         char why[WFF_ERROR_MAX];
         snprintf(why, sizeof why, "%s", err->message);
         return wff_fail(err, "%s: %s", mesh_path, why);
@@ -76,7 +76,7 @@ static void stored_energy_now(wff_model *m)
 int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *material_path,
                                wff_error *err)
 {
-    return wff_model_create_ordered(m, mesh, material_path, 1, err);
+    return wff_model_create_ordered(m, mesh, material_path, 0, err);
 }
 
 int wff_model_create_ordered(wff_model *m, wff_mesh *mesh, const char *material_path,

@@ -22,8 +22,8 @@ extern "C" {
 #endif
 
 /* Create as wff_model_create_from_mesh; renumber 0 keeps the mesh's own
- * order (for tests and comparisons), 1 (the default of every other create
- * call) renumbers. */
+ * order (what wff_model_create_from_mesh does), 1 renumbers (what
+ * wff_model_create and the FreeFEM binding's wovenffModel(mesh Th, ...) do). */
 int wff_model_create_ordered(wff_model *m, wff_mesh *mesh, const char *material_path,
                              int renumber, wff_error *err);
 

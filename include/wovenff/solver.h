@@ -160,7 +160,11 @@ typedef struct wff_model {
 int wff_model_create(wff_model *m, const char *mesh_path, const wff_mesh_options *mesh_options,
                      const char *material_path, wff_error *err);
 /* The same from a mesh already in memory; the model takes the mesh's arrays
- * over (mesh is emptied, also on failure, when they are freed). */
+ * over (mesh is emptied, also on failure, when they are freed). A model from
+ * a file renumbers its nodes and elements for speed (include/wovenff/renumber.h:
+ * the API keeps the file's numbering); this one keeps the caller's order, so
+ * that a C caller may index the model's arrays with its own numbers
+ * (wff_model_create_ordered renumbers on request, as the FreeFEM binding does). */
 int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *material_path,
                                wff_error *err);
 void wff_model_free(wff_model *m);
