@@ -7,7 +7,8 @@
  * error messages (to round-off: sums run in another order). The renumbered
  * model is checked to be renumbered (its neighbours closer), and the
  * permutations to be inverse to each other; the order depends only on the
- * mesh (two builds agree). */
+ * mesh (two builds agree). A mesh transfer onto a finer mesh renumbers the
+ * new mesh and agrees the same way. */
 #include "check.h"
 #include "wovenff/options.h"
 #include "wovenff/renumber.h"
@@ -199,6 +200,23 @@ int main(void)
     }
     CHECK(&st, keep.projectile.velocity < 59.9, "the projectile was slowed: %g m/s",
           keep.projectile.velocity);
+    /* a mesh transfer renumbers the new mesh as the old one was */
+    for (int k = 0; k < 2; k++) {
+        wff_mesh_options opt;
+        wff_mesh fine;
+        wff_model *m = k ? &re : &keep;
+        CHECK(&st, !wff_mesh_options_parse("size_factor=1.2", &opt, &err) &&
+                       !wff_mesh_load("meshes/ballistic_quarter.geo", &opt, &fine, &err) &&
+                       !wff_model_remesh(m, &fine, NULL, &err), "%s", err.message);
+    }
+    CHECK(&st, keep.node_user == NULL && re.node_user != NULL && re.n_nodes > nn,
+          "the transfer kept / renumbered the new mesh (%d nodes)", re.n_nodes);
+    compare_vectors(&st, &keep, &re, "after the transfer");
+    compare_scalars(&st, &keep, &re, "after the transfer");
+    CHECK(&st, !wff_model_advance(&keep, 1e9, 100, &err) && !wff_model_advance(&re, 1e9, 100, &err),
+          "%s", err.message);
+    compare_vectors(&st, &keep, &re, "100 steps after the transfer");
+    compare_scalars(&st, &keep, &re, "100 steps after the transfer");
     compare_errors(&st, &keep, &re);
     printf("renumbered: %d nodes, %d elements, mean index gap along edges %.1f (kept %.1f)\n", nn,
            ne, gap_re, gap_keep);
