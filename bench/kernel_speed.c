@@ -152,6 +152,8 @@ int main(int argc, char **argv)
                                           3 * sizeof(double)) +
                            m.el.n_quads * (4 * sizeof(int) + sizeof(int) + 37 * sizeof(double) +
                                            4 * sizeof(double));
+    if (m.node_user) /* the model's own order and its inverse (renumber.h) */
+        node_bytes += m.n_nodes * 2.0 * sizeof(int), element_bytes += ne * 2.0 * sizeof(int);
     char linear[32] = "null";
     if (!quads)
         snprintf(linear, sizeof linear, "%.2f", linear_membrane_ns(&m, steps, threads));

@@ -271,7 +271,8 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err)
         return wff_fail(err, "projectile starts inside the fabric: node %d at (%g, %g, %g) m "
                         "is %.3g m inside the projectile (nose tip at z = %g m, radius %g m; "
                         "the fabric lies at z = 0 and the projectile moves along +z: put the "
-                        "tip at z <= 0)", worst + 1, at[0], at[1], at[2], deepest, tip,
+                        "tip at z <= 0)", wff_model_user_node(m, worst) + 1, at[0], at[1], at[2],
+                        deepest, tip,
                         p->radius);
     }
     return 0;
@@ -310,7 +311,8 @@ void wff_contact_refresh_candidates(wff_model *m)
     wff_projectile *p = &m->projectile;
     double reach = p->search_all ? INFINITY : 1.2 * p->radius + 2e-3;
     p->n_candidates = 0;
-    for (int n = 0; n < m->n_nodes; n++) {
+    for (int k = 0; k < m->n_nodes; k++) { /* in the user's order: the correction is sequential */
+        int n = wff_model_node_of_user(m, k);
         double dx = m->mesh.xy[2 * n] + m->u[D * n] - p->axis[0];
         double dy = m->mesh.xy[2 * n + 1] + m->u[D * n + 1] - p->axis[1];
         if (dx * dx + dy * dy < reach * reach)
@@ -351,7 +353,8 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
         if (delta > RUNAWAY_PENETRATION * p->radius)
             return wff_fail(err, "t = %.6g s (step %ld): node %d would be %.3g m inside the "
                             "projectile (more than %.0f%% of its radius): the projectile has "
-                            "passed through the fabric", m->time, m->step, n + 1, delta,
+                            "passed through the fabric", m->time, m->step,
+                            wff_model_user_node(m, n) + 1, delta,
                             100 * RUNAWAY_PENETRATION);
         /* inverse mass along the normal: free node components and the projectile (z);
          * a node held in every direction along the normal (clamped, fixed) has none:

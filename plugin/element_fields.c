@@ -57,6 +57,14 @@ static int unknown(const wff_cell_type *cell, const char *name, wff_error *err)
 int wff_model_element_values(const wff_model *m, const char *name, double *out,
                              wff_error *err)
 {
+    if (wff_model_element_values_model(m, name, out, err))
+        return -1;
+    return wff_model_elements_to_user_in_place(m, out, err); /* (the user's numbering) */
+}
+
+int wff_model_element_values_model(const wff_model *m, const char *name, double *out,
+                                   wff_error *err)
+{
     const wff_cell_type *cell = m->mat.cell;
     int code = field_code(cell, name);
     if (code < 0)
@@ -96,10 +104,10 @@ int wff_model_element_values(const wff_model *m, const char *name, double *out,
             const wff_element_material *em = wff_zones_element_material(m, e, &zone);
             if (wff_element_center_eval(&m->el, em, m->mesh.xy, m->u, m->gamma_f, e, &r) !=
                 WFF_POINT_OK) {
-                int tri = e < m->el.n_tris;
-                return wff_fail(err, "element field '%s': %s %d is degenerate (yarns collapsed "
-                                "or parallel)", name, tri ? "triangle" : "quadrilateral",
-                                tri ? e + 1 : e - m->el.n_tris + 1);
+                char what[96];
+                wff_model_element_name(m, e, what, sizeof what);
+                return wff_fail(err, "element field '%s': %s is degenerate (yarns collapsed "
+                                "or parallel)", name, what);
             }
             if (code < EF_LAMBDA)
                 value = r.stress[code];

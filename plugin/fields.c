@@ -19,13 +19,13 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
     for (int c = 0; c < D; c++)
         if (strcmp(name, dof_names[c]) == 0) {
             for (int n = 0; n < m->n_nodes; n++)
-                out[n] = m->u[D * n + c];
+                out[wff_model_user_node(m, n)] = m->u[D * n + c];
             return 0;
         }
     for (int c = 0; c < 3; c++)
         if (strcmp(name, c == 0 ? "vx" : c == 1 ? "vy" : "vz") == 0) {
             for (int n = 0; n < m->n_nodes; n++)
-                out[n] = m->v[D * n + c];
+                out[wff_model_user_node(m, n)] = m->v[D * n + c];
             return 0;
         }
     for (int k = 0; k < 2; k++) /* absolute amplitudes A_k = A_k0 + dA_k (state.c) */
@@ -47,7 +47,7 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
         element = malloc(sizeof(double) * (size_t)(m->el.n_tris + m->el.n_quads + 1));
         if (!element)
             return wff_fail(err, "out of memory");
-        if (wff_model_element_values(m, name, element, &why)) {
+        if (wff_model_element_values_model(m, name, element, &why)) {
             free(element);
             if (strncmp(why.message, "unknown element field", 21) != 0)
                 return wff_fail(err, "%s", why.message);
@@ -108,7 +108,7 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
         out[n] = weight[n] > 0 ? out[n] / weight[n] : 0;
     free(weight);
     free(element);
-    return 0;
+    return wff_model_nodes_to_user_in_place(m, out, 1, err); /* (the user's numbering) */
 }
 
 int wff_model_energy_split(const wff_model *m, double *out)

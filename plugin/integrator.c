@@ -25,18 +25,7 @@
  * (triangles first, then quads), numbered from 1 within its type. */
 static void element_name(const wff_model *m, int e, char *out, size_t size)
 {
-    if (e < 0) {
-        snprintf(out, size, "no element");
-        return;
-    }
-    int tri = e < m->el.n_tris;
-    const int *node = tri ? m->el.tri + 3 * e : m->el.quad + 4 * (e - m->el.n_tris);
-    if (tri)
-        snprintf(out, size, "triangle %d (nodes %d %d %d)", e + 1, node[0] + 1, node[1] + 1,
-                 node[2] + 1);
-    else
-        snprintf(out, size, "quadrilateral %d (nodes %d %d %d %d)", e - m->el.n_tris + 1,
-                 node[0] + 1, node[1] + 1, node[2] + 1, node[3] + 1);
+    wff_model_element_name(m, e, out, size); /* (renumber.c: in the user's numbering) */
 }
 
 /* The run is unstable: say what showed it (`what`), when, the element that

@@ -31,6 +31,7 @@ void wff_model_free(wff_model *m)
     free(m->operator_scratch);
     free(m->bc);
     wff_zones_free(m);
+    wff_model_order_free(m);
     wff_elements_free(&m->el);
     wff_mesh_free(&m->mesh);
     memset(m, 0, sizeof *m);
@@ -42,7 +43,7 @@ int wff_model_create(wff_model *m, const char *mesh_path, const wff_mesh_options
     wff_mesh mesh;
     if (wff_mesh_load(mesh_path, mesh_options, &mesh, err))
         return -1;
-    if (wff_model_create_from_mesh(m, &mesh, material_path, err)) {
+    if (wff_model_create_ordered(m, &mesh, material_path, 1, err)) {
         char why[WFF_ERROR_MAX];
         snprintf(why, sizeof why, "%s", err->message);
         return wff_fail(err, "%s: %s", mesh_path, why);
@@ -88,6 +89,12 @@ int wff_model_masses_changed(wff_model *m, wff_error *err)
 int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *material_path,
                                wff_error *err)
 {
+    return wff_model_create_ordered(m, mesh, material_path, 0, err);
+}
+
+int wff_model_create_ordered(wff_model *m, wff_mesh *mesh, const char *material_path,
+                             int renumber, wff_error *err)
+{
     memset(m, 0, sizeof *m);
     m->mesh = *mesh;
     memset(mesh, 0, sizeof *mesh);
@@ -103,6 +110,16 @@ int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *materia
                           m->mesh.quad, err)) {
         wff_mesh_free(&m->mesh);
         return -1;
+    }
+    if (renumber) { /* (the elements checked above in the caller's numbering) */
+        wff_elements_free(&m->el);
+        if (wff_model_renumber(m, err) ||
+            wff_elements_init(&m->el, m->mesh.xy, m->mesh.n_tris, m->mesh.tri,
+                              m->mesh.n_quads, m->mesh.quad, err)) {
+            wff_model_order_free(m);
+            wff_mesh_free(&m->mesh);
+            return -1;
+        }
     }
     m->n_nodes = m->mesh.n_nodes;
     m->n_dofs = D * m->n_nodes;
@@ -198,11 +215,13 @@ static int for_group_nodes(wff_model *m, const char *group, wff_error *err,
                     seen[m->mesh.quad[4 * e + a]] = 1;
     }
     int count = 0;
-    for (int n = 0; n < m->n_nodes; n++)
+    for (int k = 0; k < m->n_nodes; k++) { /* in the user's order (clamp lists, errors) */
+        int n = wff_model_node_of_user(m, k);
         if (seen[n]) {
             visit(m, n, data);
             count++;
         }
+    }
     free(seen);
     if (count == 0)
         return wff_fail(err, "physical group '%s' has no nodes", group);
@@ -236,7 +255,7 @@ static int set_group_dofs(wff_model *m, const char *group, dof_setting *s, const
         const char *was = s->kind == WFF_DOF_FIXED ? "prescribed" : "fixed";
         return wff_fail(err, "%s '%s' %s: node %d at (%g, %g) m has %s %s already (a DOF is "
                         "free, fixed or prescribed, once)%s", what, group,
-                        dof_names[s->component], n + 1, m->mesh.xy[2 * n],
+                        dof_names[s->component], wff_model_user_node(m, n) + 1, m->mesh.xy[2 * n],
                         m->mesh.xy[2 * n + 1], dof_names[s->component], was,
                         s->component >= 3 && m->mat.cell->n_amplitudes == 0
                             ? " (the cell has no amplitudes: they are fixed)"
@@ -365,7 +384,8 @@ int wff_model_clamp_friction(wff_model *m, const char *group, double normal_forc
         return -1;
     if (uz.conflict >= 0)
         return wff_fail(err, "friction clamp '%s': node %d has u_z prescribed: the clamp presses "
-                        "its nodes flat (u_z fixed)", group, uz.conflict + 1);
+                        "its nodes flat (u_z fixed)", group,
+                        wff_model_user_node(m, uz.conflict) + 1);
     free(m->clamp.node);
     free(m->clamp.normal_force);
     m->clamp.n = 0;
@@ -513,10 +533,10 @@ int wff_model_nearest_node(const wff_model *m, double x, double y)
     double best_d = INFINITY;
     for (int n = 0; n < m->n_nodes; n++) {
         double d = hypot(m->mesh.xy[2 * n] - x, m->mesh.xy[2 * n + 1] - y);
-        if (d < best_d) {
+        if (d < best_d || (d == best_d && wff_model_user_node(m, n) < wff_model_user_node(m, best))) {
             best_d = d;
             best = n;
         }
     }
-    return best;
+    return wff_model_user_node(m, best); /* (the first of equals in the user's numbering) */
 }

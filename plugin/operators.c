@@ -35,8 +35,44 @@ static double *scratch(wff_model *m, wff_error *err)
     return m->operator_scratch;
 }
 
+/* The caller's DOF vectors (the user's numbering) in the model's order:
+ * n copies of n_dofs into one block (NULL, err set, if out of memory; free it). */
+static double *model_copies(const wff_model *m, const double *const *user, int n,
+                            wff_error *err)
+{
+    size_t nd = (size_t)m->n_dofs;
+    double *block = malloc(sizeof(double) * nd * (size_t)n + 1);
+    if (!block) {
+        wff_fail(err, "out of memory for the operator's %d vectors of %zu DOFs", n, nd);
+        return NULL;
+    }
+    for (int k = 0; k < n; k++)
+        if (user[k])
+            wff_model_nodes_from_user(m, user[k], block + nd * (size_t)k, D);
+    return block;
+}
+
+static int forces_model(wff_model *m, const double *U, double *R, double dt, double *energy,
+                        wff_error *err);
+
 int wff_model_forces(wff_model *m, const double *U, double *R, double dt, double *energy,
                      wff_error *err)
+{
+    if (!m->node_user)
+        return forces_model(m, U, R, dt, energy, err);
+    const double *in[2] = {U, NULL};
+    double *b = model_copies(m, in, 2, err);
+    if (!b)
+        return -1;
+    int rc = forces_model(m, b, b + m->n_dofs, dt, energy, err);
+    if (!rc)
+        wff_model_nodes_to_user(m, b + m->n_dofs, R, D);
+    free(b);
+    return rc;
+}
+
+static int forces_model(wff_model *m, const double *U, double *R, double dt, double *energy,
+                        wff_error *err)
 {
     if (!(dt >= 0) || !isfinite(dt))
         return wff_fail(err, "time step dt = %g s: must be >= 0 and finite (0: γᶠ held)", dt);
@@ -66,14 +102,22 @@ int wff_model_forces(wff_model *m, const double *U, double *R, double dt, double
 
 void wff_model_masses(const wff_model *m, double *M)
 {
-    memcpy(M, m->mass, sizeof(double) * (size_t)m->n_dofs);
+    wff_model_nodes_to_user(m, m->mass, M, D);
 }
 
 int wff_model_stable_step(const wff_model *m, const double *U, double *dt, int *worst,
                           wff_error *err)
 {
     int w = -1;
-    *dt = wff_zones_stable_step(m, U ? U : m->u, &w);
+    double *b = NULL;
+    if (U && m->node_user) {
+        const double *in[1] = {U};
+        if (!(b = model_copies(m, in, 1, err)))
+            return -1;
+    }
+    *dt = wff_zones_stable_step(m, b ? b : U ? U : m->u, &w);
+    free(b);
+    w = wff_model_user_element(m, w);
     if (worst)
         *worst = w;
     if (!(*dt > 0) || !isfinite(*dt))
@@ -96,10 +140,11 @@ int wff_model_step(wff_model *m, double *dt_taken, wff_error *err)
 
 void wff_model_dof_kinds(const wff_model *m, double *kind, double *v_prescribed)
 {
-    for (int i = 0; i < m->n_dofs; i++) {
-        kind[i] = m->dof_kind[i];
+    for (int i = 0; i < m->n_dofs; i++) { /* (into the user's numbering) */
+        int ui = D * wff_model_user_node(m, i / D) + i % D;
+        kind[ui] = m->dof_kind[i];
         if (v_prescribed)
-            v_prescribed[i] = m->dof_kind[i] == WFF_DOF_PRESCRIBED ? m->v_prescribed[i] : 0;
+            v_prescribed[ui] = m->dof_kind[i] == WFF_DOF_PRESCRIBED ? m->v_prescribed[i] : 0;
     }
 }
 
@@ -107,10 +152,17 @@ int wff_model_contact_search(wff_model *m, const double *U)
 {
     if (!m->projectile.active)
         return 0;
-    double *u = m->u;
-    m->u = (double *)U; /* contact.c reads the state from the model: lend it the caller's */
+    double *u = m->u, *b = NULL;
+    if (m->node_user) {
+        const double *in[1] = {U};
+        wff_error err;
+        if (!(b = model_copies(m, in, 1, &err)))
+            return 0;
+    }
+    m->u = b ? b : (double *)U; /* contact.c reads the state from the model: lend it the caller's */
     wff_contact_refresh_candidates(m);
     m->u = u;
+    free(b);
     return m->projectile.n_candidates;
 }
 
@@ -125,16 +177,28 @@ int wff_model_contact(wff_model *m, const double *U, double *V, double *R, doubl
     if (!isfinite(tip[0]) || !isfinite(tip[1])) /* (a rebounding projectile moves along -z) */
         return wff_fail(err, "projectile tip %g m and velocity %g m/s must be finite", tip[0],
                         tip[1]);
+    double *b = NULL, *Um = (double *)U, *Vm = V, *Rm = R;
+    if (m->node_user) { /* the caller's vectors into the model's order and back */
+        const double *in[3] = {U, V, R};
+        if (!(b = model_copies(m, in, 3, err)))
+            return -1;
+        Um = b, Vm = b + m->n_dofs, Rm = b + 2 * (size_t)m->n_dofs;
+    }
     p->tip = tip[0];
     p->velocity = tip[1];
     double *u = m->u, *v = m->v, *f = m->f, before = m->dissipated_friction;
-    m->u = (double *)U; /* contact.c works on the model's arrays: lend it the caller's */
-    m->v = V;
-    m->f = R;
+    m->u = Um; /* contact.c works on the model's arrays: lend it the caller's */
+    m->v = Vm;
+    m->f = Rm;
     int rc = wff_contact_correct(m, dt, dt_mid, err);
     m->u = u;
     m->v = v;
     m->f = f;
+    if (b) {
+        wff_model_nodes_to_user(m, Vm, V, D);
+        wff_model_nodes_to_user(m, Rm, R, D);
+        free(b);
+    }
     tip[1] = p->velocity;
     *dissipated = m->symmetry_factor * (m->dissipated_friction - before);
     return rc;
@@ -142,7 +206,18 @@ int wff_model_contact(wff_model *m, const double *U, double *V, double *R, doubl
 
 double wff_model_clamp_correct(wff_model *m, double *V, double dt_mid)
 {
-    double dissipated = wff_clamp_correct(m, V, dt_mid);
+    double *b = NULL;
+    if (m->node_user) {
+        const double *in[1] = {V};
+        wff_error err;
+        if (!(b = model_copies(m, in, 1, &err)))
+            return 0;
+    }
+    double dissipated = wff_clamp_correct(m, b ? b : V, dt_mid);
+    if (b) {
+        wff_model_nodes_to_user(m, b, V, D);
+        free(b);
+    }
     m->dissipated_friction += dissipated;
     return m->symmetry_factor * dissipated;
 }

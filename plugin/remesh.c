@@ -386,7 +386,8 @@ static int transfer_state(const wff_model *m, wff_model *nm, const locator *L,
         if (t < 0 || distance > limit)
             return wff_fail(err, "wff_model_remesh: new node %d at (%g, %g) m is %.3g m outside "
                             "the old mesh (more than round-off, %.3g m): not a mesh of the same "
-                            "specimen", n + 1, p[0], p[1], t < 0 ? INFINITY : distance, limit);
+                            "specimen", wff_model_user_node(nm, n) + 1, p[0], p[1],
+                            t < 0 ? INFINITY : distance, limit);
         if (distance > 0) {
             rep->snapped_nodes++;
             rep->largest_snap = fmax(rep->largest_snap, distance);
@@ -491,6 +492,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     nm.clamp.node = NULL, nm.clamp.normal_force = NULL, nm.clamp.n = 0;
     nm.bc = NULL, nm.n_bc = 0;
     nm.operator_scratch = NULL; /* operators.c's workspace: the new model allocates its own */
+    nm.node_user = nm.node_model = nm.element_user = nm.element_model = NULL;
     locator L;
     memset(&L, 0, sizeof L);
     char why[WFF_ERROR_MAX];
@@ -501,6 +503,13 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     if (wff_elements_init(&nm.el, nm.mesh.xy, nm.mesh.n_tris, nm.mesh.tri, nm.mesh.n_quads,
                           nm.mesh.quad, err))
         goto fail_prefixed;
+    if (m->node_user) { /* renumbered as the old one was (checked above in the caller's order) */
+        wff_elements_free(&nm.el);
+        if (wff_model_renumber(&nm, err) ||
+            wff_elements_init(&nm.el, nm.mesh.xy, nm.mesh.n_tris, nm.mesh.tri, nm.mesh.n_quads,
+                              nm.mesh.quad, err))
+            goto fail_prefixed;
+    }
     if (m->el.n_threads > 1 && wff_elements_set_threads(&nm.el, m->el.n_threads, err))
         goto fail_prefixed;
     nm.n_nodes = nm.mesh.n_nodes;
@@ -538,7 +547,8 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     wff_elements_forces(&nm.el, &nm.em, nm.mesh.xy, nm.u, nm.gamma_f, 0, nm.f, &tot);
     if (tot.bad_element >= 0) {
         wff_fail(err, "wff_model_remesh: element %d of the new mesh, quadrature point %d: the "
-                 "interpolated state is degenerate or not finite", tot.bad_element + 1,
+                 "interpolated state is degenerate or not finite",
+                 wff_model_user_element(&nm, tot.bad_element) + 1,
                  tot.bad_point + 1);
         goto fail;
     }
@@ -549,7 +559,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
         double dt = wff_elements_stable_step(&nm.el, &nm.em, nm.mesh.xy, nm.u, &worst);
         if (!(dt > 0) || !isfinite(dt)) {
             wff_fail(err, "wff_model_remesh: stable step %g s on the new mesh is not positive "
-                     "(element %d)", dt, worst + 1);
+                     "(element %d)", dt, wff_model_user_element(&nm, worst) + 1);
             goto fail;
         }
         nm.dt_stable = dt, nm.dt_worst_element = worst, nm.dt = nm.dt_factor * dt;

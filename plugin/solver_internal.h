@@ -6,6 +6,7 @@
 #ifndef WFF_SOLVER_INTERNAL_H
 #define WFF_SOLVER_INTERNAL_H
 
+#include "wovenff/renumber.h"
 #include "wovenff/solver.h"
 
 #define D WFF_DOFS_PER_NODE
@@ -40,5 +41,14 @@ double wff_contact_retract(wff_model *m);
  * that a mesh transfer can set it again; -1 (err set) if out of memory. */
 int wff_model_log_bc(wff_model *m, int kind, const char *group, int component, double value,
                      double mu, wff_error *err);
+
+/* renumber.c: renumber the model's mesh (before its elements are set up)
+ * and keep the permutations; free them. */
+int wff_model_renumber(wff_model *m, wff_error *err);
+void wff_model_order_free(wff_model *m);
+/* element_fields.c: element values in the model's order (the public call
+ * gives them in the user's). */
+int wff_model_element_values_model(const wff_model *m, const char *name, double *out,
+                                   wff_error *err);
 
 #endif

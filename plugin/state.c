@@ -29,7 +29,7 @@ int wff_model_get_vector(const wff_model *m, const char *which, double *out, wff
     int w = which_vector(which, err);
     if (w < 0)
         return -1;
-    memcpy(out, w ? m->v : m->u, sizeof(double) * (size_t)m->n_dofs);
+    wff_model_nodes_to_user(m, w ? m->v : m->u, out, D); /* (the user's numbering) */
     return 0;
 }
 
@@ -49,22 +49,22 @@ static int check_vector(const wff_model *m, int w, const double *in, wff_error *
 {
     const char *vec = w ? "v" : "u";
     int no_amplitudes = m->mat.cell->n_amplitudes == 0;
-    for (int i = 0; i < m->n_dofs; i++) {
-        int node = i / D + 1, c = i % D;
+    for (int i = 0; i < m->n_dofs; i++) { /* (in: the model's order; named in the user's) */
+        int node = wff_model_user_node(m, i / D) + 1, c = i % D, ui = D * (node - 1) + c;
         if (!isfinite(in[i]))
-            return wff_fail(err, "%s[%d] (node %d, %s) = %g is not a finite number", vec, i,
+            return wff_fail(err, "%s[%d] (node %d, %s) = %g is not a finite number", vec, ui,
                             node, component_names[c], in[i]);
         if (no_amplitudes && c >= WFF_DA1 && in[i] != 0)
             return wff_fail(err, "%s[%d] (node %d, %s) = %g: cell '%s' has no amplitudes (must "
-                            "be 0)", vec, i, node, component_names[c], in[i], m->mat.cell->name);
+                            "be 0)", vec, ui, node, component_names[c], in[i], m->mat.cell->name);
         if (!w)
             continue;
         if (m->dof_kind[i] == WFF_DOF_FIXED && in[i] != 0)
             return wff_fail(err, "v[%d] (node %d, %s) = %g: the DOF is fixed (its velocity "
-                            "must be 0)", i, node, component_names[c], in[i]);
+                            "must be 0)", ui, node, component_names[c], in[i]);
         if (m->dof_kind[i] == WFF_DOF_PRESCRIBED && in[i] != m->v_prescribed[i])
             return wff_fail(err, "v[%d] (node %d, %s) = %g: the DOF moves at its prescribed "
-                            "velocity %g m/s", i, node, component_names[c], in[i],
+                            "velocity %g m/s", ui, node, component_names[c], in[i],
                             m->v_prescribed[i]);
     }
     return 0;
@@ -78,11 +78,9 @@ static int forces_now(wff_model *m, wff_error *err)
     memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
     wff_zones_forces(m, m->u, m->gamma_f, 0, m->f, &t);
     if (t.bad_element >= 0) {
-        int e = t.bad_element, tri = e < m->el.n_tris;
-        const int *node = tri ? m->el.tri + 3 * e : m->el.quad + 4 * (e - m->el.n_tris);
-        return wff_fail(err, "the state set makes %s %d (nodes %d %d %d%s) %s",
-                        tri ? "triangle" : "quadrilateral", tri ? e + 1 : e - m->el.n_tris + 1,
-                        node[0] + 1, node[1] + 1, node[2] + 1, tri ? "" : " ...",
+        char name[96];
+        wff_model_element_name(m, t.bad_element, name, sizeof name);
+        return wff_fail(err, "the state set makes %s %s", name,
                         t.bad_status == WFF_POINT_DEGENERATE
                             ? "degenerate (yarns collapsed or parallel: inverted element)"
                         : t.bad_status == WFF_POINT_UNBALANCED
@@ -96,10 +94,26 @@ static int forces_now(wff_model *m, wff_error *err)
     return 0;
 }
 
-int wff_model_set_vector(wff_model *m, const char *which, const double *in, wff_error *err)
+static int set_vector_model(wff_model *m, int w, const double *in, wff_error *err);
+
+int wff_model_set_vector(wff_model *m, const char *which, const double *user_in,
+                         wff_error *err)
 {
     int w = which_vector(which, err);
-    if (w < 0 || check_vector(m, w, in, err))
+    if (w < 0)
+        return -1;
+    double *in = malloc(sizeof(double) * (size_t)m->n_dofs + 1); /* the model's order */
+    if (!in)
+        return wff_fail(err, "out of memory");
+    wff_model_nodes_from_user(m, user_in, in, D);
+    int rc = set_vector_model(m, w, in, err);
+    free(in);
+    return rc;
+}
+
+static int set_vector_model(wff_model *m, int w, const double *in, wff_error *err)
+{
+    if (check_vector(m, w, in, err))
         return -1;
     size_t bytes = sizeof(double) * (size_t)m->n_dofs;
     double k0, e0, k1, e1;
@@ -152,6 +166,6 @@ int wff_model_amplitude(const wff_model *m, int k, double *out, wff_error *err)
     double pitch0[2], amplitude0[2];
     cell->reference_geometry(m->mat.params, pitch0, amplitude0);
     for (int n = 0; n < m->n_nodes; n++)
-        out[n] = amplitude0[k] + m->u[D * n + WFF_DA1 + k];
+        out[wff_model_user_node(m, n)] = amplitude0[k] + m->u[D * n + WFF_DA1 + k];
     return 0;
 }

@@ -149,6 +149,12 @@ typedef struct wff_model {
     wff_bc_record *bc;
     struct wff_zones *zones;  /* per-region materials (plugin/zones.c); NULL: the model's
                                  material everywhere, the plain path */
+    /* The model's own order (plugin/renumber.c, include/wovenff/renumber.h):
+     * every array above is in it; NULL when the mesh's own order is kept. */
+    int *node_user;           /* per model node: the caller's node (0-based) */
+    int *node_model;          /* per caller's node: the model's */
+    int *element_user;        /* per model element (tris, then quads): the caller's */
+    int *element_model;       /* per caller's element: the model's */
 } wff_model;
 
 /* Create a model from a mesh file (.geo or .msh, see mesh.h; mesh_options
@@ -158,7 +164,11 @@ typedef struct wff_model {
 int wff_model_create(wff_model *m, const char *mesh_path, const wff_mesh_options *mesh_options,
                      const char *material_path, wff_error *err);
 /* The same from a mesh already in memory; the model takes the mesh's arrays
- * over (mesh is emptied, also on failure, when they are freed). */
+ * over (mesh is emptied, also on failure, when they are freed). A model from
+ * a file renumbers its nodes and elements for speed (include/wovenff/renumber.h:
+ * the API keeps the file's numbering); this one keeps the caller's order, so
+ * that a C caller may index the model's arrays with its own numbers
+ * (wff_model_create_ordered renumbers on request, as the FreeFEM binding does). */
 int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *material_path,
                                wff_error *err);
 void wff_model_free(wff_model *m);
@@ -418,7 +428,8 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
  * allowed: the zone is empty) or -1 (err set). */
 #define WFF_ZONES_MAX 8
 enum { WFF_ZONE_PRELOAD_SHARED = 0, WFF_ZONE_PRELOAD_MATCHED = 1 };
-/* selected: one flag per element (nonzero: in the zone). */
+/* selected: one flag per element (nonzero: in the zone), in the model's own element
+ * order (m->element_user maps it to the caller's; the binding does). */
 int wff_model_zone_elements(wff_model *m, const unsigned char *selected,
                             const char *material_path, int preload, wff_error *err);
 /* The elements of the physical surface named `group` (or of region tag

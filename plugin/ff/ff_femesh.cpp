@@ -28,6 +28,7 @@
 extern "C" {
 #include "wovenff/mesh_labels.h"
 #include "wovenff/solver.h"
+#include "wovenff/renumber.h"
 }
 
 using namespace Fem2D;
@@ -44,7 +45,8 @@ long model_of_mesh(wff_mesh *mesh, const string *mat)
         wff_mesh_free(mesh);
         wff_ff_fail(fn, "out of memory");
     }
-    if (wff_model_create_from_mesh(m, mesh, mat->c_str(), &err)) {
+    // renumbered for speed; every call keeps the FreeFEM mesh's numbering
+    if (wff_model_create_ordered(m, mesh, mat->c_str(), 1, &err)) {
         free(m);
         wff_ff_fail(fn, err);
     }

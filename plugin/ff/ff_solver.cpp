@@ -38,6 +38,7 @@
 
 extern "C" {
 #include "wovenff/solver.h"
+#include "wovenff/renumber.h"
 #include "wovenff/options.h"
 #include "wovenff/mesh_labels.h"
 }
@@ -106,7 +107,7 @@ void state_values(const wff_model *m, bool with_energies, double values[kStateSi
                         e.kinetic_amplitude, e.kinetic_projectile, e.internal, e.dissipated_shear,
                         e.dissipated_friction, e.external_work, e.error, (double)m->element_steps,
                         (double)(m->el.n_tris + m->el.n_quads), (double)m->n_nodes,
-                        (double)(m->dt_worst_element + 1), e.transfer,
+                        (double)(wff_model_user_element(m, m->dt_worst_element) + 1), e.transfer,
                         s * m->projectile.impulse_total};
     static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
     for (int i = 0; i < kStateSize; i++)
@@ -147,21 +148,31 @@ pmesh ffMesh(Stack stack, const long &id)
     int nt = g.n_tris + 2 * g.n_quads;
     std::vector<int> tri(3 * (size_t)nt), region((size_t)nt);
     wff_mesh_triangulate(&g, tri.data(), region.data());
+    // the model's order (renumber.h) back to the numbering the mesh was given in
+    auto node = [m](int n) { return wff_model_user_node(m, n); };
+    std::vector<int> twin((size_t)nt); // model twin triangle -> the user's
+    for (int e = 0; e < g.n_tris; e++)
+        twin[e] = wff_model_user_element(m, e);
+    for (int q = 0; q < g.n_quads; q++)
+        for (int h = 0; h < 2; h++)
+            twin[g.n_tris + 2 * q + h] =
+                g.n_tris + 2 * (wff_model_user_element(m, g.n_tris + q) - g.n_tris) + h;
     Mesh::Vertex *v = new Mesh::Vertex[g.n_nodes];
     for (int i = 0; i < g.n_nodes; i++) {
-        v[i].x = g.xy[2 * i];
-        v[i].y = g.xy[2 * i + 1];
-        v[i].lab = 0;
+        v[node(i)].x = g.xy[2 * i];
+        v[node(i)].y = g.xy[2 * i + 1];
+        v[node(i)].lab = 0;
     }
     for (int e = 0; e < g.n_edges; e++)
         for (int a = 0; a < 2; a++)
-            v[g.edge[2 * e + a]].lab = g.edge_label[e];
+            v[node(g.edge[2 * e + a])].lab = g.edge_label[e];
     Mesh::Triangle *t = new Mesh::Triangle[nt];
     for (int e = 0; e < nt; e++)
-        t[e].set(v, tri[3 * e], tri[3 * e + 1], tri[3 * e + 2], region[e]);
+        t[twin[e]].set(v, node(tri[3 * e]), node(tri[3 * e + 1]), node(tri[3 * e + 2]),
+                       region[e]);
     Mesh::BorderElement *b = new Mesh::BorderElement[g.n_edges > 0 ? g.n_edges : 1];
     for (int e = 0; e < g.n_edges; e++)
-        b[e].set(v, g.edge[2 * e], g.edge[2 * e + 1], g.edge_label[e]);
+        b[e].set(v, node(g.edge[2 * e]), node(g.edge[2 * e + 1]), g.edge_label[e]);
     Mesh *th = new Mesh(g.n_nodes, nt, g.n_edges, v, t, b);
     R2 pmin, pmax;
     th->BoundingBox(pmin, pmax);
