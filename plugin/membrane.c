@@ -486,7 +486,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
 #pragma omp parallel num_threads(threads) if (threads > 1)
     {
         int t = omp_thread();
-#pragma omp single
+#pragma omp single nowait /* (read after the element loop's barrier: no barrier of its own) */
         team = omp_team();
         double *ft = t == 0 ? f : el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
         /* (an extra thread's buffer is zero here: the last reduction cleared it) */
@@ -515,7 +515,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
          * (no pass of its own zeroes them) */
         if (team > 1) {
             const size_t n_dofs = (size_t)el->n_dofs;
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait /* (the region's end waits) */
             for (size_t i = 0; i < n_dofs; i++) {
                 double extra = 0;
                 for (int k = 1; k < team; k++) {

@@ -17,10 +17,15 @@
 
 /* Most parts a pass is split into (their partial sums live on the stack). */
 #define MAX_PARTS 64
-/* Items per part: a part is worth a thread's wake-up (a few µs) */
-#define DOF_GRAIN 4096
-#define NODE_GRAIN 1024
-#define CLAMP_GRAIN 128
+/* Items per part (the parts fix the sums' order; small parts balance the
+ * threads) */
+#define DOF_GRAIN 2048
+#define NODE_GRAIN 512
+#define CLAMP_GRAIN 64
+/* Fewest DOFs for which a pass over the DOFs or nodes takes a team: a pass
+ * costs ~1 ns a DOF, a team's start and end ~10 µs when its threads sleep
+ * between passes (OMP_WAIT_POLICY=passive, tools/ff.sh) */
+#define TEAM_MIN_DOFS 16384
 
 /* Parts for n items at `grain` items a part: depends on n alone. */
 static int part_count(int n, int grain)
@@ -34,10 +39,11 @@ static int part_begin(int n, int parts, int k)
     return (int)((long long)n * k / parts);
 }
 
-/* Threads for a pass of `parts` parts: the model's, at most one a part. */
+/* Threads for a pass of `parts` parts: the model's, at most one a part;
+ * one for a model too small to repay a team. */
 static int pass_threads(const wff_model *m, int parts)
 {
-    int t = m->el.n_threads;
+    int t = m->n_dofs < TEAM_MIN_DOFS ? 1 : m->el.n_threads;
     return t > parts ? parts : t < 1 ? 1 : t;
 }
 
@@ -78,7 +84,7 @@ double wff_step_positions(wff_model *m, double dt)
 {
     const int n = m->n_dofs, parts = part_count(n, DOF_GRAIN);
     double work[MAX_PARTS];
-#pragma omp parallel for schedule(static) num_threads(pass_threads(m, parts)) if (parts > 1)
+#pragma omp parallel for schedule(static) num_threads(pass_threads(m, parts)) if (pass_threads(m, parts) > 1)
     for (int k = 0; k < parts; k++) {
         const int end = part_begin(n, parts, k + 1);
         double w = 0;
@@ -96,7 +102,7 @@ double wff_step_positions(wff_model *m, double dt)
 void wff_step_zero(const wff_model *m, double *f, int n)
 {
     const int parts = part_count(n, DOF_GRAIN);
-#pragma omp parallel for schedule(static) num_threads(pass_threads(m, parts)) if (parts > 1)
+#pragma omp parallel for schedule(static) num_threads(pass_threads(m, parts)) if (pass_threads(m, parts) > 1)
     for (int k = 0; k < parts; k++) {
         const int begin = part_begin(n, parts, k);
         memset(f + begin, 0, sizeof(double) * (size_t)(part_begin(n, parts, k + 1) - begin));
@@ -111,7 +117,7 @@ void wff_step_velocities(wff_model *m, double dt_mid, double dt_done, double *wo
     double part_work[MAX_PARTS], part_dissipated[MAX_PARTS];
     /* one region: the clamp reads the reactions the update writes (the loop's
      * barrier between) */
-#pragma omp parallel num_threads(pass_threads(m, parts)) if (parts > 1)
+#pragma omp parallel num_threads(pass_threads(m, parts)) if (pass_threads(m, parts) > 1)
     {
 #pragma omp for schedule(static)
         for (int k = 0; k < parts; k++) {
@@ -121,7 +127,7 @@ void wff_step_velocities(wff_model *m, double dt_mid, double dt_done, double *wo
                 w += update_dof(m, i, dt_mid, dt_done);
             part_work[k] = w;
         }
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait /* (the region's end waits) */
         for (int k = 0; k < clamp_parts; k++) {
             const int end = part_begin(n_clamp, clamp_parts, k + 1);
             double d = 0;
@@ -138,7 +144,7 @@ double wff_step_clamp(const wff_model *m, double *v, double dt_mid)
 {
     const int n_clamp = m->clamp.n, parts = part_count(n_clamp, CLAMP_GRAIN);
     double part_dissipated[MAX_PARTS];
-#pragma omp parallel for schedule(static) num_threads(pass_threads(m, parts)) if (parts > 1)
+#pragma omp parallel for schedule(static) num_threads(pass_threads(m, parts)) if (pass_threads(m, parts) > 1)
     for (int k = 0; k < parts; k++) {
         const int end = part_begin(n_clamp, parts, k + 1);
         double d = 0;
@@ -155,7 +161,7 @@ void wff_step_kinetic(const wff_model *m, double half, double k3[3])
     const unsigned char *kind = m->dof_kind;
     const int n = m->n_nodes, parts = part_count(n, NODE_GRAIN);
     double part_e[MAX_PARTS][3];
-#pragma omp parallel for schedule(static) num_threads(pass_threads(m, parts)) if (parts > 1)
+#pragma omp parallel for schedule(static) num_threads(pass_threads(m, parts)) if (pass_threads(m, parts) > 1)
     for (int k = 0; k < parts; k++) {
         const int end = part_begin(n, parts, k + 1);
         double inplane = 0, transverse = 0, amplitude = 0;
@@ -187,7 +193,7 @@ int wff_step_candidates(const wff_model *m, double reach, int *candidates)
     int found[MAX_PARTS];
     /* each part lists its nodes from its own first index on, then the lists
      * are closed up in part order: node order, as one thread gives */
-#pragma omp parallel for schedule(static) num_threads(pass_threads(m, parts)) if (parts > 1)
+#pragma omp parallel for schedule(static) num_threads(pass_threads(m, parts)) if (pass_threads(m, parts) > 1)
     for (int k = 0; k < parts; k++) {
         const int begin = part_begin(n, parts, k), end = part_begin(n, parts, k + 1);
         int count = 0;
