@@ -59,10 +59,20 @@ static int fail_unstable(const wff_model *m, const char *what, wff_error *err)
  * the pass's stored energy (J, model part) into *energy unless NULL.
  * Returns 0 or -1 (err set, naming the element and quadrature point). Shared
  * with operators.c (solver_internal.h). */
+static int force_pass_added(wff_model *m, const double *u, double *f, double *gamma_f,
+                            double dt_flow, int accumulate, double *energy, wff_error *err);
+
 int wff_force_pass(wff_model *m, const double *u, double *f, double *gamma_f, double dt_flow,
                    int accumulate, double *energy, wff_error *err)
 {
     wff_step_zero(m, f, m->n_dofs);
+    return force_pass_added(m, u, f, gamma_f, dt_flow, accumulate, energy, err);
+}
+
+/* wff_force_pass into an f already zeroed. */
+static int force_pass_added(wff_model *m, const double *u, double *f, double *gamma_f,
+                            double dt_flow, int accumulate, double *energy, wff_error *err)
+{
     wff_force_totals t;
     wff_elements_forces(&m->el, &m->em, m->mesh.xy, u, gamma_f, dt_flow, f, &t);
     if (accumulate)
@@ -102,6 +112,12 @@ int wff_force_pass(wff_model *m, const double *u, double *f, double *gamma_f, do
 static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
 {
     return wff_force_pass(m, m->u, m->f, m->gamma_f, dt_flow, 1, NULL, err);
+}
+
+/* The same, f zeroed already (by the position update: one pass less a step). */
+static int compute_forces_zeroed(wff_model *m, double dt_flow, wff_error *err)
+{
+    return force_pass_added(m, m->u, m->f, m->gamma_f, dt_flow, 1, NULL, err);
 }
 
 /* Coulomb friction as a velocity correction: an impulse up to `limit`
@@ -264,7 +280,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         /* u^{n+1} = u^n + Δt v^{n+½} */
         double dt = m->dt;
         /* external work by the trapezoidal rule: ½(R^n + R^{n+1})·Δu */
-        m->external_work += wff_step_positions(m, dt); /* (threaded: step_threads.c) */
+        m->external_work += wff_step_positions(m, dt); /* and f = 0 (step_threads.c) */
         if (m->projectile.active)
             m->projectile.tip += dt * m->projectile.velocity;
         m->time += dt;
@@ -276,7 +292,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
             if (m->projectile.active)
                 wff_contact_refresh_candidates(m);
         }
-        if (compute_forces(m, dt, err))
+        if (compute_forces_zeroed(m, dt, err))
             return -1;
         update_velocities(m, 0.5 * (dt + m->dt), dt);
         if (wff_contact_correct(m, m->dt, 0.5 * (dt + m->dt), err))

@@ -38,8 +38,8 @@ double wff_clamp_correct(const wff_model *m, double *v, double dt_mid);
 double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid);
 /* step_threads.c: the per-step passes, threaded (the model's thread count)
  * with sums in an order set by the item count alone: the same bits for any
- * thread count. u += dt v, returning the first half of the prescribed DOFs'
- * external work; f[0..n) = 0; the velocity update with the boundary
+ * thread count. u += dt v and m->f = 0, returning the first half of the
+ * prescribed DOFs' external work; f[0..n) = 0; the velocity update with the boundary
  * conditions, then the clamp friction (into *work the prescribed DOFs'
  * second-half work, into *dissipated the clamp's); the clamp alone on v
  * (returns the dissipation); Σ m v² (in-plane, transverse, amplitude) of the

@@ -1,15 +1,15 @@
 /* step_threads.c: the per-step passes over DOFs and nodes, threaded
  * (OpenMP) with sums in a fixed order: the position update with the first
- * half of the prescribed DOFs' external work, the zeroing of the force
- * vector, the velocity update with the boundary conditions and the friction
- * clamp's correction (one parallel region for both), the kinetic energies
+ * half of the prescribed DOFs' external work and the force vector zeroed
+ * for the force pass (one pass), the zeroing alone, the velocity update
+ * with the boundary conditions and the friction clamp's correction (one
+ * parallel region for both), the kinetic energies
  * and the contact candidates. Each pass splits its items into parts whose
  * bounds depend on the item count alone (never on the thread count); a part
  * sums its items in order and the parts are added in order, so a result is
  * the same bit for bit whatever the number of threads. Knows the model's
- * arrays (solver_internal.h); nothing of cells, elements, FreeFEM; the
- * physics of each item (velocity update, clamp friction) stays with the
- * integrator's clamp friction it calls. */
+ * arrays (solver_internal.h); nothing of cells, elements, FreeFEM; a
+ * clamped node's friction is the integrator's (wff_clamp_node). */
 #include "solver_internal.h"
 
 #include <math.h>
@@ -93,6 +93,7 @@ double wff_step_positions(wff_model *m, double dt)
             if (m->dof_kind[i] == WFF_DOF_PRESCRIBED)
                 w += 0.5 * m->reaction[i] * du;
             m->u[i] += du;
+            m->f[i] = 0; /* the force pass that follows adds into it */
         }
         work[k] = w;
     }
