@@ -310,14 +310,7 @@ void wff_contact_refresh_candidates(wff_model *m)
 {
     wff_projectile *p = &m->projectile;
     double reach = p->search_all ? INFINITY : 1.2 * p->radius + 2e-3;
-    p->n_candidates = 0;
-    for (int k = 0; k < m->n_nodes; k++) { /* in the user's order: the correction is sequential */
-        int n = wff_model_node_of_user(m, k);
-        double dx = m->mesh.xy[2 * n] + m->u[D * n] - p->axis[0];
-        double dy = m->mesh.xy[2 * n + 1] + m->u[D * n + 1] - p->axis[1];
-        if (dx * dx + dy * dy < reach * reach)
-            p->candidates[p->n_candidates++] = n;
-    }
+    p->n_candidates = wff_step_candidates(m, reach, p->candidates); /* in the user's node order */
 }
 
 /* Kinematic (hard) contact with the projectile, a predictor–corrector on

@@ -49,10 +49,20 @@ static int fail_unstable(const wff_model *m, const char *what, wff_error *err)
  * the pass's stored energy (J, model part) into *energy unless NULL.
  * Returns 0 or -1 (err set, naming the element and quadrature point). Shared
  * with operators.c (solver_internal.h). */
+static int force_pass_added(wff_model *m, const double *u, double *f, double *gamma_f,
+                            double dt_flow, int accumulate, double *energy, wff_error *err);
+
 int wff_force_pass(wff_model *m, const double *u, double *f, double *gamma_f, double dt_flow,
                    int accumulate, double *energy, wff_error *err)
 {
-    memset(f, 0, sizeof(double) * (size_t)m->n_dofs);
+    wff_step_zero(m, f, m->n_dofs);
+    return force_pass_added(m, u, f, gamma_f, dt_flow, accumulate, energy, err);
+}
+
+/* wff_force_pass into an f already zeroed. */
+static int force_pass_added(wff_model *m, const double *u, double *f, double *gamma_f,
+                            double dt_flow, int accumulate, double *energy, wff_error *err)
+{
     wff_force_totals t;
     wff_zones_forces(m, u, gamma_f, dt_flow, f, &t);
     if (accumulate) {
@@ -100,6 +110,12 @@ static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
     return wff_force_pass(m, m->u, m->f, m->gamma_f, dt_flow, 1, NULL, err);
 }
 
+/* The same, f zeroed already (by the position update: one pass less a step). */
+static int compute_forces_zeroed(wff_model *m, double dt_flow, wff_error *err)
+{
+    return force_pass_added(m, m->u, m->f, m->gamma_f, dt_flow, 1, NULL, err);
+}
+
 /* Coulomb friction as a velocity correction: an impulse up to `limit`
  * against the relative tangential speed `speed` of a node of mass `mass`
  * (sticking if the limit allows). The friction force impulse/Δt works
@@ -119,52 +135,41 @@ static double friction_impulse(double mass, double speed, double limit, double *
  * on the prescribed DOFs (the first half was added with the position update). */
 static void update_velocities(wff_model *m, double dt_mid, double dt_done)
 {
-    for (int i = 0; i < m->n_dofs; i++) {
-        switch (m->dof_kind[i]) {
-        case WFF_DOF_FREE:
-            m->v[i] += dt_mid * m->f[i] / m->mass[i];
-            m->reaction[i] = 0;
-            break;
-        case WFF_DOF_FIXED:
-            m->v[i] = 0;
-            m->reaction[i] = -m->f[i];
-            break;
-        default:
-            m->external_work += 0.5 * (-m->f[i]) * dt_done * m->v[i];
-            m->v[i] = m->v_prescribed[i];
-            m->reaction[i] = -m->f[i];
-            break;
-        }
-    }
-    m->dissipated_friction += wff_clamp_correct(m, m->v, dt_mid);
+    double work, dissipated; /* (threaded with the clamp: step_threads.c) */
+    wff_step_velocities(m, dt_mid, dt_done, &work, &dissipated);
+    m->external_work += work;
+    m->dissipated_friction += dissipated;
 }
 
 double wff_clamp_correct(const wff_model *m, double *v, double dt_mid)
 {
+    return wff_step_clamp(m, v, dt_mid); /* wff_clamp_node on every clamped node */
+}
+
+/* friction clamp: in-plane, two faces, on the node's free in-plane
+ * components (a node on a symmetry line slides along it and is held by
+ * friction there too) */
+double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid)
+{
     double dissipated = 0;
-    /* friction clamp: in-plane, two faces, on the node's free in-plane
-     * components (a node on a symmetry line slides along it and is held by
-     * friction there too) */
-    for (int c = 0; c < m->clamp.n; c++) {
-        int n = m->clamp.node[c];
-        double *vn = v + D * n;
-        int free_x = m->dof_kind[D * n + WFF_UX] == WFF_DOF_FREE;
-        int free_y = m->dof_kind[D * n + WFF_UY] == WFF_DOF_FREE;
-        double speed = hypot(free_x ? vn[0] : 0, free_y ? vn[1] : 0);
-        if (speed == 0)
-            continue;
-        /* both faces press with N_a; an out-of-plane load R_z adds to one */
-        double pressed = 2 * m->clamp.normal_force[c];
-        if (m->clamp.edge_reaction)
-            pressed += fabs(m->reaction[D * n + WFF_UZ]);
-        double impulse = friction_impulse(m->mass[D * n], speed,
-                                          m->clamp.mu * pressed * dt_mid, &dissipated);
-        double scale = 1 - impulse / (m->mass[D * n] * speed);
-        if (free_x)
-            vn[0] *= scale;
-        if (free_y)
-            vn[1] *= scale;
-    }
+    int n = m->clamp.node[c];
+    double *vn = v + D * n;
+    int free_x = m->dof_kind[D * n + WFF_UX] == WFF_DOF_FREE;
+    int free_y = m->dof_kind[D * n + WFF_UY] == WFF_DOF_FREE;
+    double speed = hypot(free_x ? vn[0] : 0, free_y ? vn[1] : 0);
+    if (speed == 0)
+        return 0;
+    /* both faces press with N_a; an out-of-plane load R_z adds to one */
+    double pressed = 2 * m->clamp.normal_force[c];
+    if (m->clamp.edge_reaction)
+        pressed += fabs(m->reaction[D * n + WFF_UZ]);
+    double impulse = friction_impulse(m->mass[D * n], speed,
+                                      m->clamp.mu * pressed * dt_mid, &dissipated);
+    double scale = 1 - impulse / (m->mass[D * n] * speed);
+    if (free_x)
+        vn[0] *= scale;
+    if (free_y)
+        vn[1] *= scale;
     return dissipated;
 }
 
@@ -191,20 +196,9 @@ static int update_time_step(wff_model *m, wff_error *err)
 static void kinetic_now(const wff_model *m, double k[4])
 {
     const double half = m->v_half_valid ? 0.5 * m->dt : 0;
-    const double *v = m->v, *f = m->f, *mass = m->mass;
-    const unsigned char *kind = m->dof_kind;
-    double inplane = 0, transverse = 0, amplitude = 0;
-    for (int n = 0; n < m->n_nodes; n++) { /* branch-free over the 5 DOFs of a node */
-        const int i = D * n;
-        double e[D];
-        for (int j = 0; j < D; j++) {
-            double vn = v[i + j] - half * f[i + j] / mass[i + j];
-            e[j] = kind[i + j] == WFF_DOF_FREE ? mass[i + j] * vn * vn : 0;
-        }
-        inplane += e[0] + e[1];
-        transverse += e[2];
-        amplitude += e[3] + e[4];
-    }
+    double sums[3]; /* Σ m v² in-plane, transverse, amplitude (threaded: step_threads.c) */
+    wff_step_kinetic(m, half, sums);
+    const double inplane = sums[0], transverse = sums[1], amplitude = sums[2];
     k[0] = 0.5 * inplane;
     k[1] = 0.5 * transverse;
     k[2] = 0.5 * amplitude;
@@ -282,12 +276,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         /* u^{n+1} = u^n + Δt v^{n+½} */
         double dt = m->dt;
         /* external work by the trapezoidal rule: ½(R^n + R^{n+1})·Δu */
-        for (int i = 0; i < m->n_dofs; i++) {
-            double du = dt * m->v[i];
-            if (m->dof_kind[i] == WFF_DOF_PRESCRIBED)
-                m->external_work += 0.5 * m->reaction[i] * du;
-            m->u[i] += du;
-        }
+        m->external_work += wff_step_positions(m, dt); /* and f = 0 (step_threads.c) */
         if (m->projectile.active)
             m->projectile.tip += dt * m->projectile.velocity;
         m->time += dt;
@@ -299,7 +288,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
             if (m->projectile.active)
                 wff_contact_refresh_candidates(m);
         }
-        if (compute_forces(m, dt, err))
+        if (compute_forces_zeroed(m, dt, err))
             return -1;
         update_velocities(m, 0.5 * (dt + m->dt), dt);
         if (wff_contact_correct(m, m->dt, 0.5 * (dt + m->dt), err))

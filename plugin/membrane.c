@@ -97,7 +97,11 @@ int wff_elements_init(wff_elements *el, const double *X, int n_tris, const int *
         max_node = quad[i] > max_node ? quad[i] : max_node;
     el->n_dofs = D * (max_node + 1);
 #ifdef _OPENMP
+    /* OpenMP's maximum, or the processors if more (OMP_NUM_THREADS=1 in the
+     * environment must not stop a model that asks for 2) */
     el->max_threads = omp_get_max_threads();
+    if (omp_get_num_procs() > el->max_threads)
+        el->max_threads = omp_get_num_procs();
 #else
     el->max_threads = 1;
 #endif
@@ -106,7 +110,8 @@ int wff_elements_init(wff_elements *el, const double *X, int n_tris, const int *
     el->n_threads = 1; /* threads are asked for (wff_elements_set_threads): on a shared
                           machine a busy second core makes a team slower than one */
     if (el->max_threads > 1) {
-        el->thread_f = malloc(sizeof(double) * (size_t)(el->max_threads - 1) * (size_t)el->n_dofs);
+        /* zero, and kept zero between passes: the reduction clears what it reads */
+        el->thread_f = calloc((size_t)(el->max_threads - 1) * (size_t)el->n_dofs, sizeof(double));
         if (!el->thread_f) {
             wff_elements_free(el);
             return wff_fail(err, "out of memory for %d threads' force buffers", el->max_threads);
@@ -152,8 +157,8 @@ void wff_elements_free(wff_elements *el)
 int wff_elements_set_threads(wff_elements *el, int n_threads, wff_error *err)
 {
     if (n_threads < 1 || n_threads > el->max_threads)
-        return wff_fail(err, "threads = %d: must be 1 to %d (OpenMP's maximum here; set "
-                        "OMP_NUM_THREADS for more)", n_threads, el->max_threads);
+        return wff_fail(err, "threads = %d: must be 1 to %d (OpenMP's maximum or the "
+                        "processors here, the larger; set OMP_NUM_THREADS for more)", n_threads, el->max_threads);
     el->n_threads = n_threads;
     return 0;
 }
@@ -597,11 +602,10 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
 #pragma omp parallel num_threads(threads) if (threads > 1)
     {
         int t = omp_thread();
-#pragma omp single
+#pragma omp single nowait /* (read after the element loop's barrier: no barrier of its own) */
         team = omp_team();
         double *ft = t == 0 ? f : el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
-        if (t > 0)
-            memset(ft, 0, sizeof(double) * (size_t)el->n_dofs);
+        /* (an extra thread's buffer is zero here: the last reduction cleared it) */
         tri_sums sums = {0, 0, {0, 0, -1, -1, 0, 0, 0, 0}};
         int blocked = use_block; /* a cell declines by its parameters: ask once per thread */
 #pragma omp for schedule(static)
@@ -627,14 +631,18 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
         part_dissipated[t] = sums.dissipated;
         part_bad[t] = sums.bad;
         /* (the element loop's barrier is behind us) the other threads' buffers into f, each
-         * thread a slice of the DOFs, buffers added in thread order */
+         * thread a slice of the DOFs, buffers added in thread order and cleared as read
+         * (no pass of its own zeroes them) */
         if (team > 1) {
             const size_t n_dofs = (size_t)el->n_dofs;
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait /* (the region's end waits) */
             for (size_t i = 0; i < n_dofs; i++) {
                 double extra = 0;
-                for (int k = 1; k < team; k++)
-                    extra += el->thread_f[(size_t)(k - 1) * n_dofs + i];
+                for (int k = 1; k < team; k++) {
+                    double *b = el->thread_f + (size_t)(k - 1) * n_dofs + i;
+                    extra += *b;
+                    *b = 0;
+                }
                 f[i] += extra;
             }
         }

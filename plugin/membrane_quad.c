@@ -254,8 +254,7 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
         int t = 0;
 #endif
         double *ft = t == 0 ? f : el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
-        if (t > 0)
-            memset(ft, 0, sizeof(double) * (size_t)el->n_dofs);
+        /* (an extra thread's buffer is zero here: every reduction clears what it reads) */
         quad_sums sums = {0, 0, -1, -1, 0};
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
@@ -271,8 +270,11 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
 #pragma omp for schedule(static)
             for (size_t i = 0; i < n_dofs; i++) {
                 double extra = 0;
-                for (int k = 1; k < team; k++)
-                    extra += el->thread_f[(size_t)(k - 1) * n_dofs + i];
+                for (int k = 1; k < team; k++) {
+                    double *b = el->thread_f + (size_t)(k - 1) * n_dofs + i;
+                    extra += *b;
+                    *b = 0;
+                }
                 f[i] += extra;
             }
         }

@@ -461,6 +461,9 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
             return -1;
         }
     } else if (strcmp(key, "threads") == 0) {
+        if (value == 0) /* the default: the cores this process may use */
+            value = wff_default_threads() < m->el.max_threads ? wff_default_threads()
+                                                              : m->el.max_threads;
         if (value != floor(value) || wff_elements_set_threads(&m->el, (int)value, err))
             return value != floor(value) ? wff_fail(err, "threads = %g: a whole number", value)
                                          : -1;

@@ -34,6 +34,25 @@ int wff_force_pass(wff_model *m, const double *u, double *f, double *gamma_f, do
  * velocities v (5 per node) of the clamped nodes over dt_mid; returns the
  * energy it dissipates, J (model part). */
 double wff_clamp_correct(const wff_model *m, double *v, double dt_mid);
+/* integrator.c: the friction clamp's correction of clamped node c (index
+ * into m->clamp.node) in v; returns the energy it dissipates, J. */
+double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid);
+/* step_threads.c: the per-step passes, threaded (the model's thread count)
+ * with sums in an order set by the item count alone: the same bits for any
+ * thread count. u += dt v and m->f = 0, returning the first half of the
+ * prescribed DOFs' external work; f[0..n) = 0; the velocity update with the boundary
+ * conditions, then the clamp friction (into *work the prescribed DOFs'
+ * second-half work, into *dissipated the clamp's); the clamp alone on v
+ * (returns the dissipation); Σ m v² (in-plane, transverse, amplitude) of the
+ * free DOFs at v − half f/m; the nodes within `reach` of the projectile's
+ * axis in plane into candidates (returns how many, in node order). */
+double wff_step_positions(wff_model *m, double dt);
+void wff_step_zero(const wff_model *m, double *f, int n);
+void wff_step_velocities(wff_model *m, double dt_mid, double dt_done, double *work,
+                         double *dissipated);
+double wff_step_clamp(const wff_model *m, double *v, double dt_mid);
+void wff_step_kinetic(const wff_model *m, double half, double sums[3]);
+int wff_step_candidates(const wff_model *m, double reach, int *candidates);
 /* contact.c: move the projectile back along z until no node is inside it
  * now; returns the distance, m. */
 double wff_contact_retract(wff_model *m);

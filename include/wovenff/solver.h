@@ -259,7 +259,8 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
  * are divided by it, energies and the projectile force read are multiplied
  * by it; an impact point off the symmetry planes is an error), reference_path (1: the cell's plain
  * evaluate() everywhere, 0: its fast path where it has one; results agree to
- * round-off), threads (force pass and stable-step scan), amplitude_mass_factor
+ * round-off), threads (every per-step pass: forces, updates, clamp, energies,
+ * contact search, stable step; 0: wff_default_threads()), amplitude_mass_factor
  * (>= 1: heavier amplitudes, longer steps), static_amplitudes (1: balanced at
  * every point instead of dynamic DOFs), contact_search (1: only nodes the
  * projectile can reach; 0: every node); for a friction clamp (set first):
@@ -270,6 +271,13 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
  * fabric bends over the plates' edge at the opening, adds mu |R_z| to its
  * friction limit; 0: the default). */
 int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err);
+
+/* The default thread count: OMP_NUM_THREADS's (its first level) when it is
+ * set, else the processors this process may run on (its affinity mask),
+ * at most WFF_MAX_THREADS. The setting threads = 0 takes it (threads: every
+ * per-step pass; the count a model holds, m->el.n_threads, is the resolved
+ * number, and a checkpoint records that). */
+int wff_default_threads(void);
 
 /* Energies now (whole specimen: model part × symmetry_factor). */
 void wff_model_energies(const wff_model *m, wff_energies *out);

@@ -92,6 +92,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_checks,
     wff_ff_register_background,
     wff_ff_register_zones,
+    wff_ff_register_threads,
 };
 
 static void init()

@@ -52,8 +52,12 @@ printf '\n# edited\n' >> "$tmp/material.txt"
 refused material "$tmp/material" "is not the one the checkpointed run read" $common -restart "$tmp/material"
 cp "$tmp/material.orig" "$tmp/material.txt"
 # another thread count (a run-defining option)
+# (A ran with the default, the cores here: the checkpoint records the resolved count)
 cp -R "$tmp/A" "$tmp/threads"
-refused threads "$tmp/threads" "-threads is 2 here but 1 in the checkpointed run" $common -restart "$tmp/threads" -threads 2
+used=$(sed -n 's/^option -threads //p' "$tmp/A/checkpoint/scene_12.txt")
+[ -n "$used" ] && [ "$used" -ge 1 ] || { echo "threads: the checkpoint records -threads '$used'"; fail=1; }
+other=$(( used == 1 ? 2 : 1 ))
+refused threads "$tmp/threads" "-threads is $other here but $used in the checkpointed run" $common -restart "$tmp/threads" -threads $other
 # into a folder holding another run's results
 refused occupied "$tmp/X" "holds an earlier run's files" $common -restart "$tmp/A" -out "$tmp/X"
 # A itself untouched by all of that, and its restart still works

@@ -1,0 +1,31 @@
+// wovenff FreeFEM binding: thread counts (issue 12).
+//
+//   int n = wovenffDefaultThreads();   // OMP_NUM_THREADS, else the cores this process may use
+//   int t = wovenffThreads(md);        // the count model md runs every per-step pass with
+//
+// A scene's -threads default is wovenffDefaultThreads(), and its summary.json
+// "threads" is wovenffThreads(md). Knows the model handle table
+// (ff_wovenff.hpp) and the solver's public API only.
+#include "ff++.hpp"
+#include "AFunction_ext.hpp"
+
+#include "ff_wovenff.hpp"
+
+using namespace Fem2D;
+
+namespace {
+
+long ffDefaultThreads() { return wff_default_threads(); }
+
+long ffThreads(const long &id)
+{
+    return wff_ff_model(id, "wovenffThreads")->el.n_threads;
+}
+
+} // namespace
+
+void wff_ff_register_threads()
+{
+    Global.Add("wovenffDefaultThreads", "(", new OneOperator0<long>(ffDefaultThreads));
+    Global.Add("wovenffThreads", "(", new OneOperator1_<long, long>(ffThreads));
+}
