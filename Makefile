@@ -10,11 +10,12 @@ CXX      ?= g++
 BUILD    := build
 # -fno-math-errno lets gcc vectorise sqrt; never -ffast-math (it removes NaN checks).
 OPT      ?= -O2 -fno-math-errno
-# The per-element kernels (cells, membrane) are built for this machine's vector
-# unit and vectorised across blocks of elements (libmvec's atan/exp). For a
-# build that runs on other x86-64 machines: make KERNEL_ARCH=-march=x86-64-v2
-KERNEL_ARCH ?= -march=native
-KERNEL_OPT  := -O3 $(KERNEL_ARCH) -fopenmp-simd
+# The per-element kernels (cells, membrane) are vectorised across blocks of
+# elements (libmvec's atan/exp) and built once per kernel variant (see
+# KERNEL_VARIANTS below): KERNEL_ARCH is the baseline's instruction set, the
+# one every machine that loads wovenff.so must have.
+KERNEL_ARCH ?= -march=x86-64-v2
+KERNEL_OPT  := -O3 -fopenmp-simd
 CFLAGS   := -std=gnu11 $(OPT) -fopenmp -Wall -Wextra -Werror -fPIC
 # The binding: our warnings are errors; FreeFEM's headers are -isystem (their
 # own warnings are not ours). -Wno-mismatched-new-delete: gcc 12 misreads
@@ -35,6 +36,20 @@ DEB_PACKAGES := freefem++ libfreefem++-dev gmsh libgmsh-dev libgsl-dev gnuplot-n
 
 CORE_SRC := $(sort $(wildcard plugin/*.c plugin/cells/*.c))
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
+# The per-element kernels, built once per variant (docs/architecture.md, "Kernel
+# variants"): build/kernel/VARIANT/plugin/... for -march KERNEL_ARCH_VARIANT;
+# tools/kernel_variant.sh renames each copy's KERNEL_ENTRIES (the membrane
+# passes) to NAME__VARIANT and keeps its cells in a section of their own;
+# plugin/kernel_dispatch.c picks one per model at run time (WOVENFF_KERNEL).
+KERNEL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard plugin/cells/*.c) plugin/membrane.c)
+KERNEL_VARIANTS := baseline avx2 avx512
+KERNEL_ARCH_baseline = $(KERNEL_ARCH)
+KERNEL_ARCH_avx2 := -march=x86-64-v3
+KERNEL_ARCH_avx512 := -march=x86-64-v4
+KERNEL_ENTRIES := wff_elements_forces wff_elements_stable_step
+KERNEL_SRC := $(KERNEL_OBJ:$(BUILD)/%.o=%.c)
+KERNEL_VARIANT_OBJ := $(foreach v,$(KERNEL_VARIANTS),$(KERNEL_SRC:%.c=$(BUILD)/kernel/$(v)/%.o))
+CORE_OBJ := $(filter-out $(KERNEL_OBJ),$(CORE_OBJ)) $(KERNEL_VARIANT_OBJ)
 CTEST_SRC := $(sort $(wildcard tests/c/test_*.c))
 CTEST_BIN := $(CTEST_SRC:tests/c/%.c=$(BUILD)/tests/%)
 TESTLIB_SRC := $(sort $(wildcard tests/c/lib/*.c))
@@ -50,7 +65,8 @@ ARGS  ?=
 # Every object depends on build/flags.txt, rewritten only when the compiler or
 # a flag changes, so a changed flag (OPT=..., KERNEL_ARCH=...) rebuilds all.
 FLAGS_FILE := $(BUILD)/flags.txt
-FLAGS_NOW  := $(CC) $(CFLAGS) | $(KERNEL_OPT) | $(CXX) $(CXXFLAGS) | $(LDLIBS)
+FLAGS_NOW  := $(CC) $(CFLAGS) | $(KERNEL_OPT) $(foreach v,$(KERNEL_VARIANTS),$(v): \
+              $(KERNEL_ARCH_$(v))) $(KERNEL_ENTRIES) | $(CXX) $(CXXFLAGS) | $(LDLIBS)
 $(shell mkdir -p $(BUILD) && [ "$$(cat $(FLAGS_FILE) 2>/dev/null)" = '$(FLAGS_NOW)' ] || \
         printf '%s\n' '$(FLAGS_NOW)' > $(FLAGS_FILE))
 
@@ -62,9 +78,15 @@ $(BUILD)/plugin/%.o: plugin/%.c $(FLAGS_FILE)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) $(CORE_INC) $(DEPFLAGS) -c $< -o $@
 
-# The per-element kernels: built for this machine's vector unit (see KERNEL_ARCH).
-KERNEL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard plugin/cells/*.c) plugin/membrane.c)
-$(KERNEL_OBJ): CFLAGS += $(KERNEL_OPT)
+# The per-element kernels, once per variant (compiled to NAME.o.o, then renamed).
+define KERNEL_VARIANT_RULE
+$(BUILD)/kernel/$(1)/%.o: %.c $(FLAGS_FILE) tools/kernel_variant.sh
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$(CFLAGS) $$(KERNEL_OPT) $$(KERNEL_ARCH_$(1)) $$(CORE_INC) $$(DEPFLAGS) \
+	    -MF $$(@:.o=.d) -MT $$@ -c $$< -o $$@.o
+	sh tools/kernel_variant.sh $(1) $$@.o $$@ $$(KERNEL_ENTRIES)
+endef
+$(foreach v,$(KERNEL_VARIANTS),$(eval $(call KERNEL_VARIANT_RULE,$(v))))
 
 $(BUILD)/tests/c/lib/%.o: tests/c/lib/%.c $(FLAGS_FILE)
 	@mkdir -p $(dir $@)

@@ -6,6 +6,7 @@
  * of output fields or checkpoints, of cells by name or of FreeFEM. */
 #include "solver_internal.h"
 #include "wovenff/material.h"
+#include "wovenff/kernel.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -82,7 +83,8 @@ int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *materia
         wff_mesh_free(&m->mesh);
         return -1;
     }
-    if (wff_material_load(material_path, &m->mat, err)) {
+    /* the kernel variant: WOVENFF_KERNEL, read once here (kernel.h) */
+    if (wff_material_load(material_path, &m->mat, err) || wff_kernel_apply(&m->mat, NULL, err)) {
         wff_mesh_free(&m->mesh);
         return -1;
     }
