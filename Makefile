@@ -84,7 +84,7 @@ $(BUILD)/kernel/$(1)/%.o: %.c $(FLAGS_FILE) tools/kernel_variant.sh
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$(CFLAGS) $$(KERNEL_OPT) $$(KERNEL_ARCH_$(1)) $$(CORE_INC) $$(DEPFLAGS) \
 	    -MF $$(@:.o=.d) -MT $$@ -c $$< -o $$@.o
-	sh tools/kernel_variant.sh $(1) $$@.o $$@ $$(KERNEL_ENTRIES)
+	sh tools/kernel_variant.sh $(1) $$@.o $$@ $$(KERNEL_ENTRIES) && rm -f $$@.o
 endef
 $(foreach v,$(KERNEL_VARIANTS),$(eval $(call KERNEL_VARIANT_RULE,$(v))))
 

@@ -6,6 +6,7 @@
  *
  * usage: kernel_speed ELEMENT_TYPE(tri|quad) SIZE_FACTOR THREADS STEPS
  * prints one JSON object on stdout. Run from the repository root. */
+#include "wovenff/kernel.h"
 #include "wovenff/options.h"
 #include "wovenff/solver.h"
 
@@ -144,9 +145,10 @@ int main(int argc, char **argv)
         snprintf(linear, sizeof linear, "%.2f", linear_membrane_ns(&m, steps, threads));
     printf("{\"elements\": %d, \"element_type\": \"%s\", \"nodes\": %d, \"threads\": %d, "
            "\"steps\": %ld, \"ns_per_element_step\": %.2f, \"linear_membrane_ns\": %s, "
-           "\"model_bytes_per_element\": %.0f, \"peak_rss_bytes_per_element\": %.0f}\n",
+           "\"model_bytes_per_element\": %.0f, \"peak_rss_bytes_per_element\": %.0f, "
+           "\"kernel\": \"%s\"}\n",
            ne, quads ? "quad4" : "tri3", m.n_nodes, threads, m.step - s0, ns, linear,
-           (node_bytes + element_bytes) / ne, bytes_per_element);
+           (node_bytes + element_bytes) / ne, bytes_per_element, wff_material_kernel(&m.mat));
     wff_model_free(&m);
     return 0;
 }
