@@ -116,10 +116,11 @@ int wff_kernel_select(const char *request, const wff_kernel **out, wff_error *er
 
 const wff_cell_type *wff_kernel_cell(const wff_kernel *k, const wff_cell_type *cell)
 {
-    if (!k->cells_start || !k->cells_stop || !cell)
+    /* only a built cell has builds: a table made at run time may share its name */
+    if (!k->cells_start || !k->cells_stop || !cell || !wff_kernel_of_cell(cell))
         return NULL;
     for (const wff_cell_type *const *c = k->cells_start; c < k->cells_stop; c++)
-        if (*c == cell || strcmp((*c)->name, cell->name) == 0)
+        if (strcmp((*c)->name, cell->name) == 0)
             return *c;
     return NULL;
 }
