@@ -13,9 +13,12 @@ OPT      ?= -O2 -fno-math-errno
 # The per-element kernels (cells, membrane) are vectorised across blocks of
 # elements (libmvec's atan/exp) and built once per kernel variant (see
 # KERNEL_VARIANTS below): KERNEL_ARCH is the baseline's instruction set, the
-# one every machine that loads wovenff.so must have.
+# one every machine that loads wovenff.so must have. -fno-trapping-math (no
+# floating-point traps: values and NaN checks unchanged) lets gcc if-convert
+# the lane loops without AVX-512 masks, so the baseline and avx2 variants
+# vectorise them too (libmvec's 2- and 4-lane atan/exp).
 KERNEL_ARCH ?= -march=x86-64-v2
-KERNEL_OPT  := -O3 -fopenmp-simd
+KERNEL_OPT  := -O3 -fopenmp-simd -fno-trapping-math
 CFLAGS   := -std=gnu11 $(OPT) -fopenmp -Wall -Wextra -Werror -fPIC
 # The binding: our warnings are errors; FreeFEM's headers are -isystem (their
 # own warnings are not ours). -Wno-mismatched-new-delete: gcc 12 misreads
