@@ -40,10 +40,12 @@ DEB_PACKAGES := freefem++ libfreefem++-dev gmsh libgmsh-dev libgsl-dev gnuplot-n
 CORE_SRC := $(sort $(wildcard plugin/*.c plugin/cells/*.c))
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
 # The per-element kernels, built once per variant (docs/architecture.md, "Kernel
-# variants"): build/kernel/VARIANT/plugin/... for -march KERNEL_ARCH_VARIANT;
-# tools/kernel_variant.sh renames each copy's KERNEL_ENTRIES (the membrane
-# passes) to NAME__VARIANT and keeps its cells in a section of their own;
-# plugin/kernel_dispatch.c picks one per model at run time (WOVENFF_KERNEL).
+# variants"): build/kernel/VARIANT/plugin/... for -march KERNEL_ARCH_VARIANT,
+# linked into one object build/kernel/VARIANT.o (calls between kernel files
+# stay inside the variant), whose KERNEL_ENTRIES (the membrane passes)
+# tools/kernel_variant.sh renames to NAME__VARIANT, its cells kept in a
+# section of their own; plugin/kernel_dispatch.c picks one per model at run
+# time (WOVENFF_KERNEL).
 KERNEL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard plugin/cells/*.c) plugin/membrane.c)
 KERNEL_VARIANTS := baseline avx2 avx512
 KERNEL_ARCH_baseline = $(KERNEL_ARCH)
@@ -51,7 +53,8 @@ KERNEL_ARCH_avx2 := -march=x86-64-v3
 KERNEL_ARCH_avx512 := -march=x86-64-v4
 KERNEL_ENTRIES := wff_elements_forces wff_elements_stable_step
 KERNEL_SRC := $(KERNEL_OBJ:$(BUILD)/%.o=%.c)
-KERNEL_VARIANT_OBJ := $(foreach v,$(KERNEL_VARIANTS),$(KERNEL_SRC:%.c=$(BUILD)/kernel/$(v)/%.o))
+KERNEL_PART_OBJ := $(foreach v,$(KERNEL_VARIANTS),$(KERNEL_SRC:%.c=$(BUILD)/kernel/$(v)/%.o))
+KERNEL_VARIANT_OBJ := $(KERNEL_VARIANTS:%=$(BUILD)/kernel/%.o)
 CORE_OBJ := $(filter-out $(KERNEL_OBJ),$(CORE_OBJ)) $(KERNEL_VARIANT_OBJ)
 CTEST_SRC := $(sort $(wildcard tests/c/test_*.c))
 CTEST_BIN := $(CTEST_SRC:tests/c/%.c=$(BUILD)/tests/%)
@@ -81,12 +84,14 @@ $(BUILD)/plugin/%.o: plugin/%.c $(FLAGS_FILE)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) $(CORE_INC) $(DEPFLAGS) -c $< -o $@
 
-# The per-element kernels, once per variant (compiled to NAME.o.o, then renamed).
+# The per-element kernels, once per variant: compiled, linked (ld -r) into one
+# object, renamed.
 define KERNEL_VARIANT_RULE
-$(BUILD)/kernel/$(1)/%.o: %.c $(FLAGS_FILE) tools/kernel_variant.sh
+$(BUILD)/kernel/$(1)/%.o: %.c $(FLAGS_FILE)
 	@mkdir -p $$(dir $$@)
-	$$(CC) $$(CFLAGS) $$(KERNEL_OPT) $$(KERNEL_ARCH_$(1)) $$(CORE_INC) $$(DEPFLAGS) \
-	    -MF $$(@:.o=.d) -MT $$@ -c $$< -o $$@.o
+	$$(CC) $$(CFLAGS) $$(KERNEL_OPT) $$(KERNEL_ARCH_$(1)) $$(CORE_INC) $$(DEPFLAGS) -c $$< -o $$@
+$(BUILD)/kernel/$(1).o: $(KERNEL_SRC:%.c=$(BUILD)/kernel/$(1)/%.o) tools/kernel_variant.sh
+	$$(LD) -r -o $$@.o $$(filter %.o,$$^)
 	sh tools/kernel_variant.sh $(1) $$@.o $$@ $$(KERNEL_ENTRIES) && rm -f $$@.o
 endef
 $(foreach v,$(KERNEL_VARIANTS),$(eval $(call KERNEL_VARIANT_RULE,$(v))))
@@ -142,5 +147,5 @@ bench: all $(BENCH_BIN)
 clean:
 	rm -rf $(BUILD)
 
--include $(CORE_OBJ:.o=.d) $(TESTLIB_OBJ:.o=.d) $(CTEST_BIN:=.d) $(MODULE_OBJ:.o=.d) \
+-include $(CORE_OBJ:.o=.d) $(KERNEL_PART_OBJ:.o=.d) $(TESTLIB_OBJ:.o=.d) $(CTEST_BIN:=.d) $(MODULE_OBJ:.o=.d) \
          $(BENCH_BIN:=.d)

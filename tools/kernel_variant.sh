@@ -1,7 +1,8 @@
 #!/bin/sh
-# Make one kernel object (a cell or membrane.c compiled for one instruction
-# set) into a kernel variant that links beside the others (the Makefile calls
-# it; plugin/kernel_dispatch.c chooses among them at run time).
+# Make the kernels compiled for one instruction set (every cell and
+# membrane.c, linked into one object with ld -r) into a kernel variant that
+# links beside the others (the Makefile calls it; plugin/kernel_dispatch.c
+# chooses among them at run time).
 # Usage: tools/kernel_variant.sh VARIANT IN.o OUT.o ENTRY...
 #
 #   baseline   the entry points ENTRY (wff_elements_forces, ...) get the
@@ -29,8 +30,9 @@ if [ "$variant" = baseline ]; then
 else
     keep=""
     for entry in "$@"; do keep="$keep --keep-global-symbol=$entry"; done
-    # every defined symbol (functions, their OpenMP and cold parts, data)
-    nm --defined-only -P "$in" | awk -v s="__$variant" '{ print $1, $1 s }' >"$map"
+    # every defined symbol (functions, their OpenMP and cold parts, data), each
+    # name once (the parts' local symbols may share one: all get the suffix)
+    nm --defined-only -P "$in" | awk -v s="__$variant" '!seen[$1]++ { print $1, $1 s }' >"$map"
     objcopy $keep "$in" "$out.local"
     objcopy --redefine-syms="$map" --rename-section wff_cells="wff_cells__$variant" \
         "$out.local" "$out.part"

@@ -17,7 +17,9 @@ lib=${1:-build/wovenff.so}
 [ -f "$lib" ] || { echo "portable_build: $lib missing (run make first)"; exit 1; }
 objects=""
 if [ $# -eq 0 ]; then
-    objects=$(find build/plugin build/kernel -name '*.o' | sort)
+    # the core's objects and the three kernel variants (build/kernel/VARIANT/ holds
+    # their parts before the renaming, never linked)
+    objects="$(find build/plugin -name '*.o' | sort) $(find build/kernel -maxdepth 1 -name '*.o' | sort)"
     [ -n "$objects" ] || { echo "portable_build: no objects under build/"; exit 1; }
 fi
 fail=0
