@@ -4,7 +4,9 @@
  * Also the same mesh through a bare linear CST membrane kernel of our own
  * (same layout, gather, scatter and update): the floor for any membrane here.
  *
- * usage: kernel_speed ELEMENT_TYPE(tri|quad) SIZE_FACTOR THREADS STEPS
+ * usage: kernel_speed ELEMENT_TYPE(tri|quad) SIZE_FACTOR THREADS STEPS [static]
+ * (static: amplitudes balanced at every point, the model option
+ * static_amplitudes, with its Newton iterations per point and step)
  * prints one JSON object on stdout. Run from the repository root. */
 #include "wovenff/kernel.h"
 #include "wovenff/options.h"
@@ -89,7 +91,12 @@ static double linear_membrane_ns(const wff_model *m, int steps, int threads)
 int main(int argc, char **argv)
 {
     if (argc < 5) {
-        fprintf(stderr, "usage: %s tri|quad SIZE_FACTOR THREADS STEPS\n", argv[0]);
+        fprintf(stderr, "usage: %s tri|quad SIZE_FACTOR THREADS STEPS [static]\n", argv[0]);
+        return 2;
+    }
+    int static_amplitudes = argc > 5 && strcmp(argv[5], "static") == 0;
+    if (argc > 5 && !static_amplitudes) {
+        fprintf(stderr, "%s: 5th argument '%s': only 'static' is known\n", argv[0], argv[5]);
         return 2;
     }
     int quads = strcmp(argv[1], "quad") == 0, threads = atoi(argv[3]), steps = atoi(argv[4]);
@@ -112,7 +119,8 @@ int main(int argc, char **argv)
         wff_model_fix_group(&m, "clamp", 0, &err) < 0 || wff_model_fix_group(&m, "clamp", 1, &err) < 0 ||
         wff_model_fix_group(&m, "clamp", 2, &err) < 0 ||
         wff_model_set_projectile(&m, 6.35e-3, 0.026, 22, 0.3, &err) ||
-        wff_elements_set_threads(&m.el, threads, &err)) {
+        wff_elements_set_threads(&m.el, threads, &err) ||
+        (static_amplitudes && wff_model_set_option(&m, "static_amplitudes", 1, &err))) {
         fprintf(stderr, "%s\n", err.message);
         return 1;
     }
@@ -122,13 +130,18 @@ int main(int argc, char **argv)
         fprintf(stderr, "%s\n", err.message);
         return 1;
     }
-    long s0 = m.step;
+    long s0 = m.step, iterations0 = m.amplitude_iterations;
     double t0 = now();
     if (wff_model_advance(&m, 1e9, steps, &err)) {
         fprintf(stderr, "%s\n", err.message);
         return 1;
     }
     double ns = (now() - t0) * 1e9 / (double)(m.step - s0) / ne;
+    double points = 3.0 * m.el.n_tris + 4.0 * m.el.n_quads;
+    char newton[48] = "null";
+    if (static_amplitudes)
+        snprintf(newton, sizeof newton, "%.3f",
+                 (double)(m.amplitude_iterations - iterations0) / points / (double)(m.step - s0));
     getrusage(RUSAGE_SELF, &r1);
     double bytes_per_element = (double)(r1.ru_maxrss - r0.ru_maxrss) * 1024.0 / ne;
     /* what the model itself holds: per node 5 DOFs × (u, v, f, mass, prescribed
@@ -146,9 +159,11 @@ int main(int argc, char **argv)
     printf("{\"elements\": %d, \"element_type\": \"%s\", \"nodes\": %d, \"threads\": %d, "
            "\"steps\": %ld, \"ns_per_element_step\": %.2f, \"linear_membrane_ns\": %s, "
            "\"model_bytes_per_element\": %.0f, \"peak_rss_bytes_per_element\": %.0f, "
+           "\"amplitudes\": \"%s\", \"newton_iterations_per_point_step\": %s, "
            "\"kernel\": \"%s\"}\n",
            ne, quads ? "quad4" : "tri3", m.n_nodes, threads, m.step - s0, ns, linear,
-           (node_bytes + element_bytes) / ne, bytes_per_element, wff_material_kernel(&m.mat));
+           (node_bytes + element_bytes) / ne, bytes_per_element,
+           static_amplitudes ? "static" : "dynamic", newton, wff_material_kernel(&m.mat));
     wff_model_free(&m);
     return 0;
 }

@@ -9,11 +9,17 @@
 #      elements, and the µs per call of each loop operator (bench/loop.sh);
 #   3. the ballistic scene with every knob against a reference run (finest
 #      mesh, small step factor, full physics): accuracy and cost.
-# Writes results/bench/: speed.json, kernel.jsonl, tradeoff.csv, tradeoff.md,
-# pareto.png, runs/*/ (each run's own results). Run from the repository root.
-# BENCH_QUICK=1 runs a reduced set (small meshes, short runs) to check the
-# pipeline in a minute; BENCH_TABLES=1 only remakes the tables and the plot
-# from the runs already in results/bench.
+#   2d. the rest of issue 12's speed table: the strip scene at its defaults,
+#      -amplitudes static against dynamic per step.
+# Writes results/bench/: speed.json, speed.md, kernel.jsonl, scenes.txt,
+# tradeoff.csv, tradeoff.md, pareto.png, runs/*/ (each run's own results). Run
+# from the repository root. speed.md and speed.json's rows (one key per row of
+# issue 12's table; the keys and what each ratio is: bench/speed_table.sh) are
+# made by bench/speed_table.sh from kernel.jsonl and scenes.txt.
+# BENCH_QUICK=1 (make bench QUICK=1, ~3 min) runs the speed table's kernel and
+# scene figures only (fewer steps, short amplitude runs; no parts 2, 2c, 3);
+# BENCH_TABLES=1 only remakes the tables and the plot from the runs already in
+# results/bench.
 set -u
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root" || exit 1
@@ -30,31 +36,69 @@ tend=2.5e-3   # end time of the runs of part 3 (the plot names it too)
 if [ "$tables_only" != 1 ]; then
 echo "== 1. kernel speed (build/bench/kernel_speed)"
 : > "$out/kernel.jsonl"
-if [ "$quick" = 1 ]; then sizes="0.67:200"; else sizes="0.67:400 0.21:60 0.067:8"; fi
-for et in tri quad; do
-    for sz in $sizes; do
-        f=${sz%%:*}; steps=${sz##*:}
-        for th in 1 2; do
-            [ "$et" = quad ] && [ "$th" = 2 ] && continue
-            line=$(OMP_WAIT_POLICY=passive build/bench/kernel_speed "$et" "$f" "$th" "$steps") || {
-                echo "kernel_speed $et $f $th failed"; continue; }
-            echo "$line" | tee -a "$out/kernel.jsonl"
+# each run: element type, size factor (0.67: ~5k, 0.21: ~50k, 0.067: ~493k triangles),
+# threads, steps; the line gets "size_factor" (bench/speed_table.sh picks rows by it)
+if [ "$quick" = 1 ]; then
+    runs="tri:0.21:1:30 tri:0.21:2:30 quad:0.21:1:10 tri:0.067:1:4"
+else
+    runs=""
+    for et in tri quad; do
+        for sz in 0.67:400 0.21:60 0.067:8; do
+            for th in 1 2; do
+                [ "$et" = quad ] && [ "$th" = 2 ] && continue
+                runs="$runs $et:${sz%%:*}:$th:${sz##*:}"
+            done
         done
     done
+fi
+for r in $runs; do
+    et=${r%%:*}; r=${r#*:}; f=${r%%:*}; r=${r#*:}; th=${r%%:*}; steps=${r#*:}
+    line=$(OMP_WAIT_POLICY=passive build/bench/kernel_speed "$et" "$f" "$th" "$steps") || {
+        echo "kernel_speed $et $f $th failed"; continue; }
+    echo "$line" | sed "s/^{/{\"size_factor\": $f, /" | tee -a "$out/kernel.jsonl"
 done
 
+edp='{}'; king_default='{}'
+if [ "$quick" != 1 ]; then
 echo "== 2. pure .edp varf step, and the King step on the same mesh"
 edp=$(ff bench/edp_varf.edp -steps 20 | grep '^{') || edp='{}'
 echo "$edp"
 king_default=$(build/bench/kernel_speed tri 1 1 400) || king_default='{}'
 echo "$king_default"
+fi
+# cpu = user + system CPU seconds of every child process that has ended so far
+# (`times` run in this shell: in a $(...) subshell it would see no children)
+children_cpu() { times > "$out/.times"; cpu=$(awk 'NR == 2 { split($1, u, /[ms]/); split($2, s, /[ms]/)
+                 printf "%.3f", 60 * (u[1] + s[1]) + u[2] + s[2] }' "$out/.times"); rm -f "$out/.times"; }
 echo "== 2b. the paper's scene at its defaults, start to plots"
 rm -rf "$out/runs/scene_default"   # (a results folder holding a run refuses a new one)
-t0=$(now)
+t0=$(now); children_cpu; c0=$cpu
 ff freefem_scripts/ballistic_impact.edp -out "$out/runs/scene_default" > "$out/runs/scene_default.log" 2>&1
-scene_wall=$(elapsed "$t0")
-echo "scene_default $scene_wall s"
+scene_wall=$(elapsed "$t0"); children_cpu; scene_cpu=$(awk -v a="$c0" -v b="$cpu" 'BEGIN { printf "%.2f", b - a }')
+scene_summary=$(sed -n 's/^done in [^:]*: \(peak displacement .* %\), largest penetration.*/\1/p' \
+                "$out/runs/scene_default.log")
+echo "scene_default $scene_wall s ($scene_cpu s CPU): $scene_summary"
 
+echo "== 2d. the strip scene at its defaults, start to plots; -amplitudes static against dynamic"
+rm -rf "$out/runs/strip_default"
+t0=$(now); children_cpu; c0=$cpu
+if ff freefem_scripts/strip_tension.edp -out "$out/runs/strip_default" > "$out/runs/strip_default.log" 2>&1
+then strip_wall=$(elapsed "$t0"); children_cpu; strip_cpu=$(awk -v a="$c0" -v b="$cpu" 'BEGIN { printf "%.2f", b - a }')
+     echo "strip_default $strip_wall s ($strip_cpu s CPU)"
+else strip_wall=""; strip_cpu=""; echo "strip_default FAILED (see $out/runs/strip_default.log)"; fi
+# per step: full mode takes part 3's mesh_default and amplitudes_static runs (to 2.5 ms);
+# quick mode runs this pair to 0.5 ms
+amp_dynamic=runs/mesh_default/summary.json; amp_static=runs/amplitudes_static/summary.json
+if [ "$quick" = 1 ]; then
+    for a in dynamic static; do
+        rm -rf "$out/runs/amplitudes_${a}_quick"
+        ff freefem_scripts/ballistic_impact.edp -out "$out/runs/amplitudes_${a}_quick" -tend 0.5e-3 -plots 0 \
+            -vtkdt 1 -amplitudes "$a" > "$out/runs/amplitudes_${a}_quick.log" 2>&1 || echo "amplitudes $a FAILED"
+    done
+    amp_dynamic=runs/amplitudes_dynamic_quick/summary.json; amp_static=runs/amplitudes_static_quick/summary.json
+fi
+
+if [ "$quick" != 1 ]; then
 echo "== 2c. the scripted explicit loop against the built-in one (bench/loop.sh)"
 sh bench/loop.sh || echo "bench/loop.sh failed"
 
@@ -72,17 +116,13 @@ scene() { # name, then scene options
     fi
     echo "$(elapsed "$t0")" > "$dir.wall"
 }
-if [ "$quick" = 1 ]; then
-    scene reference -mesh default -dtfactor 0.5
-else
-    scene reference -mesh finest -dtfactor 0.6 -threads 2
-fi
+scene reference -mesh finest -dtfactor 0.6 -threads 2
 scene mesh_coarse -mesh coarse
 scene mesh_default -mesh default
 scene adapt_5 -mesh coarse -adapt 5     # adaptmesh every 5 frames from the coarse mesh
 scene adapt_20 -mesh coarse -adapt 20
-[ "$quick" = 1 ] || scene mesh_fine -mesh fine
-[ "$quick" = 1 ] || scene mesh_finer -mesh finer -threads 2
+scene mesh_fine -mesh fine
+scene mesh_finer -mesh finer -threads 2
 scene quads_default -mesh default -elements quad
 scene dtfactor_0.5 -dtfactor 0.5
 scene dtfactor_0.95 -dtfactor 0.95
@@ -94,9 +134,21 @@ scene no_shear_flow -set gammadot_0=0
 scene clamp_friction -clamp friction
 scene linear_yarns -material freefem_scripts/materials/kevlar_linear.txt -preload 0
 scene contact_all_nodes -contact all
-[ "$quick" = 1 ] || scene threads_2 -threads 2
+scene threads_2 -threads 2
+# -zonal rows (issue 12 item 7): scene zonal_<R> -zonal <R> for R = 2, 4, 8 cm go here
+fi # quick
 
+{   # the speed table's scene figures (bench/speed_table.sh reads them)
+    echo "scene_wall_seconds $scene_wall"
+    echo "scene_cpu_seconds $scene_cpu"
+    echo "scene_summary $scene_summary"
+    [ -n "$strip_wall" ] && echo "strip_wall_seconds $strip_wall" && echo "strip_cpu_seconds $strip_cpu"
+    echo "amplitudes_dynamic_summary $amp_dynamic"
+    echo "amplitudes_static_summary $amp_static"
+} > "$out/scenes.txt"
 fi # tables_only
+
+if [ "$quick" != 1 ] || [ "$tables_only" = 1 ]; then
 
 echo "== 4. tables and plots"
 cc -std=gnu11 -O2 -o build/bench/compare bench/compare.c -lm || exit 1
@@ -185,6 +237,9 @@ plot '$out/pareto_labels.csv' using 3:4:(\$7 > 0 ? \$5 - \$3 : 1/0):(\$6 - \$4) 
      '' using 5:6:1 with labels center font ',8' notitle
 EOF
 gnuplot "$out/pareto.gp" || echo "gnuplot failed"
+fi # quick (no part 3: no tradeoff table, no plot)
+sh bench/speed_table.sh "$out" "$out" || echo "bench/speed_table.sh failed"
+cat "$out/speed.md"
 [ "$tables_only" = 1 ] && { echo "results in $out (tables and plot only)"; exit 0; }
 
 # speed.json: the figures of 1 and 2 in one place, with the ratios the targets name
@@ -202,8 +257,10 @@ ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (a > 0 && b > 0) printf "%.2f", a 
     echo "  \"edp_varf\": $edp,"
     echo "  \"king_default_mesh\": $king_default,"
     echo "  \"scene_default_wall_seconds\": $scene_wall,"
+    # issue 12's speed table, one key per row (bench/speed_table.sh)
+    sed '1d; $d; $!s/[^,]$/&,/' "$out/speed_table.json"
     # the scripted loop's rows (bench/loop.sh): scripted_loop_ns_5k, builtin_ns_5k, ...
-    [ -s "$out/loop.json" ] && sed -n 's/^    \("[a-z_0-9]*": .*\),$/  \1,/p' "$out/loop.json"
+    [ "$quick" != 1 ] && [ -s "$out/loop.json" ] && sed -n 's/^    \("[a-z_0-9]*": .*\),$/  \1,/p' "$out/loop.json"
     echo "  \"ratios\": {"
     echo "    \"king_over_linear_membrane_50k_1thread\": $(ratio "$(num "$k50_1" ns_per_element_step)" "$(num "$k50_1" linear_membrane_ns)"),"
     echo "    \"edp_varf_over_king_default_mesh\": $(ratio "$edp_ns" "$king_ns"),"

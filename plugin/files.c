@@ -452,20 +452,36 @@ void wff_lock_release(const char *dir)
 
 int wff_run_program(char *const argv[], int *status, wff_error *err)
 {
+    long pid;
     *status = -1;
+    if (wff_start_program(argv, &pid, err))
+        return -1;
+    return wff_wait_program(pid, status, err);
+}
+
+int wff_start_program(char *const argv[], long *pid, wff_error *err)
+{
+    *pid = -1;
     fflush(NULL);
-    pid_t pid = fork();
-    if (pid < 0)
+    pid_t child = fork();
+    if (child < 0)
         return wff_fail(err, "cannot start %s: %s", argv[0], strerror(errno));
-    if (pid == 0) {
+    if (child == 0) {
         execvp(argv[0], argv);
         fprintf(stderr, "cannot run %s: %s\n", argv[0], strerror(errno));
         _exit(127);
     }
+    *pid = (long)child;
+    return 0;
+}
+
+int wff_wait_program(long pid, int *status, wff_error *err)
+{
+    *status = -1;
     int ws;
-    while (waitpid(pid, &ws, 0) < 0)
+    while (waitpid((pid_t)pid, &ws, 0) < 0)
         if (errno != EINTR)
-            return wff_fail(err, "waiting for %s: %s", argv[0], strerror(errno));
+            return wff_fail(err, "waiting for process %ld: %s", pid, strerror(errno));
     *status = WIFEXITED(ws) ? WEXITSTATUS(ws) : 128 + WTERMSIG(ws);
     return 0;
 }

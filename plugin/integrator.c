@@ -65,14 +65,20 @@ int wff_force_pass(wff_model *m, const double *u, double *f, double *gamma_f, do
     memset(f, 0, sizeof(double) * (size_t)m->n_dofs);
     wff_force_totals t;
     wff_elements_forces(&m->el, &m->em, m->mesh.xy, u, gamma_f, dt_flow, f, &t);
-    if (accumulate)
+    if (accumulate) {
         m->element_steps += m->el.n_tris + m->el.n_quads;
+        m->amplitude_iterations += t.amplitude_iterations;
+    }
     if (t.bad_element >= 0) {
-        char name[96];
+        char name[96], unbalanced[64];
         element_name(m, t.bad_element, name, sizeof name);
+        snprintf(unbalanced, sizeof unbalanced, "amplitudes unbalanced, |R| %.3g N/m^2 after %d "
+                 "Newton steps", t.bad_residual, t.bad_iterations);
         const char *quantity = t.bad_status == WFF_POINT_DEGENERATE
                                    ? "degenerate deformation (yarns collapsed or parallel: "
                                      "inverted element)"
+                               : t.bad_status == WFF_POINT_UNBALANCED
+                                   ? unbalanced
                                    : "NaN or infinite displacement, amplitude, stress or energy";
         if (m->blowup_steps > 0) { /* the detector was already counting */
             char what[WFF_ERROR_MAX - 200];

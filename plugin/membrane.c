@@ -236,6 +236,17 @@ static void note_bad_sums(tri_sums *s, int e, int q, int status)
     }
 }
 
+/* A point whose static-amplitude Newton did not converge: its residual and iterations too. */
+static void note_unbalanced_sums(tri_sums *s, int e, int q, const double residual[2],
+                                 int iterations)
+{
+    note_bad_sums(s, e, q, WFF_POINT_UNBALANCED);
+    if (s->bad.bad_element == e && s->bad.bad_point == q) {
+        s->bad.bad_residual = fmax(fabs(residual[0]), fabs(residual[1]));
+        s->bad.bad_iterations = iterations;
+    }
+}
+
 /* Scatter a triangle's mean stress (cell frame) and nodal residuals. */
 static inline __attribute__((always_inline)) void tri_scatter(const wff_elements *el, const wff_element_material *em, int e,
                         const double P[6], const double *R, int amplitudes, double *f)
@@ -440,7 +451,14 @@ static void tri_forces_static(const wff_elements *el, const wff_element_material
     for (int q = 0; q < WFF_TRI_POINTS; q++) {
         double *dA = el->point_dA + 6 * e + 2 * q;
         wff_point_result r;
-        int status = point_ok(wff_balance_point(mat, Fe, dA, gamma_f[3 * e + q], dt, &r), Fe, dA, &r);
+        int iterations = 0;
+        int status = point_ok(wff_balance_point(mat, Fe, dA, gamma_f[3 * e + q], dt, &r,
+                                                &iterations), Fe, dA, &r);
+        sums->bad.amplitude_iterations += iterations;
+        if (status == WFF_POINT_UNBALANCED) {
+            note_unbalanced_sums(sums, e, q, r.residual, iterations);
+            return;
+        }
         if (status != WFF_POINT_OK) {
             note_bad_sums(sums, e, q, status);
             return;
@@ -456,6 +474,100 @@ static void tri_forces_static(const wff_elements *el, const wff_element_material
     sums->dissipated += el->tri_area[e] * Dis;
 }
 
+/* n (≤ WFF_BLOCK) triangles from e0 with quasi-static amplitudes, blocked: per
+ * quadrature point q, the Newton of the block's lanes at once (wff_balance_block,
+ * the cell's amplitude_tangent_block), then the cell's evaluate_tri_block at the
+ * balanced amplitudes; the same answer as tri_forces_static to round-off
+ * (tested). Returns -1 if the cell has no blocked tangent or kernel or declines
+ * these parameters (nothing done). Lanes past n repeat the last element. */
+static int tri_block_static_forces(const wff_elements *el, const wff_element_material *em,
+                                   const double *X, const double *u, double *gamma_f,
+                                   double dt, double *f, int e0, int n, tri_sums *sums)
+{
+    const wff_material *mat = em->mat;
+    wff_tri_block blk;
+    wff_tangent_block tb;
+    blk.n = n;
+    int finite[WFF_BLOCK];
+    for (int j = 0; j < WFF_BLOCK; j++) {
+        int e = e0 + (j < n ? j : n - 1);
+        const int *node = el->tri + 3 * e;
+        double F[6], Fe[6], state = 0;
+        deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
+        preload_apply(em, F, Fe);
+        for (int i = 0; i < 6; i++) {
+            blk.F[i][j] = tb.F[i][j] = Fe[i];
+            state += Fe[i];
+        }
+        for (int q = 0; q < WFF_TRI_POINTS; q++) {
+            blk.gamma_f[q][j] = gamma_f[3 * e + q];
+            state += el->point_dA[6 * e + 2 * q] + el->point_dA[6 * e + 2 * q + 1];
+        }
+        finite[j] = isfinite(state);
+    }
+    int iterations[WFF_TRI_POINTS][WFF_BLOCK], converged[WFF_TRI_POINTS][WFF_BLOCK];
+    static const double rest[2] = {0, 0};
+    for (int q = 0; q < WFF_TRI_POINTS; q++) {
+        for (int j = 0; j < WFF_BLOCK; j++) {
+            int e = e0 + (j < n ? j : n - 1);
+            /* a non-finite lane is reported below; its Newton starts from a valid state */
+            const double *dA = finite[j] ? el->point_dA + 6 * e + 2 * q : rest;
+            tb.dA[0][j] = dA[0];
+            tb.dA[1][j] = dA[1];
+            tb.gamma_f[j] = blk.gamma_f[q][j];
+            if (!finite[j])
+                for (int i = 0; i < 6; i++)
+                    tb.F[i][j] = i == 0 || i == 3 ? 1 : 0;
+        }
+        if (wff_balance_block(mat, &tb, iterations[q], converged[q]) != 0)
+            return -1;
+        for (int j = 0; j < WFF_BLOCK; j++) {
+            blk.dA[q][0][j] = tb.dA[0][j];
+            blk.dA[q][1][j] = tb.dA[1][j];
+        }
+    }
+    if (mat->cell->evaluate_tri_block(mat->params, dt, &blk) != 0)
+        return -1;
+    const double zero[6] = {0, 0, 0, 0, 0, 0};
+    for (int j = 0; j < n; j++) {
+        int e = e0 + j;
+        if (!finite[j]) {
+            note_bad_sums(sums, e, 0, WFF_POINT_NONFINITE);
+            continue;
+        }
+        double P[6], sum = blk.energy[j] + blk.dissipated[j];
+        for (int i = 0; i < 6; i++)
+            sum += P[i] = blk.stress[i][j];
+        int unbalanced = -1;
+        for (int q = WFF_TRI_POINTS - 1; q >= 0; q--) {
+            double *dA = el->point_dA + 6 * e + 2 * q;
+            dA[0] = blk.dA[q][0][j];
+            dA[1] = blk.dA[q][1][j];
+            sum += dA[0] + dA[1] + blk.residual[q][0][j] + blk.residual[q][1][j];
+            sums->bad.amplitude_iterations += iterations[q][j];
+            if (!converged[q][j])
+                unbalanced = q;
+        }
+        if (blk.degenerate[j] || !isfinite(sum)) {
+            note_bad_sums(sums, e, 0, blk.degenerate[j] ? WFF_POINT_DEGENERATE
+                                                        : WFF_POINT_NONFINITE);
+            continue;
+        }
+        if (unbalanced >= 0) {
+            const double residual[2] = {blk.residual[unbalanced][0][j],
+                                        blk.residual[unbalanced][1][j]};
+            note_unbalanced_sums(sums, e, unbalanced, residual, iterations[unbalanced][j]);
+            continue;
+        }
+        for (int q = 0; q < WFF_TRI_POINTS; q++)
+            gamma_f[3 * e + q] = blk.gamma_f[q][j];
+        tri_scatter(el, em, e, P, zero, 0, f); /* no amplitude forces: balanced at the points */
+        sums->energy += el->tri_area[e] * blk.energy[j];
+        sums->dissipated += el->tri_area[e] * blk.dissipated[j];
+    }
+    return 0;
+}
+
 void wff_elements_forces(const wff_elements *el, const wff_element_material *em, const double *X,
                          const double *u, double *gamma_f, double dt, double *f,
                          wff_force_totals *totals)
@@ -466,6 +578,9 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
     totals->bad_element = -1;
     totals->bad_point = -1;
     totals->bad_status = 0;
+    totals->bad_residual = 0;
+    totals->bad_iterations = 0;
+    totals->amplitude_iterations = 0;
     double energy = 0, dissipated = 0;
 
     /* small meshes are not worth a thread team */
@@ -486,16 +601,20 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
         double *ft = t == 0 ? f : el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
         if (t > 0)
             memset(ft, 0, sizeof(double) * (size_t)el->n_dofs);
-        tri_sums sums = {0, 0, {0, 0, -1, -1, 0}};
+        tri_sums sums = {0, 0, {0, 0, -1, -1, 0, 0, 0, 0}};
         int blocked = use_block; /* a cell declines by its parameters: ask once per thread */
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
             int e0 = blk * WFF_BLOCK;
             int n = el->n_tris - e0 < WFF_BLOCK ? el->n_tris - e0 : WFF_BLOCK;
-            if (em->static_amplitudes)
-                for (int e = e0; e < e0 + n; e++)
-                    tri_forces_static(el, em, X, u, gamma_f, dt, ft, e, &sums);
-            else {
+            if (em->static_amplitudes) {
+                if (blocked &&
+                    tri_block_static_forces(el, em, X, u, gamma_f, dt, ft, e0, n, &sums) != 0)
+                    blocked = 0;
+                if (!blocked)
+                    for (int e = e0; e < e0 + n; e++)
+                        tri_forces_static(el, em, X, u, gamma_f, dt, ft, e, &sums);
+            } else {
                 if (blocked && tri_block_forces(el, em, X, u, gamma_f, dt, ft, e0, n, &sums) != 0)
                     blocked = 0;
                 if (!blocked)
@@ -522,11 +641,14 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
     for (int t = 0; t < team; t++) { /* in thread order: the same sums every run */
         energy += part_energy[t];
         dissipated += part_dissipated[t];
+        totals->amplitude_iterations += part_bad[t].amplitude_iterations;
         if (part_bad[t].bad_element >= 0 &&
             (totals->bad_element < 0 || part_bad[t].bad_element < totals->bad_element)) {
             totals->bad_element = part_bad[t].bad_element;
             totals->bad_point = part_bad[t].bad_point;
             totals->bad_status = part_bad[t].bad_status;
+            totals->bad_residual = part_bad[t].bad_residual;
+            totals->bad_iterations = part_bad[t].bad_iterations;
         }
     }
 
@@ -552,11 +674,17 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
                 pdA = el->point_dA + 6 * el->n_tris + 8 * e + 2 * q;
                 point_amplitudes = 0;
             }
+            int iterations = 0;
             int status = point_ok(em->static_amplitudes
-                                      ? wff_balance_point(mat, Fe, pdA, *gf, dt, &r)
+                                      ? wff_balance_point(mat, Fe, pdA, *gf, dt, &r, &iterations)
                                       : mat->cell->evaluate(mat->params, Fe, dA, *gf, dt, &r),
                                   Fe, pdA, &r);
+            totals->amplitude_iterations += iterations;
             if (status != WFF_POINT_OK) {
+                if (status == WFF_POINT_UNBALANCED && totals->bad_element < 0) {
+                    totals->bad_residual = fmax(fabs(r.residual[0]), fabs(r.residual[1]));
+                    totals->bad_iterations = iterations;
+                }
                 note_bad(totals, id, q, status);
                 continue;
             }

@@ -84,6 +84,8 @@ static int forces_now(wff_model *m, wff_error *err)
                         node[0] + 1, node[1] + 1, node[2] + 1, tri ? "" : " ...",
                         t.bad_status == WFF_POINT_DEGENERATE
                             ? "degenerate (yarns collapsed or parallel: inverted element)"
+                        : t.bad_status == WFF_POINT_UNBALANCED
+                            ? "leave its static amplitudes unbalanced (Newton did not converge)"
                             : "give a non-finite stress or energy");
     }
     m->internal_energy = t.internal_energy;

@@ -61,43 +61,145 @@ int wff_uniaxial_static(const wff_material *mat, int family, double stretch,
 int wff_shear_static(const wff_material *mat, double gamma, double dA[2],
                      double *shear_resultant, wff_point_result *point, wff_error *err);
 
+/* The static-amplitude Newton (membrane.c; docs/model.md §13): bounds and
+ * tolerance. Converged when the Newton step's largest component is below
+ * WFF_BALANCE_STEP_TOLERANCE (the step is applied: with the exact tangent the
+ * error left is of the order of its square); a step is limited to
+ * WFF_BALANCE_STEP_LIMIT (the compaction exponential is steep). */
+#define WFF_BALANCE_MAX_ITERATIONS 50
+#define WFF_BALANCE_STEP_TOLERANCE 1e-13 /* m: amplitudes are ~1e-5 m */
+#define WFF_BALANCE_STEP_LIMIT 1e-5      /* m */
+
+/* R_k and ∂R_k/∂ΔA_m (tangent[2k + m]) at one point, γᶠ held: the cell's
+ * amplitude_tangent, or for a cell without it forward differences of
+ * evaluate() with a 1 nm step (the static path's Jacobian before the op).
+ * Returns the cell's status (WFF_POINT_DEGENERATE: outputs NaN). */
+static inline int wff_amplitude_tangent(const wff_material *mat, const double F[6],
+                                        const double dA[2], double gamma_f,
+                                        double residual[2], double tangent[4])
+{
+    const wff_cell_type *cell = mat->cell;
+    if (cell->amplitude_tangent)
+        return cell->amplitude_tangent(mat->params, F, dA, gamma_f, residual, tangent);
+    const double h = 1e-9; /* m */
+    wff_point_result r0, r1, r2;
+    int status = cell->evaluate(mat->params, F, dA, gamma_f, 0, &r0);
+    residual[0] = r0.residual[0];
+    residual[1] = r0.residual[1];
+    if (status != WFF_POINT_OK) {
+        for (int i = 0; i < 4; i++)
+            tangent[i] = NAN;
+        return status;
+    }
+    const double d1[2] = {dA[0] + h, dA[1]}, d2[2] = {dA[0], dA[1] + h};
+    cell->evaluate(mat->params, F, d1, gamma_f, 0, &r1);
+    cell->evaluate(mat->params, F, d2, gamma_f, 0, &r2);
+    tangent[0] = (r1.residual[0] - r0.residual[0]) / h;
+    tangent[1] = (r2.residual[0] - r0.residual[0]) / h;
+    tangent[2] = (r1.residual[1] - r0.residual[1]) / h;
+    tangent[3] = (r2.residual[1] - r0.residual[1]) / h;
+    return WFF_POINT_OK;
+}
+
+/* One Newton update ΔA −= K⁻¹R (K = tangent, row-major), limited to
+ * WFF_BALANCE_STEP_LIMIT, applied to dA when `apply`. Returns the full
+ * step's largest component (m), or −1 (dA unchanged) when K is singular or
+ * the step not finite. Branch-free: the blocked path calls it in its lane loop
+ * (so both paths make the same updates). */
+static inline __attribute__((always_inline)) double
+wff_balance_newton_step(const double residual[2], const double tangent[4], double dA[2],
+                        int apply)
+{
+    double det = tangent[0] * tangent[3] - tangent[1] * tangent[2];
+    double s0 = (-residual[0] * tangent[3] + residual[1] * tangent[1]) / det;
+    double s1 = (-residual[1] * tangent[0] + residual[0] * tangent[2]) / det;
+    double big = fmax(fabs(s0), fabs(s1));
+    int ok = (fabs(det) > 0) & (big - big == 0); /* (isfinite does not vectorise) */
+    double scale = big > WFF_BALANCE_STEP_LIMIT ? WFF_BALANCE_STEP_LIMIT / big : 1.0;
+    int take = ok & (apply != 0);
+    dA[0] += take ? scale * s0 : 0.0;
+    dA[1] += take ? scale * s1 : 0.0;
+    return ok ? big : -1.0;
+}
+
 /* Quasi-static amplitudes at one point, for the elements' static-amplitude
- * path (membrane.c; docs/model.md §13): Newton on R(F, ΔA) = 0 with a
- * finite-difference Jacobian (γᶠ held), from the point's last ΔA (dA: in and
- * out); then the evaluation with the step dt into out, whose status it
- * returns. Falls back to the last ΔA if Newton fails to reduce the residual
- * (the point is then reported by its result). No allocation, no GSL: it runs
- * at every quadrature point of every step. Defined here (static) so that it
- * is compiled with its caller's flags, the kernels' (the static-amplitude
- * results stay bit-identical), and kept out of line (noinline) so that the
- * element loops that call it keep their size and speed. */
+ * path (membrane.c; docs/model.md §13): Newton on R(F, ΔA) = 0 with the
+ * cell's tangent (wff_amplitude_tangent, γᶠ held), from the point's last ΔA
+ * (dA: in and out), at most WFF_BALANCE_MAX_ITERATIONS tangents (their count
+ * into *iterations); then the evaluation with the step dt into out. Returns
+ * the evaluation's status, or WFF_POINT_UNBALANCED when Newton did not
+ * converge (out then holds the evaluation at the last ΔA, its residual what
+ * is left). No allocation, no GSL: it runs at every quadrature point of every
+ * step. The plain reference path; the blocked one is wff_balance_block.
+ * Defined here (static) so that it is compiled with its caller's flags, the
+ * kernels', and kept out of line (noinline) so that the element loops that
+ * call it keep their size and speed. */
 static __attribute__((noinline, unused)) int
 wff_balance_point(const wff_material *mat, const double Fe[6], double dA[2], double gf, double dt,
-                  wff_point_result *out)
+                  wff_point_result *out, int *iterations)
 {
-    const double h = 1e-9; /* m: amplitudes are ~1e-5 m */
-    for (int it = 0; it < 12; it++) {
-        wff_point_result r0, r1, r2;
-        if (mat->cell->evaluate(mat->params, Fe, dA, gf, 0, &r0) != WFF_POINT_OK)
+    int it = 0, converged = 0;
+    while (!converged && it < WFF_BALANCE_MAX_ITERATIONS) {
+        double residual[2], tangent[4];
+        it++;
+        if (wff_amplitude_tangent(mat, Fe, dA, gf, residual, tangent) != WFF_POINT_OK)
             break;
-        double d1[2] = {dA[0] + h, dA[1]}, d2[2] = {dA[0], dA[1] + h};
-        mat->cell->evaluate(mat->params, Fe, d1, gf, 0, &r1);
-        mat->cell->evaluate(mat->params, Fe, d2, gf, 0, &r2);
-        double j11 = (r1.residual[0] - r0.residual[0]) / h, j21 = (r1.residual[1] - r0.residual[1]) / h;
-        double j12 = (r2.residual[0] - r0.residual[0]) / h, j22 = (r2.residual[1] - r0.residual[1]) / h;
-        double det = j11 * j22 - j12 * j21;
-        if (!(fabs(det) > 0) || !isfinite(det))
+        double big = wff_balance_newton_step(residual, tangent, dA, 1);
+        if (!(big >= 0))
             break;
-        double s0 = (-r0.residual[0] * j22 + r0.residual[1] * j12) / det;
-        double s1 = (-r0.residual[1] * j11 + r0.residual[0] * j21) / det;
-        /* limit a step to 10 µm: the compaction exponential is steep */
-        double big = fmax(fabs(s0), fabs(s1)), scale = big > 1e-5 ? 1e-5 / big : 1;
-        dA[0] += scale * s0;
-        dA[1] += scale * s1;
-        if (big < 1e-13)
+        converged = big < WFF_BALANCE_STEP_TOLERANCE;
+    }
+    *iterations = it;
+    int status = mat->cell->evaluate(mat->params, Fe, dA, gf, dt, out);
+    if (status == WFF_POINT_OK && !converged && isfinite(out->residual[0] + out->residual[1]))
+        return WFF_POINT_UNBALANCED;
+    return status;
+}
+
+/* The same Newton for a block of WFF_BLOCK points, lanes in lockstep (a lane
+ * that converged or failed holds), with the cell's amplitude_tangent_block:
+ * blk holds F, γᶠ and the first guesses ΔA on entry, the solutions on
+ * return; iterations[b] the tangents lane b used, converged[b] 1 where it
+ * converged (0: degenerate, singular or out of iterations; the caller
+ * reports it). Returns −1, with nothing changed, when the cell has no
+ * blocked tangent or declines these parameters. */
+static inline int wff_balance_block(const wff_material *mat, wff_tangent_block *blk,
+                                    int iterations[WFF_BLOCK], int converged[WFF_BLOCK])
+{
+    if (!mat->cell->amplitude_tangent_block)
+        return -1;
+    int active[WFF_BLOCK];
+    for (int b = 0; b < WFF_BLOCK; b++) {
+        active[b] = 1;
+        iterations[b] = 0;
+        converged[b] = 0;
+    }
+    for (int it = 0; it < WFF_BALANCE_MAX_ITERATIONS; it++) {
+        if (mat->cell->amplitude_tangent_block(mat->params, blk) != 0)
+            return -1; /* on the parameters: only ever at the first iteration */
+        int any = 0;
+#ifndef __cplusplus /* (the C++ binding sees this header without OpenMP) */
+#pragma omp simd reduction(| : any)
+#endif
+        for (int b = 0; b < WFF_BLOCK; b++) {
+            const double residual[2] = {blk->residual[0][b], blk->residual[1][b]};
+            const double tangent[4] = {blk->tangent[0][b], blk->tangent[1][b],
+                                       blk->tangent[2][b], blk->tangent[3][b]};
+            double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
+            int sound = active[b] & !blk->degenerate[b];
+            double big = wff_balance_newton_step(residual, tangent, dA, sound);
+            int done = sound & (big >= 0) & (big < WFF_BALANCE_STEP_TOLERANCE);
+            iterations[b] += active[b];
+            converged[b] |= done;
+            active[b] = sound & (big >= 0) & !done;
+            blk->dA[0][b] = dA[0];
+            blk->dA[1][b] = dA[1];
+            any |= active[b];
+        }
+        if (!any)
             break;
     }
-    return mat->cell->evaluate(mat->params, Fe, dA, gf, dt, out);
+    return 0;
 }
 
 #ifdef __cplusplus

@@ -10,7 +10,8 @@
  *
  *   required   parse, evaluate, wave_speeds
  *   optional   energy_split, evaluate_shared, evaluate_tri_block,
- *              reference_geometry (NULL when absent)
+ *              reference_geometry, amplitude_tangent, amplitude_tangent_block
+ *              (NULL when absent)
  *
  * and registers itself by name in its own source file with
  * WFF_REGISTER_CELL(table). Nothing outside that file names a cell: the
@@ -36,6 +37,11 @@
  *     evaluate()'s results to round-off, state update included.
  *     evaluate_tri_block may decline a block (return −1) depending on the
  *     parameters only, never on the state: a caller asks once per pass.
+ *   - Exact tangent. amplitude_tangent gives evaluate()'s residual (dt = 0)
+ *     and its Jacobian ∂R_k/∂ΔA_m (central differences of R, tested on
+ *     random states); amplitude_tangent_block the same per lane, to
+ *     round-off. A cell without it gets forward differences of evaluate()
+ *     (wff_amplitude_tangent, balance.h).
  *   - Stable step. wave_speeds returns upper bounds: an explicit run at 0.9
  *     of the step they give stays bounded (and at 1.1, where the bound is
  *     tight, grows).
@@ -93,6 +99,18 @@ typedef struct wff_tri_block {
                                                are parallel (outputs then meaningless) */
 } wff_tri_block;
 
+/* A block of WFF_BLOCK material points for amplitude_tangent_block, structure
+ * of arrays: index [component][lane], every lane a point of its own (all
+ * lanes are evaluated; the caller fills unused ones with a valid state). */
+typedef struct wff_tangent_block {
+    double F[6][WFF_BLOCK];          /* F seen by the cell (preload applied) */
+    double dA[2][WFF_BLOCK];         /* ΔA_k, m */
+    double gamma_f[WFF_BLOCK];       /* γᶠ, held */
+    double residual[2][WFF_BLOCK];   /* out: R_k, N/m² */
+    double tangent[4][WFF_BLOCK];    /* out: ∂R_k/∂ΔA_m at [2k + m], N/m³ */
+    int degenerate[WFF_BLOCK];       /* out: 1 where evaluate() would say degenerate */
+} wff_tangent_block;
+
 /* A material: the cell that models it and that cell's parameters. */
 typedef struct wff_material {
     const wff_cell_type *cell;
@@ -118,8 +136,10 @@ typedef struct wff_point_result {
 enum {
     WFF_POINT_OK = 0,
     WFF_POINT_DEGENERATE = 1, /* a yarn direction has zero length or the yarns are parallel */
-    WFF_POINT_NONFINITE = 2   /* NaN or infinity in the state or the result (set by the
+    WFF_POINT_NONFINITE = 2,  /* NaN or infinity in the state or the result (set by the
                                  element code, not by cells) */
+    WFF_POINT_UNBALANCED = 3  /* static amplitudes: the point's Newton did not converge
+                                 (set by the element code, not by cells) */
 };
 
 struct wff_cell_type {
@@ -191,6 +211,20 @@ struct wff_cell_type {
      * (m) of the two families; a point's amplitudes are A_k⁰ + ΔA_k. NULL when
      * the cell has no such geometry (nothing is drawn). */
     void (*reference_geometry)(const void *params, double pitch0[2], double amplitude0[2]);
+
+    /* Optional (cells with amplitudes). The amplitude residual R_k at one
+     * point with γᶠ held, as evaluate() gives it with dt = 0, into residual,
+     * and its exact tangent ∂R_k/∂ΔA_m into tangent[2k + m] (N/m³): the
+     * static-amplitude Newton's Jacobian (balance.h). Returns WFF_POINT_OK or
+     * WFF_POINT_DEGENERATE, as evaluate() would. When NULL, callers use
+     * wff_amplitude_tangent's forward differences of evaluate(). */
+    int (*amplitude_tangent)(const void *params, const double F[6], const double dA[2],
+                             double gamma_f, double residual[2], double tangent[4]);
+
+    /* Optional, the same for a block of points, vectorised across the lanes.
+     * Returns 0, or −1 when these parameters need the general path (on params
+     * only, never the state). Agrees with amplitude_tangent to round-off. */
+    int (*amplitude_tangent_block)(const void *params, wff_tangent_block *block);
 };
 
 /* Registry. Cells register with WFF_REGISTER_CELL in their own file; the

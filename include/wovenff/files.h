@@ -85,6 +85,12 @@ void wff_lock_release(const char *dir);
  * in *status (128 + signal if killed). -1 if it could not be started. */
 int wff_run_program(char *const argv[], int *status, wff_error *err);
 
+/* Start argv[0] (searched in PATH) with argv, no shell, without waiting: its
+ * process id in *pid; wff_wait_program(pid) waits for it and gives its exit
+ * code as wff_run_program does. -1 if it could not be started / waited for. */
+int wff_start_program(char *const argv[], long *pid, wff_error *err);
+int wff_wait_program(long pid, int *status, wff_error *err);
+
 /* The same with its stdin from /dev/null and its stdout and stderr into log
  * (created or truncated; opened by the child: a log that cannot be opened
  * gives status 127). */

@@ -71,7 +71,12 @@ typedef struct wff_force_totals {
     double dissipated;       /* shear-flow dissipation in this pass, J */
     int bad_element;         /* −1, or the first element whose point failed */
     int bad_point;           /* quadrature point of bad_element */
-    int bad_status;          /* WFF_POINT_DEGENERATE or WFF_POINT_NONFINITE */
+    int bad_status;          /* WFF_POINT_DEGENERATE, WFF_POINT_NONFINITE or
+                                WFF_POINT_UNBALANCED */
+    double bad_residual;     /* WFF_POINT_UNBALANCED: largest |R_k| left, N/m² */
+    int bad_iterations;      /* WFF_POINT_UNBALANCED: the Newton iterations spent */
+    long amplitude_iterations; /* static amplitudes: Newton iterations (tangents) over all
+                                  points of the pass */
 } wff_force_totals;
 
 /* Allocate and compute the reference geometry; -1 with the element named if

@@ -136,6 +136,8 @@ typedef struct wff_model {
     double initial_kinetic;
     int v_half_valid;         /* 1 once v holds a half-step velocity */
     long element_steps;       /* elements × steps done, for cost figures */
+    long amplitude_iterations; /* static amplitudes: Newton iterations over all points and
+                                  steps since the model was built (not checkpointed) */
     int blowup_steps;         /* consecutive steps with more than half the reference
                                  energy created (instability detector) */
     double last_error;        /* energy balance error at the last step */

@@ -351,6 +351,56 @@ static int basket_parse(wff_kv *kv, wff_material *mat, wff_error *err)
     return 0;
 }
 
+/* The amplitude residual (as basket_evaluate computes it) and its exact tangent,
+ * γᶠ held (it does not enter R). With F held, per crossover:
+ *   ∂F_k^N/∂A_m = δ_km [∂T_k sinβ_k + T_k cos²β_k/L_k + (k_bk cos²β_k − 2 M_bk sinβ_k cosβ_k)/L_k²
+ *                       + (−∂F_Lk/∂d) sin²α_k − F_Lk s_k²/d_k³]
+ *                 − ∂[(F_P1/e_1 + F_P2/e_2)(A_1 + A_2)]/∂A_m
+ * with ∂T_k/∂A_k = 2 (EA_k/ℓ_k⁰) sinβ_k (0 where a tension-only yarn is slack),
+ * sinα_k = A_k/d_k, ∂e_m/∂A_n = (A_1 + A_2)/e_m, so the pair term's slope is
+ *   Σ_m F_Pm/e_m − (A_1 + A_2)² Σ_m [(−∂F_Pm/∂e_m)/e_m² + F_Pm/e_m³],
+ * and ∂F_I/∂A_m = −∂F_I/∂I:  ∂R_k/∂ΔA_m = 4 (−∂F_I/∂I − ∂F_k^N/∂A_m)/(16 p1⁰ p2⁰). */
+static int basket_amplitude_tangent(const void *params, const double F[6], const double dA[2],
+                                    double gamma_f, double residual[2], double tangent[4])
+{
+    (void)gamma_f;
+    const basket_params *k = params;
+    basket_point pt;
+    if (basket_point_eval(k, F, dA, &pt) != WFF_POINT_OK) {
+        residual[0] = residual[1] = NAN;
+        for (int i = 0; i < 4; i++)
+            tangent[i] = NAN;
+        return WFF_POINT_DEGENERATE;
+    }
+    double stack = pt.yarn[0].amplitude + pt.yarn[1].amplitude;
+    double pair_normal = 0, pair_curvature = 0;
+    for (int m = 0; m < FAMILIES; m++) {
+        const basket_family *y = &pt.yarn[m];
+        double inv_e = 1 / y->pair_length;
+        pair_normal += y->pair.force / y->pair_length;
+        pair_curvature += (y->pair.stiffness + y->pair.force * inv_e) * inv_e * inv_e;
+    }
+    double pair_slope = pair_normal - stack * stack * pair_curvature;
+    for (int f = 0; f < FAMILIES; f++) {
+        const basket_family *y = &pt.yarn[f];
+        double normal = y->tension * y->sin_b + y->moment * y->cos_b / y->length -
+                        y->lock.force * y->amplitude / y->spar_length - pair_normal * stack;
+        residual[f] = CROSSOVERS * (pt.compaction.force - normal) / k->cell_area;
+        double stretch = 2 * pt.fr.p[f] + 2 * y->length - k->path0[f];
+        int slack = k->tension_only != 0 && stretch < 0;
+        double sb = y->sin_b, cb = y->cos_b, inv_L = 1 / y->length;
+        double inv_d = 1 / y->spar_length, sa = y->amplitude * inv_d, ca = y->spar * inv_d;
+        double own = (slack ? 0.0 : 2 * k->yarn_stiffness[f] * sb) * sb +
+                     y->tension * cb * cb * inv_L +
+                     (k->bending_stiffness[f] * cb * cb - 2 * y->moment * sb * cb) * inv_L * inv_L +
+                     y->lock.stiffness * sa * sa - y->lock.force * ca * ca * inv_d;
+        double scale = CROSSOVERS / k->cell_area;
+        tangent[2 * f + f] = scale * (-pt.compaction.stiffness - own + pair_slope);
+        tangent[2 * f + 1 - f] = scale * (-pt.compaction.stiffness + pair_slope);
+    }
+    return WFF_POINT_OK;
+}
+
 static void basket_reference_geometry(const void *params, double pitch0[2], double amplitude0[2])
 {
     const basket_params *k = params;
@@ -374,5 +424,6 @@ static const wff_cell_type basket_2x2 = {
     .energy_split = basket_energy_split,
     .evaluate_shared = NULL,
     .reference_geometry = basket_reference_geometry,
+    .amplitude_tangent = basket_amplitude_tangent,
 };
 WFF_REGISTER_CELL(basket_2x2);

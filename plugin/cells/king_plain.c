@@ -213,6 +213,56 @@ WFF_INLINE void king_point_at(const king_params *k, const wff_yarn_frame *fr, co
                       pt->yarn[f].energy_locking;
 }
 
+/* docs/model.md §5, ∂F_k^N/∂ΔA_k at fixed F (F_k^N depends on its own amplitude
+ * only), from family f's laws y, with p, s_k = J/p_k and θ held:
+ *   ∂L/∂A = sinβ,  ∂sinβ/∂A = cos²β/L,  ∂β/∂A = cosβ/L,  ∂(cosβ/L)/∂A = −2 sinβ cosβ/L²
+ *   ∂T/∂A = k sinβ (0 where a tension-only yarn is slack),  ∂M_b/∂A = k_b cosβ/L
+ *   ∂d/∂A = sinα,  ∂F_L/∂A = −(−∂F_L/∂d) sinα,  ∂sinα/∂A = cos²α/d
+ *   ∂F^N/∂A = 2 (∂T sinβ + T cos²β/L)
+ *           − 2 (∂F_L sinα Λ + F_L cos²α/d Λ + F_L sinα ∂Λ)       Λ = 1 + λ p_l|cosθ|cosβ/L
+ *           + 2 (k_b cos²β − 2 M_b sinβ cosβ)/L² */
+WFF_INLINE double king_normal_slope(const king_params *k, const wff_yarn_frame *fr, int f,
+                                    const king_family *y)
+{
+    const double sb = y->sin_b, cb = y->cos_b, inv_L = y->inv_length;
+    const double stretch_floor = k->tension_only != 0 ? 0.0 : -INFINITY;
+    double stretch = y->length - k->length0[f];
+    double tension_slope = (stretch > stretch_floor ? k->yarn_stiffness[f] : 0.0) * sb;
+    double arm = k->lever * fr->p[1 - f] * fabs(fr->cos_t); /* λ p_l |cosθ| */
+    double lever = 1 + arm * cb * inv_L;
+    double lever_slope = -2 * arm * sb * cb * inv_L * inv_L;
+    double inv_d = 1 / y->spar_length, spar = fr->J * fr->inv_p[f] * inv_d; /* cosα */
+    double lock_slope = -y->lock.stiffness * y->sin_a;
+    double yarn = tension_slope * sb + y->tension * cb * cb * inv_L;
+    double locking = (lock_slope * y->sin_a + y->lock.force * spar * spar * inv_d) * lever +
+                     y->lock.force * y->sin_a * lever_slope;
+    double bending = (k->bending_stiffness[f] * cb * cb - 2 * y->moment * sb * cb) * inv_L * inv_L;
+    return 2 * (yarn - locking + bending);
+}
+
+/* docs/model.md §5: R_k = (F_I − F_k^N)/(4 p1⁰ p2⁰) (as king_point_at computes it) and
+ *   ∂R_k/∂ΔA_m = (−∂F_I/∂I − δ_km ∂F_k^N/∂ΔA_k)/(4 p1⁰ p2⁰)   (I = −ΔA_1 − ΔA_2)
+ * into tangent[2k + m]. locking_exponent is c (the blocked kernel passes 2). */
+WFF_INLINE void king_residual_tangent_at(const king_params *k, const wff_yarn_frame *fr,
+                                         const double dA[2], double locking_exponent,
+                                         double residual[2], double tangent[4])
+{
+    const double inv_cell = 1 / k->cell_area;
+    const wff_compaction c = wff_compaction_law(k->compaction_force, k->compaction_rate, dA);
+    king_family y[FAMILIES];
+#pragma GCC unroll 2
+    for (int f = 0; f < FAMILIES; f++)
+        y[f] = king_family_at(k, fr, f, dA[f], locking_exponent);
+#pragma GCC unroll 2
+    for (int f = 0; f < FAMILIES; f++) {
+        king_family_forces(k, fr, f, &y[f]);
+        residual[f] = (c.force - y[f].normal) * inv_cell;
+        double slope = king_normal_slope(k, fr, f, &y[f]);
+        tangent[2 * f + f] = (-c.stiffness - slope) * inv_cell;
+        tangent[2 * f + 1 - f] = -c.stiffness * inv_cell;
+    }
+}
+
 static wff_shear_flow king_flow(const king_params *k, double dt)
 {
     return wff_shear_flow_step(k->shear_stiffness, k->flow_moment, k->flow_rate, dt);
@@ -422,6 +472,54 @@ static int king_evaluate_tri_block(const void *params, double dt, wff_tri_block 
     return 0;
 }
 
+/* The amplitude residual and its exact tangent at one point (king_residual_tangent_at);
+ * γᶠ does not enter R. */
+static int king_amplitude_tangent(const void *params, const double F[6], const double dA[2],
+                                  double gamma_f, double residual[2], double tangent[4])
+{
+    (void)gamma_f;
+    const king_params *k = params;
+    wff_yarn_frame fr;
+    if (wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK) {
+        residual[0] = residual[1] = NAN;
+        for (int i = 0; i < 4; i++)
+            tangent[i] = NAN;
+        return WFF_POINT_DEGENERATE;
+    }
+    king_residual_tangent_at(k, &fr, dA, k->locking_exponent, residual, tangent);
+    return WFF_POINT_OK;
+}
+
+/* Lane b of a tangent block (a function of its own, as king_tri_lane). */
+WFF_INLINE void king_tangent_lane(const king_params *k, wff_tangent_block *blk, int b)
+{
+    const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
+                         blk->F[3][b], blk->F[4][b], blk->F[5][b]};
+    const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
+    wff_yarn_frame fr;
+    blk->degenerate[b] = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
+    double residual[2], tangent[4];
+    king_residual_tangent_at(k, &fr, dA, 2.0, residual, tangent);
+    blk->residual[0][b] = residual[0];
+    blk->residual[1][b] = residual[1];
+#pragma GCC unroll 4
+    for (int i = 0; i < 4; i++)
+        blk->tangent[i][b] = tangent[i];
+}
+
+/* Blocked tangent: WFF_BLOCK points in one vectorised lane loop, c = 2 as a
+ * constant (king_evaluate_tri_block's rule); other parameters decline. */
+static int king_amplitude_tangent_block(const void *params, wff_tangent_block *blk)
+{
+    const king_params local = *(const king_params *)params, *k = &local;
+    if (k->locking_exponent != 2)
+        return -1;
+#pragma omp simd
+    for (int b = 0; b < WFF_BLOCK; b++)
+        king_tangent_lane(k, blk, b);
+    return 0;
+}
+
 /* docs/model.md §9: the material file's keys, checked; derived reference
  * quantities L_k⁰, β_k⁰, d_k⁰ (at θ⁰ = 90°) and the cell area. */
 static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
@@ -482,5 +580,7 @@ static const wff_cell_type king_plain = {
     .evaluate_shared = king_evaluate_shared,
     .evaluate_tri_block = king_evaluate_tri_block,
     .reference_geometry = king_reference_geometry,
+    .amplitude_tangent = king_amplitude_tangent,
+    .amplitude_tangent_block = king_amplitude_tangent_block,
 };
 WFF_REGISTER_CELL(king_plain);

@@ -6,6 +6,8 @@
 //   wovenffWriteTable(file, header, v, ncols, digits) // CSV: header, then v row-major, atomic
 //   wovenffCommit(tmp, final)           // a file a tool wrote: non-empty, complete (.vtu/.pvd:
 //                                       // </VTKFile>, .png: IEND), fsync, rename
+//   wovenffCommitAll(finals)            // the same for each FINAL.tmp of a newline-separated
+//                                       // list; a failure removes the later ones' .tmp first
 //   (the cost estimate uses wovenffStableStep(md) of ff_loop.cpp)
 //   wovenffSaveCheckpoint(md, file)     // wovenffSave, a failure is a write failure
 //   wovenffMakeDir(dir) wovenffRename(from, to) wovenffCopyTree(from, to) wovenffRemove(path)
@@ -173,6 +175,31 @@ long ffCommit(string *const &tmp, string *const &final)
 {
     wff_error err;
     check("wovenffCommit", wff_commit_file(tmp->c_str(), final->c_str(), &err), err);
+    return 0;
+}
+
+// finals: newline-separated; each FINAL.tmp committed in turn; on the first that fails,
+// the later ones' .tmp removed before the write failure (nothing half-done is left)
+long ffCommitAll(string *const &finals)
+{
+    std::vector<std::string> names;
+    std::string all = *finals;
+    for (size_t from = 0; from < all.size();) {
+        size_t nl = all.find('\n', from);
+        if (nl == std::string::npos)
+            nl = all.size();
+        if (nl > from)
+            names.push_back(all.substr(from, nl - from));
+        from = nl + 1;
+    }
+    for (size_t i = 0; i < names.size(); i++) {
+        wff_error err;
+        if (wff_commit_file((names[i] + ".tmp").c_str(), names[i].c_str(), &err)) {
+            for (size_t j = i + 1; j < names.size(); j++)
+                std::remove((names[j] + ".tmp").c_str());
+            write_fail("wovenffCommitAll", err.message);
+        }
+    }
     return 0;
 }
 
@@ -397,6 +424,7 @@ void wff_ff_register_files()
     Global.Add("wovenffWriteTable", "(",
                new OneOperator5_<long, string *, string *, KN<double> *, long, long>(ffWriteTable));
     Global.Add("wovenffCommit", "(", new OneOperator2_<long, string *, string *>(ffCommit));
+    Global.Add("wovenffCommitAll", "(", new OneOperator1_<long, string *>(ffCommitAll));
     Global.Add("wovenffSaveCheckpoint", "(",
                new OneOperator2_<long, long, string *>(ffSaveCheckpoint));
     Global.Add("wovenffMakeDir", "(", new OneOperator1_<long, string *>(ffMakeDir));

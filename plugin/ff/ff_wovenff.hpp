@@ -34,6 +34,7 @@ void wff_ff_register_state();  // ff_state.cpp: state vectors in and out, elemen
 void wff_ff_register_materials(); // ff_materials.cpp: the material handle table
 void wff_ff_register_files();   // ff_files.cpp: checked writes, folders, locks, no shell
 void wff_ff_register_checks(); // ff_checks.cpp: checks a scene makes before it runs
+void wff_ff_register_background(); // ff_background.cpp: programs started without waiting
 void wff_ff_register_kernel(); // ff_kernel.cpp: the kernel variant a model runs
 
 // Record "fn: message" as the last error and stop the script (exit code 8

@@ -90,6 +90,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_materials,
     wff_ff_register_files,
     wff_ff_register_checks,
+    wff_ff_register_background,
     wff_ff_register_kernel,
 };
 

@@ -10,6 +10,7 @@ static const cell_case cases[] = {
     {"freefem_scripts/materials/kevlar_s706.txt", "tests/data/king_symmetric.txt", 30e-6, 1},
     {"tests/data/king_tension_only.txt",          NULL,                            30e-6, 1},
     {"tests/data/king_flow_n3.txt",               NULL,                            30e-6, 1},
+    {"tests/data/king_lever.txt",                 NULL,                            30e-6, 0},
     {"freefem_scripts/materials/kevlar_basket.txt", "tests/data/basket_symmetric.txt", 30e-6, 1},
     {"freefem_scripts/materials/kevlar_linear.txt", "tests/data/linear_symmetric.txt", 0, 1},
 };

@@ -116,6 +116,119 @@ static void check_table(check_state *st, const wff_cell_type *cell)
           cell->name);
 }
 
+/* R_k at one state (dt = 0). */
+static void residual_at(const wff_material *m, const double F[6], const double dA[2], double gf,
+                        double R[2])
+{
+    wff_point_result out;
+    wff_material_evaluate(m, F, dA, gf, 0, &out);
+    R[0] = out.residual[0];
+    R[1] = out.residual[1];
+}
+
+/* The amplitude tangent (cell.h: amplitude_tangent, amplitude_tangent_block):
+ * its residual is evaluate()'s, its tangent ∂R_k/∂ΔA_m fourth-order central
+ * differences of R at random states, the blocked op the scalar one lane by
+ * lane; a cell without the op: wff_amplitude_tangent's forward differences,
+ * to their own accuracy. */
+static void check_amplitude_tangent(check_state *st, const cell_case *c, const wff_material *mat,
+                                    rng *r, double residual_scale)
+{
+    const wff_cell_type *cell = mat->cell;
+    if (cell->n_amplitudes == 0)
+        return;
+    double worst_R = 0, worst_K = 0, worst_block = 0, worst_default = 0;
+    int block_used = 0;
+    const double h = 1e-5 * c->amplitude_range;
+    /* the same cell without the op: wff_amplitude_tangent's default */
+    wff_cell_type bare = *cell;
+    bare.amplitude_tangent = NULL;
+    bare.amplitude_tangent_block = NULL;
+    wff_material bare_mat = *mat;
+    bare_mat.cell = &bare;
+    for (int s = 0; s < N_STATES; s++) {
+        double F[6], dA[2], gf, R[2], K[4], R_eval[2], K_fd[4], R_def[2], K_def[4];
+        random_state(r, c, F, dA, &gf);
+        int rc = wff_amplitude_tangent(mat, F, dA, gf, R, K);
+        CHECK(st, wff_amplitude_tangent(&bare_mat, F, dA, gf, R_def, K_def) == WFF_POINT_OK,
+              "%s: default tangent at state %d", c->material, s);
+        CHECK(st, rc == WFF_POINT_OK, "%s: tangent at state %d: status %d", c->material, s, rc);
+        residual_at(mat, F, dA, gf, R_eval);
+        double sR = fmax(max_abs(R_eval, 2), 1e-6 * residual_scale);
+        worst_R = fmax(worst_R, fmax(fabs(R[0] - R_eval[0]), fabs(R[1] - R_eval[1])) / sR);
+        for (int m = 0; m < 2; m++) {
+            double d[4][2], Rd[4][2];
+            const double offs[4] = {-2, -1, 1, 2};
+            for (int i = 0; i < 4; i++) {
+                d[i][0] = dA[0];
+                d[i][1] = dA[1];
+                d[i][m] += offs[i] * h;
+                residual_at(mat, F, d[i], gf, Rd[i]);
+            }
+            for (int k = 0; k < 2; k++)
+                K_fd[2 * k + m] = (Rd[0][k] - 8 * Rd[1][k] + 8 * Rd[2][k] - Rd[3][k]) / (12 * h);
+        }
+        double e = 0, e_def = 0, sK = max_abs(K_fd, 4);
+        for (int i = 0; i < 4; i++) {
+            e = fmax(e, fabs(K[i] - K_fd[i]) / sK);
+            e_def = fmax(e_def, fabs(K_def[i] - K_fd[i]) / sK);
+        }
+        worst_K = fmax(worst_K, e);
+        worst_default = fmax(worst_default, e_def);
+        worst_R = fmax(worst_R, fmax(fabs(R_def[0] - R_eval[0]), fabs(R_def[1] - R_eval[1])) / sR);
+    }
+    if (cell->amplitude_tangent_block) {
+        for (int s = 0; s < N_STATES / WFF_BLOCK; s++) {
+            wff_tangent_block blk;
+            for (int j = 0; j < WFF_BLOCK; j++) {
+                double F[6], dA[2], gf;
+                random_state(r, c, F, dA, &gf);
+                for (int i = 0; i < 6; i++)
+                    blk.F[i][j] = F[i];
+                blk.dA[0][j] = dA[0];
+                blk.dA[1][j] = dA[1];
+                blk.gamma_f[j] = gf;
+            }
+            int handled = cell->amplitude_tangent_block(mat->params, &blk) == 0;
+            CHECK(st, s == 0 || handled == block_used,
+                  "%s: the blocked tangent declines some states and not others", c->material);
+            block_used = handled;
+            if (!handled)
+                continue;
+            for (int j = 0; j < WFF_BLOCK; j++) {
+                double F[6], dA[2] = {blk.dA[0][j], blk.dA[1][j]}, R[2], K[4];
+                for (int i = 0; i < 6; i++)
+                    F[i] = blk.F[i][j];
+                cell->amplitude_tangent(mat->params, F, dA, blk.gamma_f[j], R, K);
+                CHECK(st, !blk.degenerate[j], "tangent block lane %d flagged degenerate", j);
+                double e = 0, sR = fmax(max_abs(R, 2), 1e-6 * residual_scale), sK = max_abs(K, 4);
+                for (int k = 0; k < 2; k++)
+                    e = fmax(e, fabs(blk.residual[k][j] - R[k]) / sR);
+                for (int i = 0; i < 4; i++)
+                    e = fmax(e, fabs(blk.tangent[i][j] - K[i]) / sK);
+                worst_block = fmax(worst_block, e);
+            }
+        }
+    }
+    printf("  %-48s amplitude tangent: %s %.1e vs central differences (default %.1e), "
+           "residual %.1e, blocked %s%.1e\n", c->material,
+           cell->amplitude_tangent ? "exact" : "(default)", worst_K, worst_default, worst_R,
+           !cell->amplitude_tangent_block ? "(none) " : block_used ? "" : "(declined) ",
+           worst_block);
+    CHECK(st, !cell->amplitude_tangent_block || cell->amplitude_tangent,
+          "%s: a blocked tangent without the scalar one", c->material);
+    CHECK(st, worst_R <= 1e-12, "%s: the tangent's residual differs from evaluate's by %.3g",
+          c->material, worst_R);
+    /* the default's forward differences (1 nm on ~10 µm) are good to ~1e-4 */
+    CHECK(st, worst_K <= (cell->amplitude_tangent ? 1e-6 : 1e-3),
+          "%s: amplitude tangent vs central differences of R: relative error %.3g", c->material,
+          worst_K);
+    CHECK(st, worst_block <= 1e-11, "%s: blocked tangent differs from the scalar one by %.3g",
+          c->material, worst_block);
+    CHECK(st, worst_default <= 1e-3, "%s: the default tangent vs central differences of R: "
+          "relative error %.3g", c->material, worst_default);
+}
+
 void cell_suite_check(check_state *st, const cell_case *c, const wff_material *material)
 {
     wff_material mat = *material;
@@ -347,6 +460,7 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
             CHECK(st, active[m] >= N_STATES / 10, "%s: mechanism %s active in %d of %d states",
                   c->material, cell->mech_names[m], active[m], N_STATES);
     }
+    check_amplitude_tangent(st, c, &mat, &r, residual_scale);
     /* degenerate: parallel yarn directions */
     const double F_bad[6] = {1, 1, 0, 0, 0, 0};
     rc = wff_material_evaluate(&mat, F_bad, zero, 0, 0, &out);
