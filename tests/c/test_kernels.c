@@ -4,7 +4,8 @@
  *     environment variable WOVENFF_KERNEL at model creation;
  *   - each variant this CPU runs has its own build of every cell (its own
  *     code), which passes the whole cell suite (fast paths = evaluate());
- *   - on a model, the blocked fast path = the plain path under each variant;
+ *   - on a model, the blocked fast path = the plain path under each variant,
+ *     with dynamic and with static amplitudes;
  *   - the ballistic quarter model, 150 steps with the projectile in contact
  *     under each variant: forces, energies, projectile and stable step equal
  *     the baseline's to round-off. */
@@ -263,6 +264,70 @@ static double relative_gap(const double *a, const double *b, size_t n)
     return scale > 0 ? gap / scale : gap;
 }
 
+/* Static amplitudes (a Newton solve per point, blocked with the cell's tangent):
+ * under each variant the blocked path = the plain path, and both = the
+ * baseline's plain path, one pass on a sheared, stretched state. */
+static int static_pass(const char *kernel, int plain, double *f, size_t nd, double *energy,
+                       wff_error *err)
+{
+    test_rect r = {0, 0.02, 0, 0.01, 12, 6, TEST_MESH_TRI, 1, 0.2, 7};
+    wff_model m;
+    if (test_model_rect(&m, &r, KEVLAR, err))
+        return -1;
+    const double F_pre[4] = {1.003963, 0, 0, 1.013476}, dA0[2] = {-9.311e-6, -23.748e-6};
+    int rc = wff_kernel_apply(&m.mat, kernel, err) || wff_model_set_preload(&m, F_pre, dA0, err) ||
+             wff_model_set_option(&m, "static_amplitudes", 1, err) || (size_t)m.n_dofs != nd;
+    if (rc == 0) {
+        for (int n = 0; n < m.n_nodes; n++) {
+            double x = m.mesh.xy[2 * n], y = m.mesh.xy[2 * n + 1];
+            m.u[D * n] = 0.02 * (0.3 * y + 0.002 * sin(400 * x));
+            m.u[D * n + 1] = 0.004 * x * cos(300 * y);
+            m.u[D * n + 2] = 4e-4 * sin(300 * x) * cos(250 * y);
+        }
+        m.em.reference_path = plain;
+        wff_force_totals t;
+        memset(f, 0, nd * sizeof(double));
+        wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, 1e-6, f, &t);
+        *energy = t.internal_energy;
+        if (t.bad_element >= 0)
+            rc = wff_fail(err, "element %d failed (status %d)", t.bad_element, t.bad_status);
+    }
+    wff_model_free(&m);
+    return rc ? -1 : 0;
+}
+
+static void check_static_paths(check_state *st)
+{
+    const size_t nd = (size_t)D * 13 * 7; /* the 12 x 6 rectangle's nodes */
+    double *ref = calloc(nd, sizeof(double)), *plain = calloc(nd, sizeof(double));
+    double *blocked = calloc(nd, sizeof(double)), e_ref = 0, e_plain = 0, e_blocked = 0;
+    wff_error err;
+    int rc = static_pass("baseline", 1, ref, nd, &e_ref, &err);
+    CHECK(st, rc == 0, "static amplitudes, baseline plain path: %s", err.message);
+    for (int i = 0; rc == 0 && i < wff_kernel_count(); i++) {
+        const wff_kernel *k = wff_kernel_at(i);
+        if (!wff_kernel_runs_here(k))
+            continue;
+        const char *name = wff_kernel_name(k);
+        int rp = static_pass(name, 1, plain, nd, &e_plain, &err);
+        CHECK(st, rp == 0, "static amplitudes, %s plain path: %s", name, err.message);
+        int rb = static_pass(name, 0, blocked, nd, &e_blocked, &err);
+        CHECK(st, rb == 0, "static amplitudes, %s blocked path: %s", name, err.message);
+        if (rp || rb)
+            continue;
+        double own = relative_gap(blocked, plain, nd), cross = relative_gap(blocked, ref, nd);
+        printf("  %-8s static amplitudes: blocked vs plain %.1e, vs the baseline's plain %.1e\n",
+               name, own, cross);
+        CHECK(st, own <= 1e-11 && cross <= 1e-11,
+              "%s: static blocked forces differ by %.3g (plain) / %.3g (baseline)", name, own,
+              cross);
+        CHECK_CLOSE(st, e_blocked, e_ref, 1e-11, 0, "static energy against the baseline's");
+    }
+    free(ref);
+    free(plain);
+    free(blocked);
+}
+
 static void check_ballistic(check_state *st)
 {
     const long steps = 150;
@@ -319,6 +384,7 @@ int main(void)
     check_requests(&st);
     check_cells(&st);
     check_fast_paths(&st);
+    check_static_paths(&st);
     check_ballistic(&st);
     return check_summary(&st, "test_kernels");
 }
