@@ -10,11 +10,15 @@ CXX      ?= g++
 BUILD    := build
 # -fno-math-errno lets gcc vectorise sqrt; never -ffast-math (it removes NaN checks).
 OPT      ?= -O2 -fno-math-errno
-# The per-element kernels (cells, membrane) are built for this machine's vector
-# unit and vectorised across blocks of elements (libmvec's atan/exp). For a
-# build that runs on other x86-64 machines: make KERNEL_ARCH=-march=x86-64-v2
-KERNEL_ARCH ?= -march=native
-KERNEL_OPT  := -O3 $(KERNEL_ARCH) -fopenmp-simd
+# The per-element kernels (cells, membrane) are vectorised across blocks of
+# elements (libmvec's atan/exp) and built once per kernel variant (see
+# KERNEL_VARIANTS below): KERNEL_ARCH is the baseline's instruction set, the
+# one every machine that loads wovenff.so must have. -fno-trapping-math (no
+# floating-point traps: values and NaN checks unchanged) lets gcc if-convert
+# the lane loops without AVX-512 masks, so the baseline and avx2 variants
+# vectorise them too (libmvec's 2- and 4-lane atan/exp).
+KERNEL_ARCH ?= -march=x86-64-v2
+KERNEL_OPT  := -O3 -fopenmp-simd -fno-trapping-math
 CFLAGS   := -std=gnu11 $(OPT) -fopenmp -Wall -Wextra -Werror -fPIC
 # The binding: our warnings are errors; FreeFEM's headers are -isystem (their
 # own warnings are not ours). -Wno-mismatched-new-delete: gcc 12 misreads
@@ -35,6 +39,24 @@ DEB_PACKAGES := freefem++ libfreefem++-dev gmsh libgmsh-dev libgsl-dev gnuplot-n
 
 CORE_SRC := $(sort $(wildcard plugin/*.c plugin/cells/*.c))
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
+# The per-element kernels, built once per variant (docs/architecture.md, "Kernel
+# variants"): build/kernel/VARIANT/plugin/... for -march KERNEL_ARCH_VARIANT,
+# linked into one object build/kernel/VARIANT.o (calls between kernel files
+# stay inside the variant), whose KERNEL_ENTRIES (the membrane passes)
+# tools/kernel_variant.sh renames to NAME__VARIANT, its cells kept in a
+# section of their own; plugin/kernel_dispatch.c picks one per model at run
+# time (WOVENFF_KERNEL).
+KERNEL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard plugin/cells/*.c) plugin/membrane.c \
+                                         plugin/membrane_quad.c)
+KERNEL_VARIANTS := baseline avx2 avx512
+KERNEL_ARCH_baseline = $(KERNEL_ARCH)
+KERNEL_ARCH_avx2 := -march=x86-64-v3
+KERNEL_ARCH_avx512 := -march=x86-64-v4
+KERNEL_ENTRIES := wff_elements_forces wff_elements_stable_step
+KERNEL_SRC := $(KERNEL_OBJ:$(BUILD)/%.o=%.c)
+KERNEL_PART_OBJ := $(foreach v,$(KERNEL_VARIANTS),$(KERNEL_SRC:%.c=$(BUILD)/kernel/$(v)/%.o))
+KERNEL_VARIANT_OBJ := $(KERNEL_VARIANTS:%=$(BUILD)/kernel/%.o)
+CORE_OBJ := $(filter-out $(KERNEL_OBJ),$(CORE_OBJ)) $(KERNEL_VARIANT_OBJ)
 CTEST_SRC := $(sort $(wildcard tests/c/test_*.c))
 CTEST_BIN := $(CTEST_SRC:tests/c/%.c=$(BUILD)/tests/%)
 TESTLIB_SRC := $(sort $(wildcard tests/c/lib/*.c))
@@ -50,7 +72,8 @@ ARGS  ?=
 # Every object depends on build/flags.txt, rewritten only when the compiler or
 # a flag changes, so a changed flag (OPT=..., KERNEL_ARCH=...) rebuilds all.
 FLAGS_FILE := $(BUILD)/flags.txt
-FLAGS_NOW  := $(CC) $(CFLAGS) | $(KERNEL_OPT) | $(CXX) $(CXXFLAGS) | $(LDLIBS)
+FLAGS_NOW  := $(CC) $(CFLAGS) | $(KERNEL_OPT) $(foreach v,$(KERNEL_VARIANTS),$(v): \
+              $(KERNEL_ARCH_$(v))) $(KERNEL_ENTRIES) | $(CXX) $(CXXFLAGS) | $(LDLIBS)
 $(shell mkdir -p $(BUILD) && [ "$$(cat $(FLAGS_FILE) 2>/dev/null)" = '$(FLAGS_NOW)' ] || \
         printf '%s\n' '$(FLAGS_NOW)' > $(FLAGS_FILE))
 
@@ -62,10 +85,17 @@ $(BUILD)/plugin/%.o: plugin/%.c $(FLAGS_FILE)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) $(CORE_INC) $(DEPFLAGS) -c $< -o $@
 
-# The per-element kernels: built for this machine's vector unit (see KERNEL_ARCH).
-KERNEL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard plugin/cells/*.c) plugin/membrane.c \
-                                         plugin/membrane_quad.c)
-$(KERNEL_OBJ): CFLAGS += $(KERNEL_OPT)
+# The per-element kernels, once per variant: compiled, linked (ld -r) into one
+# object, renamed.
+define KERNEL_VARIANT_RULE
+$(BUILD)/kernel/$(1)/%.o: %.c $(FLAGS_FILE)
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$(CFLAGS) $$(KERNEL_OPT) $$(KERNEL_ARCH_$(1)) $$(CORE_INC) $$(DEPFLAGS) -c $$< -o $$@
+$(BUILD)/kernel/$(1).o: $(KERNEL_SRC:%.c=$(BUILD)/kernel/$(1)/%.o) tools/kernel_variant.sh
+	$$(LD) -r -o $$@.o $$(filter %.o,$$^)
+	sh tools/kernel_variant.sh $(1) $$@.o $$@ $$(KERNEL_ENTRIES) && rm -f $$@.o
+endef
+$(foreach v,$(KERNEL_VARIANTS),$(eval $(call KERNEL_VARIANT_RULE,$(v))))
 
 $(BUILD)/tests/c/lib/%.o: tests/c/lib/%.c $(FLAGS_FILE)
 	@mkdir -p $(dir $@)
@@ -118,5 +148,5 @@ bench: all $(BENCH_BIN)
 clean:
 	rm -rf $(BUILD)
 
--include $(CORE_OBJ:.o=.d) $(TESTLIB_OBJ:.o=.d) $(CTEST_BIN:=.d) $(MODULE_OBJ:.o=.d) \
+-include $(CORE_OBJ:.o=.d) $(KERNEL_PART_OBJ:.o=.d) $(TESTLIB_OBJ:.o=.d) $(CTEST_BIN:=.d) $(MODULE_OBJ:.o=.d) \
          $(BENCH_BIN:=.d)

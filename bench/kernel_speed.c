@@ -8,6 +8,7 @@
  * (static: amplitudes balanced at every point, the model option
  * static_amplitudes, with its Newton iterations per point and step)
  * prints one JSON object on stdout. Run from the repository root. */
+#include "wovenff/kernel.h"
 #include "wovenff/options.h"
 #include "wovenff/solver.h"
 
@@ -160,10 +161,11 @@ int main(int argc, char **argv)
     printf("{\"elements\": %d, \"element_type\": \"%s\", \"nodes\": %d, \"threads\": %d, "
            "\"steps\": %ld, \"ns_per_element_step\": %.2f, \"linear_membrane_ns\": %s, "
            "\"model_bytes_per_element\": %.0f, \"peak_rss_bytes_per_element\": %.0f, "
-           "\"amplitudes\": \"%s\", \"newton_iterations_per_point_step\": %s}\n",
+           "\"amplitudes\": \"%s\", \"newton_iterations_per_point_step\": %s, "
+           "\"kernel\": \"%s\"}\n",
            ne, quads ? "quad4" : "tri3", m.n_nodes, threads, m.step - s0, ns, linear,
            (node_bytes + element_bytes) / ne, bytes_per_element,
-           static_amplitudes ? "static" : "dynamic", newton);
+           static_amplitudes ? "static" : "dynamic", newton, wff_material_kernel(&m.mat));
     wff_model_free(&m);
     return 0;
 }

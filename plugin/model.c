@@ -7,6 +7,7 @@
 #include "solver_internal.h"
 #include "zones.h"
 #include "wovenff/material.h"
+#include "wovenff/kernel.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -102,7 +103,8 @@ int wff_model_create_ordered(wff_model *m, wff_mesh *mesh, const char *material_
         wff_mesh_free(&m->mesh);
         return -1;
     }
-    if (wff_material_load(material_path, &m->mat, err)) {
+    /* the kernel variant: WOVENFF_KERNEL, read once here (kernel.h) */
+    if (wff_material_load(material_path, &m->mat, err) || wff_kernel_apply(&m->mat, NULL, err)) {
         wff_mesh_free(&m->mesh);
         return -1;
     }

@@ -12,6 +12,7 @@
  * files or FreeFEM. Without zones (m->zones NULL) every function is the plain
  * call the model made before zones existed. */
 #include "zones.h"
+#include "wovenff/kernel.h"
 #include "wovenff/material.h"
 #include "wovenff/text_io.h"
 
@@ -239,7 +240,9 @@ int wff_model_zone_elements(wff_model *m, const unsigned char *selected,
         return wff_fail(err, "zone material '%s': %d zones already, the most a model has",
                         material_path, WFF_ZONES_MAX);
     wff_material mat;
-    if (wff_material_load(material_path, &mat, err))
+    /* on the model's kernel variant (kernel.h), like the model's own material */
+    if (wff_material_load(material_path, &mat, err) ||
+        wff_kernel_apply(&mat, wff_material_kernel(&m->mat), err))
         return -1;
     if (mat.cell->n_amplitudes > 0 && m->mat.cell->n_amplitudes == 0)
         return wff_fail(err, "zone material '%s': cell '%s' has crimp amplitudes and the "

@@ -37,6 +37,7 @@ void wff_ff_register_checks(); // ff_checks.cpp: checks a scene makes before it 
 void wff_ff_register_background(); // ff_background.cpp: programs started without waiting
 void wff_ff_register_zones();  // ff_zones.cpp: zonal materials
 void wff_ff_register_threads(); // ff_threads.cpp: the default thread count, a model's
+void wff_ff_register_kernel(); // ff_kernel.cpp: the kernel variant a model runs
 
 // Record "fn: message" as the last error and stop the script (exit code 8
 // unless it catches the error). Never returns.

@@ -93,6 +93,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_background,
     wff_ff_register_zones,
     wff_ff_register_threads,
+    wff_ff_register_kernel,
 };
 
 static void init()
