@@ -77,7 +77,7 @@ FLAGS_NOW  := $(CC) $(CFLAGS) | $(KERNEL_OPT) $(foreach v,$(KERNEL_VARIANTS),$(v
 $(shell mkdir -p $(BUILD) && [ "$$(cat $(FLAGS_FILE) 2>/dev/null)" = '$(FLAGS_NOW)' ] || \
         printf '%s\n' '$(FLAGS_NOW)' > $(FLAGS_FILE))
 
-.PHONY: all deps run test bench clean
+.PHONY: all deps run test bench clean print-core-objects
 .SECONDARY:
 all: $(CORE_OBJ) $(CTEST_BIN) $(MODULE)
 
@@ -150,3 +150,7 @@ clean:
 
 -include $(CORE_OBJ:.o=.d) $(KERNEL_PART_OBJ:.o=.d) $(TESTLIB_OBJ:.o=.d) $(CTEST_BIN:=.d) $(MODULE_OBJ:.o=.d) \
          $(BENCH_BIN:=.d)
+
+# The objects wovenff.so is linked from (tests/sh/portable_build.sh scans them).
+print-core-objects:
+	@echo $(CORE_OBJ)

@@ -17,9 +17,10 @@ lib=${1:-build/wovenff.so}
 [ -f "$lib" ] || { echo "portable_build: $lib missing (run make first)"; exit 1; }
 objects=""
 if [ $# -eq 0 ]; then
-    # the core's objects and the three kernel variants (build/kernel/VARIANT/ holds
-    # their parts before the renaming, never linked)
-    objects="$(find build/plugin -name '*.o' | sort) $(find build/kernel -maxdepth 1 -name '*.o' | sort)"
+    # the objects the library is linked from, as the Makefile lists them (the core's
+    # and the three kernel variants; build/kernel/VARIANT/ holds their parts before
+    # the renaming, never linked; an object a past build left is not scanned)
+    objects=$(make -s --no-print-directory print-core-objects)
     [ -n "$objects" ] || { echo "portable_build: no objects under build/"; exit 1; }
 fi
 fail=0
