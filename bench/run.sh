@@ -137,7 +137,7 @@ scene contact_all_nodes -contact all
 scene zonal_2cm -zonal 0.02          # King within 2 cm of the impact point, fitted linear yarns beyond
 scene zonal_4cm -zonal 0.04
 scene zonal_8cm -zonal 0.08
-scene threads_2 -threads 2
+scene threads_1 -threads 1   # the default is the cores this process may use
 fi # quick
 
 {   # the speed table's scene figures (bench/speed_table.sh reads them)
