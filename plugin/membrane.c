@@ -633,19 +633,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
         /* (the element loop's barrier is behind us) the other threads' buffers into f, each
          * thread a slice of the DOFs, buffers added in thread order and cleared as read
          * (no pass of its own zeroes them) */
-        if (team > 1) {
-            const size_t n_dofs = (size_t)el->n_dofs;
-#pragma omp for schedule(static) nowait /* (the region's end waits) */
-            for (size_t i = 0; i < n_dofs; i++) {
-                double extra = 0;
-                for (int k = 1; k < team; k++) {
-                    double *b = el->thread_f + (size_t)(k - 1) * n_dofs + i;
-                    extra += *b;
-                    *b = 0;
-                }
-                f[i] += extra;
-            }
-        }
+        wff_thread_buffers_reduce(el, f, team);
     }
     for (int t = 0; t < team; t++) { /* in thread order: the same sums every run */
         energy += part_energy[t];

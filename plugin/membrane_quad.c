@@ -265,19 +265,7 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
         part[t] = sums;
         /* (past the loop's barrier) the other threads' buffers into f, a slice of
          * the DOFs per thread, buffers in thread order */
-        if (team > 1) {
-            const size_t n_dofs = (size_t)el->n_dofs;
-#pragma omp for schedule(static)
-            for (size_t i = 0; i < n_dofs; i++) {
-                double extra = 0;
-                for (int k = 1; k < team; k++) {
-                    double *b = el->thread_f + (size_t)(k - 1) * n_dofs + i;
-                    extra += *b;
-                    *b = 0;
-                }
-                f[i] += extra;
-            }
-        }
+        wff_thread_buffers_reduce(el, f, team);
     }
     quad_sums all = {0, 0, -1, -1, 0};
     for (int t = 0; t < team; t++) { /* in thread order: the same sums every run */

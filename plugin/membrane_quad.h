@@ -1,10 +1,12 @@
-/* The blocked quad4 force pass (plugin/membrane_quad.c), internal to the
- * membrane code: wff_elements_forces calls it and falls back to its plain
+/* The blocked quad4 force pass (plugin/membrane_quad.c) and the thread-buffer
+ * reduction both passes share, internal to the membrane code: wff_elements_forces calls it and falls back to its plain
  * per-point loop when it declines. */
 #ifndef WOVENFF_MEMBRANE_QUAD_H
 #define WOVENFF_MEMBRANE_QUAD_H
 
 #include "wovenff/membrane.h"
+
+#include <stddef.h>
 
 /* Internal forces of every quad through the cell's evaluate_point_block,
  * added into f; γᶠ of the quads' points updated with step dt. Adds Σ w W and
@@ -18,5 +20,27 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
                           const double *X, const double *u, double *gamma_f, double dt,
                           double *f, double *energy, double *dissipated,
                           wff_force_totals *totals);
+
+/* Inside a force pass's parallel region, past its element loop's barrier: the
+ * extra threads' buffers (el->thread_f) added into f, each thread a slice of
+ * the DOFs, buffers in thread order (the same bits for a given count), each
+ * cleared as it is read — no pass zeroes them, every pass relies on finding
+ * them zero. The region's end is the barrier after it. */
+static inline void wff_thread_buffers_reduce(const wff_elements *el, double *f, int team)
+{
+    if (team <= 1)
+        return;
+    const size_t n_dofs = (size_t)el->n_dofs;
+#pragma omp for schedule(static) nowait
+    for (size_t i = 0; i < n_dofs; i++) {
+        double extra = 0;
+        for (int k = 1; k < team; k++) {
+            double *b = el->thread_f + (size_t)(k - 1) * n_dofs + i;
+            extra += *b;
+            *b = 0;
+        }
+        f[i] += extra;
+    }
+}
 
 #endif
