@@ -96,6 +96,7 @@ int wff_elements_init(wff_elements *el, const double *X, int n_tris, const int *
     for (int i = 0; i < 4 * n_quads; i++)
         max_node = quad[i] > max_node ? quad[i] : max_node;
     el->n_dofs = D * (max_node + 1);
+    el->team_min_tris = WFF_TEAM_MIN_TRIS;
 #ifdef _OPENMP
     /* OpenMP's maximum, or the processors if more (OMP_NUM_THREADS=1 in the
      * environment must not stop a model that asks for 2) */
@@ -589,8 +590,8 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
     totals->amplitude_iterations = 0;
     double energy = 0, dissipated = 0;
 
-    /* small meshes are not worth a thread team */
-    int threads = el->n_threads > 1 && el->n_tris >= 64 * WFF_BLOCK ? el->n_threads : 1;
+    /* small meshes are not worth a thread team (membrane.h, WFF_TEAM_MIN_TRIS) */
+    int threads = el->n_threads > 1 && el->n_tris >= el->team_min_tris ? el->n_threads : 1;
     double part_energy[WFF_MAX_THREADS] = {0}, part_dissipated[WFF_MAX_THREADS] = {0};
     wff_force_totals part_bad[WFF_MAX_THREADS];
     for (int t = 0; t < threads; t++)
@@ -911,7 +912,7 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
     double amplitude_factor = em->amplitude_mass_factor > 0 ? em->amplitude_mass_factor : 1;
     double best = INFINITY;
     int n = el->n_tris + el->n_quads, best_e = -1;
-    int threads = el->n_threads > 1 && n >= 64 * WFF_BLOCK ? el->n_threads : 1;
+    int threads = el->n_threads > 1 && n >= el->team_min_tris ? el->n_threads : 1;
     /* triangles in blocks through the cell's vectorised wave speeds where it has them
      * (not for static amplitudes, whose mean ΔA is the points', nor the reference path) */
     const int use_block = mat->cell->wave_speeds_block && !em->static_amplitudes &&

@@ -25,7 +25,7 @@
 #define CLAMP_GRAIN 64
 /* Fewest DOFs for which a pass over the DOFs or nodes takes a team: a pass
  * costs ~1 ns a DOF, a team's start and end ~10 µs when its threads sleep
- * between passes (OMP_WAIT_POLICY=passive, tools/ff.sh) */
+ * between passes (OMP_WAIT_POLICY=passive, tools/ff.sh's default) */
 #define TEAM_MIN_DOFS 16384
 
 /* Parts for n items at `grain` items a part: depends on n alone. */

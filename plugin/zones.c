@@ -223,8 +223,9 @@ int wff_zones_preload_changed(wff_model *m, wff_error *err)
     return wff_model_masses_changed(m, err);
 }
 
-int wff_model_zone_elements(wff_model *m, const unsigned char *selected,
-                            const char *material_path, int preload, wff_error *err)
+/* wff_model_zone_elements with the selection in the model's own element order. */
+static int zone_elements_model(wff_model *m, const unsigned char *selected,
+                               const char *material_path, int preload, wff_error *err)
 {
     if (m->step > 0 || m->v_half_valid)
         return wff_fail(err, "zone material '%s': the run has started (step %ld); give the "
@@ -317,7 +318,7 @@ int wff_model_zone_region(wff_model *m, const char *group, int group_tag,
         return wff_fail(err, "zone material '%s': no element in region %d%s%s", material_path,
                         tag, group && group[0] ? " " : "", group && group[0] ? group : "");
     }
-    int n = wff_model_zone_elements(m, sel, material_path, preload, err);
+    int n = zone_elements_model(m, sel, material_path, preload, err);
     free(sel);
     return n;
 }
@@ -343,7 +344,7 @@ int wff_model_zone_disc(wff_model *m, double x, double y, double radius, int out
         int beyond = hypot(cx - x, cy - y) > radius;
         sel[e] = outside ? beyond : !beyond;
     }
-    int n = wff_model_zone_elements(m, sel, material_path, preload, err);
+    int n = zone_elements_model(m, sel, material_path, preload, err);
     free(sel);
     return n;
 }
@@ -365,6 +366,22 @@ const wff_material *wff_model_zone_material(const wff_model *m, int zone)
     if (zone == 0)
         return &m->mat;
     return m->zones && zone > 0 && zone < m->zones->n ? &m->zones->zone[zone].mat : NULL;
+}
+
+int wff_model_zone_elements(wff_model *m, const unsigned char *selected,
+                            const char *material_path, int preload, wff_error *err)
+{
+    if (!m->element_user) /* the caller's order is the model's */
+        return zone_elements_model(m, selected, material_path, preload, err);
+    int n_el = m->el.n_tris + m->el.n_quads;
+    unsigned char *sel = malloc((size_t)(n_el ? n_el : 1));
+    if (!sel)
+        return wff_fail(err, "out of memory");
+    for (int e = 0; e < n_el; e++) /* model element e is the caller's element_user[e] */
+        sel[e] = selected[m->element_user[e]];
+    int n = zone_elements_model(m, sel, material_path, preload, err);
+    free(sel);
+    return n;
 }
 
 void wff_zones_forces(wff_model *m, const double *u, double *gamma_f, double dt, double *f,

@@ -6,16 +6,15 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 FF_LOADPATH="$root/build;/usr/lib/freefem++"
 FF_INCLUDEPATH="$root/freefem_scripts/lib;$root/freefem_scripts;/usr/include/freefem++/idp"
 export FF_LOADPATH FF_INCLUDEPATH
-# OpenMP threads that wait at a barrier spin a bounded while, then sleep (unless
-# the caller chose a policy or a spin count): libgomp's default spin (300000
-# rounds) burns, on a shared machine, the time slice the partner thread needs
-# (2 threads ran 4-5x slower than 1), and sleeping at once (OMP_WAIT_POLICY=
-# PASSIVE) costs a wake-up per barrier: on the paper's scene (2288 elements,
-# ~30000 steps) 2 threads took 6.3-6.9 s passive, 4.3 s spinning, 4.7 s with
-# this bound, 5.6 s on 1 thread (docs/limits.md "Threads")
+# OpenMP threads that wait at a barrier sleep instead of spinning (unless the
+# caller chose a policy or a spin count): on a shared machine a spinning thread
+# burns the time slice its partner needs. The paper's scene, 2 threads: idle
+# machine 0.41 s spinning (GOMP_SPINCOUNT=20000) vs 0.65 s passive, but with one
+# busy process beside it 3.0 s vs 0.51 s, two scenes at once 7.0 s vs 0.51 s
+# each (docs/limits.md "Threads"); OMP_WAIT_POLICY=active on a machine of your own.
 if [ -z "${OMP_WAIT_POLICY:-}" ] && [ -z "${GOMP_SPINCOUNT:-}" ]; then
-    GOMP_SPINCOUNT=20000
-    export GOMP_SPINCOUNT
+    OMP_WAIT_POLICY=PASSIVE
+    export OMP_WAIT_POLICY
 fi
 script=$1; shift
 exec FreeFem++ -nw -v 0 "$script" "$@"

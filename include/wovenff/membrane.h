@@ -42,6 +42,9 @@ typedef struct wff_elements {
     int n_dofs;           /* 5 × nodes referenced */
     int n_threads;        /* threads for the triangle force pass (OpenMP), 1 by default */
     int max_threads;      /* threads the buffers were sized for */
+    int team_min_tris;    /* fewest triangles for which the triangle passes take a thread
+                             team (WFF_TEAM_MIN_TRIS at init; a test of the threaded path
+                             on a small mesh sets 0) */
     double *thread_f;     /* (max_threads − 1) × n_dofs force buffers, one per extra thread */
     double *point_dA;     /* static amplitudes: 2 per quadrature point (6 per triangle,
                              then 8 per quad), or NULL while amplitudes are dynamic */
@@ -49,6 +52,11 @@ typedef struct wff_elements {
 
 /* Most threads a force pass uses. */
 #define WFF_MAX_THREADS 64
+/* Fewest triangles for which the triangle force pass and the stable-step scan
+ * take a thread team by default (below, one thread whatever n_threads says):
+ * with sleeping threads (tools/ff.sh's passive wait) a team's wake-up outweighs
+ * a smaller pass (the paper's 2288 triangles: 2 threads 6.3-7.2 s, 1 thread 5.6 s). */
+#define WFF_TEAM_MIN_TRIS 4096
 
 /* Preload and material as the element sees them. */
 typedef struct wff_element_material {

@@ -436,8 +436,8 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
  * allowed: the zone is empty) or -1 (err set). */
 #define WFF_ZONES_MAX 8
 enum { WFF_ZONE_PRELOAD_SHARED = 0, WFF_ZONE_PRELOAD_MATCHED = 1 };
-/* selected: one flag per element (nonzero: in the zone), in the model's own element
- * order (m->element_user maps it to the caller's; the binding does). */
+/* selected: one flag per element (nonzero: in the zone), in the caller's element
+ * order (tris then quads of the mesh given; the model maps it to its own). */
 int wff_model_zone_elements(wff_model *m, const unsigned char *selected,
                             const char *material_path, int preload, wff_error *err);
 /* The elements of the physical surface named `group` (or of region tag

@@ -98,13 +98,12 @@ long ffZoneElements(const long &id, KN<double> *const &selected, string *const &
                           " values: one per element of the model, " + std::to_string(n_el), id);
     int preload = WFF_ZONE_PRELOAD_SHARED;
     zone_words(fn, words, nullptr, &preload, id);
-    // the script's selection is in its mesh's element order; the model may hold
-    // its own (renumber.h): flag model element e by the script's element of e
+    // in the script's element order (wff_model_zone_elements maps it to the model's)
     std::string flags((size_t)n_el, '\0');
-    for (long e = 0; e < n_el; e++)
+    for (long e = 0; e < n_el; e++) {
         wff_ff_require_finite(fn, "selection", (*selected)[e], id);
-    for (long e = 0; e < n_el; e++)
-        flags[(size_t)e] = (*selected)[m->element_user ? m->element_user[e] : e] != 0;
+        flags[(size_t)e] = (*selected)[e] != 0;
+    }
     wff_error err;
     int n = wff_model_zone_elements(m, (const unsigned char *)flags.data(), material->c_str(),
                                     preload, &err);

@@ -5,7 +5,8 @@
 #         -stopafter: exit 9, no summary) -> checkpoint at frame 12; restarted
 #         in place, stopped again after frame 43 (past the 0.4 ms profile) ->
 #         checkpoint at frame 40;
-#   B     restarted from A into another folder (-restart A -out B), to the end.
+#   B     restarted from A into another folder (-restart A -out B), to the end;
+#   C     as B with another default thread count (OMP_NUM_THREADS=1, no -threads).
 # B's history.csv and profiles.csv must equal ref's row for row (bitwise here:
 # the explicit scheme is deterministic and the checkpoint holds all of its
 # state; numbers are also compared to 1e-12 relative), and A keeps its files.
@@ -43,6 +44,13 @@ run B 0 $common -restart "$tmp/A" -out "$tmp/B"
 grep -q '"restarted_from_frame": 40' "$tmp/B/summary.json" || { echo "B summary lacks restarted_from_frame 40"; fail=1; }
 grep -q '"status": "ok"' "$tmp/B/summary.json" || { echo "B summary not ok"; fail=1; }
 cmp -s "$tmp/A/history.csv" "$tmp/A_history_before.csv" || { echo "restarting into B changed A"; fail=1; }
+
+# C: the same restart where the default thread count differs (OMP_NUM_THREADS=1,
+# no -threads given): it continues with the checkpointed run's count, not refused
+OMP_NUM_THREADS=1 run C 0 $common -restart "$tmp/A" -out "$tmp/C"
+cmp -s "$tmp/B/history.csv" "$tmp/C/history.csv" || { echo "C (another default thread count) differs from B"; fail=1; }
+[ "$(grep -o '"threads": [0-9]*' "$tmp/C/summary.json")" = "$(grep -o '"threads": [0-9]*' "$tmp/B/summary.json")" ] ||
+    { echo "C did not continue with the checkpointed run's thread count"; fail=1; }
 
 for f in history.csv profiles.csv ballistic.pvd; do
     if cmp -s "$tmp/ref/$f" "$tmp/B/$f"; then
