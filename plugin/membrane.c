@@ -591,7 +591,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
     double energy = 0, dissipated = 0;
 
     /* small meshes are not worth a thread team (membrane.h, WFF_TEAM_MIN_TRIS) */
-    int threads = el->n_threads > 1 && el->n_tris >= el->team_min_tris ? el->n_threads : 1;
+    int threads = wff_elements_team(el);
     double part_energy[WFF_MAX_THREADS] = {0}, part_dissipated[WFF_MAX_THREADS] = {0};
     wff_force_totals part_bad[WFF_MAX_THREADS];
     for (int t = 0; t < threads; t++)
@@ -912,7 +912,7 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
     double amplitude_factor = em->amplitude_mass_factor > 0 ? em->amplitude_mass_factor : 1;
     double best = INFINITY;
     int n = el->n_tris + el->n_quads, best_e = -1;
-    int threads = el->n_threads > 1 && n >= el->team_min_tris ? el->n_threads : 1;
+    int threads = wff_elements_team(el);
     /* triangles in blocks through the cell's vectorised wave speeds where it has them
      * (not for static amplitudes, whose mean ΔA is the points', nor the reference path) */
     const int use_block = mat->cell->wave_speeds_block && !em->static_amplitudes &&

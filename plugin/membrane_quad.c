@@ -239,9 +239,8 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
     quad_gauss gauss;
     quad_gauss_init(&gauss);
     const int n_blocks = (el->n_quads + WFF_BLOCK - 1) / WFF_BLOCK;
-    /* small meshes are not worth a thread team (a quad costs about as much as
-     * four triangles' points, hence the lower count than the triangle pass) */
-    int threads = el->n_threads > 1 && el->n_quads >= 32 * WFF_BLOCK ? el->n_threads : 1;
+    /* small meshes are not worth a thread team (membrane.h, wff_elements_team) */
+    int threads = wff_elements_team(el);
     quad_sums part[WFF_MAX_THREADS];
     int team = 1;
 #pragma omp parallel num_threads(threads) if (threads > 1)

@@ -44,7 +44,7 @@ static int part_begin(int n, int parts, int k)
  * one for a model too small to repay a team. */
 static int pass_threads(const wff_model *m, int parts)
 {
-    int t = m->n_dofs < TEAM_MIN_DOFS ? 1 : m->el.n_threads;
+    int t = m->n_dofs < TEAM_MIN_DOFS ? 1 : wff_elements_team(&m->el);
     return t > parts ? parts : t < 1 ? 1 : t;
 }
 

@@ -42,9 +42,9 @@ typedef struct wff_elements {
     int n_dofs;           /* 5 × nodes referenced */
     int n_threads;        /* threads for the triangle force pass (OpenMP), 1 by default */
     int max_threads;      /* threads the buffers were sized for */
-    int team_min_tris;    /* fewest triangles for which the triangle passes take a thread
-                             team (WFF_TEAM_MIN_TRIS at init; a test of the threaded path
-                             on a small mesh sets 0) */
+    int team_min_tris;    /* least work (triangles + 3 x quads) for which the passes take
+                             a thread team (WFF_TEAM_MIN_TRIS at init; a test of the
+                             threaded path on a small mesh sets 0); wff_elements_team */
     double *thread_f;     /* (max_threads − 1) × n_dofs force buffers, one per extra thread */
     double *point_dA;     /* static amplitudes: 2 per quadrature point (6 per triangle,
                              then 8 per quad), or NULL while amplitudes are dynamic */
@@ -52,11 +52,13 @@ typedef struct wff_elements {
 
 /* Most threads a force pass uses. */
 #define WFF_MAX_THREADS 64
-/* Fewest triangles for which the triangle force pass and the stable-step scan
+/* Least work, in triangles (a quad counts as 3), for which a mesh's passes
  * take a thread team by default (below, one thread whatever n_threads says):
- * with sleeping threads (tools/ff.sh's passive wait) a team's wake-up outweighs
- * a smaller pass (the paper's 2288 triangles: 2 threads 6.3-7.2 s, 1 thread 5.6 s). */
-#define WFF_TEAM_MIN_TRIS 4096
+ * with sleeping threads (tools/ff.sh's passive wait) every parallel region
+ * costs a wake-up, tens of µs here, which outweighs a smaller pass (the
+ * paper's 2288 triangles: 2 threads 6.3-7.2 s, 1 thread 5.6 s; the strip's
+ * 640 quads: 113 s against 54 s; 9004 triangles: 27.7 s against 14 s spinning). */
+#define WFF_TEAM_MIN_TRIS 16384
 
 /* Preload and material as the element sees them. */
 typedef struct wff_element_material {
@@ -87,6 +89,14 @@ typedef struct wff_force_totals {
     long amplitude_iterations; /* static amplitudes: Newton iterations (tangents) over all
                                   points of the pass */
 } wff_force_totals;
+
+/* The threads a pass over el's elements (or the model's DOFs) uses: n_threads,
+ * or 1 when the mesh is below team_min_tris. */
+static inline int wff_elements_team(const wff_elements *el)
+{
+    long work = (long)el->n_tris + 3L * el->n_quads;
+    return el->n_threads > 1 && work >= el->team_min_tris ? el->n_threads : 1;
+}
 
 /* Allocate and compute the reference geometry; -1 with the element named if
  * an element has zero or negative area. X holds 2 coordinates per node. */
