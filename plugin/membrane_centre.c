@@ -1,0 +1,199 @@
+/* Membrane elements: the state and point evaluation at an element's centre
+ * (for output), and the stable explicit step over all elements (a blocked,
+ * vectorised scan of the triangles where the cell offers wave_speeds_block).
+ * See include/wovenff/membrane.h for the formulas. Knows the cells' ops and
+ * the element geometry; nothing of the model, integrator or FreeFEM. */
+#include "wovenff/membrane.h"
+#include "wovenff/balance.h"
+#include "membrane_geometry.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#define D WFF_DOFS_PER_NODE
+
+void wff_element_center_state(const wff_elements *el, const double *X, const double *u, int e,
+                              double F[6], double dA[2])
+{
+    if (e < el->n_tris) {
+        const int *node = el->tri + 3 * e;
+        deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
+        dA[0] = dA[1] = 0;
+        for (int a = 0; a < 3; a++) {
+            dA[0] += u[D * node[a] + 3] / 3;
+            dA[1] += u[D * node[a] + 4] / 3;
+        }
+        return;
+    }
+    int qe = e - el->n_tris;
+    const int *node = el->quad + 4 * qe;
+    double grad[4][2];
+    quad_gradients(X, node, 0, 0, grad);
+    deformation_gradient(X, u, node, 4, &grad[0][0], F);
+    dA[0] = dA[1] = 0;
+    for (int a = 0; a < 4; a++) {
+        dA[0] += u[D * node[a] + 3] / 4;
+        dA[1] += u[D * node[a] + 4] / 4;
+    }
+}
+
+/* Element mean of the points' own amplitudes (static amplitudes). */
+static void static_mean_dA(const wff_elements *el, int e, double dA[2])
+{
+    int n = e < el->n_tris ? 3 : 4;
+    const double *p = e < el->n_tris ? el->point_dA + 6 * e
+                                     : el->point_dA + 6 * el->n_tris + 8 * (e - el->n_tris);
+    dA[0] = dA[1] = 0;
+    for (int q = 0; q < n; q++) {
+        dA[0] += p[2 * q] / n;
+        dA[1] += p[2 * q + 1] / n;
+    }
+}
+
+int wff_element_center_eval(const wff_elements *el, const wff_element_material *em,
+                            const double *X, const double *u, const double *gamma_f, int e,
+                            wff_point_result *out)
+{
+    double F[6], Fe[6], dA[2], gf = 0;
+    wff_element_center_state(el, X, u, e, F, dA);
+    if (em->static_amplitudes)
+        static_mean_dA(el, e, dA);
+    preload_apply(em, F, Fe);
+    int n = e < el->n_tris ? 3 : 4;
+    const double *g =
+        e < el->n_tris ? gamma_f + 3 * e : gamma_f + 3 * el->n_tris + 4 * (e - el->n_tris);
+    for (int q = 0; q < n; q++)
+        gf += g[q] / n;
+    return em->mat->cell->evaluate(em->mat->params, Fe, dA, gf, 0, out);
+}
+
+/* An element's stable step from its size and its cell's wave speeds:
+ * membrane waves alone: dt_m = h/c; amplitude oscillator alone: dt_A = 2/ω.
+ * Coupled (∂R/∂F ≠ 0), the largest frequency of a positive semi-definite
+ * stiffness [[K_mm, K_ma], [K_am, K_aa]] is at most the sum of the blocks'
+ * (|xᵀK_ma y|² ≤ xᵀK_mm x · yᵀK_aa y), so ω² ≤ ω_m² + ω_A² and
+ * dt = 1/sqrt(1/dt_m² + 1/dt_A²): a bound where min(dt_m, dt_A) was a few
+ * percent optimistic when the two are close. */
+static inline double element_stable_dt(double size, double speed, double omega,
+                                       double amplitude_factor, int static_amplitudes)
+{
+    double dt = size / speed;
+    if (omega > 0 && !static_amplitudes) {
+        double dt_amp = 2 / omega * sqrt(amplitude_factor);
+        dt = 1 / sqrt(1 / (dt * dt) + 1 / (dt_amp * dt_amp));
+    }
+    return dt;
+}
+
+/* The stable-step scan over triangles e0 .. e0 + n − 1 through the cell's
+ * wave_speeds_block: each lane the centre state of wff_element_center_state
+ * (F, mean ΔA) with the preload applied, the same sums in the same order; the
+ * smallest step and its element into *mine, *mine_e as the scalar scan does
+ * (elements in order, a NaN step taken). Lanes past n repeat the last element.
+ * Returns -1 if the cell declines these parameters (nothing done). */
+static int tri_block_stable_step(const wff_elements *el, const wff_element_material *em,
+                                 const double *X, const double *u, int e0, int n,
+                                 double amplitude_factor, double *mine, int *mine_e)
+{
+    const wff_material *mat = em->mat;
+    const double *Fp = em->F_pre;
+    wff_wave_block blk;
+#pragma omp simd
+    for (int j = 0; j < WFF_BLOCK; j++) {
+        int e = e0 + (j < n ? j : n - 1);
+        const int *node = el->tri + 3 * e;
+        const double *g = el->tri_grad + 6 * e;
+        double F0 = 0, F1 = 0, F2 = 0, F3 = 0, F4 = 0, F5 = 0, dA0 = 0, dA1 = 0;
+        for (int a = 0; a < 3; a++) {
+            const double *ua = u + D * node[a];
+            double x = X[2 * node[a]] + ua[0], y = X[2 * node[a] + 1] + ua[1], z = ua[2];
+            F0 += x * g[2 * a];
+            F1 += x * g[2 * a + 1];
+            F2 += y * g[2 * a];
+            F3 += y * g[2 * a + 1];
+            F4 += z * g[2 * a];
+            F5 += z * g[2 * a + 1];
+            dA0 += ua[3] / 3;
+            dA1 += ua[4] / 3;
+        }
+        blk.F[0][j] = F0 * Fp[0] + F1 * Fp[2];
+        blk.F[1][j] = F0 * Fp[1] + F1 * Fp[3];
+        blk.F[2][j] = F2 * Fp[0] + F3 * Fp[2];
+        blk.F[3][j] = F2 * Fp[1] + F3 * Fp[3];
+        blk.F[4][j] = F4 * Fp[0] + F5 * Fp[2];
+        blk.F[5][j] = F4 * Fp[1] + F5 * Fp[3];
+        blk.dA[0][j] = dA0;
+        blk.dA[1][j] = dA1;
+    }
+    if (mat->cell->wave_speeds_block(mat->params, mat->areal_density, &blk) != 0)
+        return -1;
+    for (int j = 0; j < n; j++) {
+        double dt = element_stable_dt(el->size[e0 + j], blk.membrane_speed[j],
+                                      blk.amplitude_omega[j], amplitude_factor, 0);
+        if (!(dt >= *mine)) { /* also catches NaN */
+            *mine = dt;
+            *mine_e = e0 + j;
+        }
+    }
+    return 0;
+}
+
+double wff_elements_stable_step(const wff_elements *el, const wff_element_material *em,
+                                const double *X, const double *u, int *worst)
+{
+    const wff_material *mat = em->mat;
+    double amplitude_factor = em->amplitude_mass_factor > 0 ? em->amplitude_mass_factor : 1;
+    double best = INFINITY;
+    int n = el->n_tris + el->n_quads, best_e = -1;
+    int threads = wff_elements_team(el);
+    /* triangles in blocks through the cell's vectorised wave speeds where it has them
+     * (not for static amplitudes, whose mean ΔA is the points', nor the reference path) */
+    const int use_block = mat->cell->wave_speeds_block && !em->static_amplitudes &&
+                          !em->reference_path;
+    const int n_blocks = use_block ? (el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK : 0;
+    int first_scalar = use_block ? el->n_tris : 0;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    {
+        double mine = INFINITY;
+        int mine_e = -1;
+#pragma omp for schedule(static)
+        for (int blk = 0; blk < n_blocks; blk++) {
+            int e0 = blk * WFF_BLOCK;
+            int nb = el->n_tris - e0 < WFF_BLOCK ? el->n_tris - e0 : WFF_BLOCK;
+            if (tri_block_stable_step(el, em, X, u, e0, nb, amplitude_factor, &mine,
+                                      &mine_e) != 0) {
+#pragma omp atomic write
+                first_scalar = 0; /* declined (by the parameters: every block alike) */
+            }
+        }
+#pragma omp for schedule(static)
+        for (int e = first_scalar; e < n; e++) {
+            double F[6], Fe[6], dA[2], speed, omega;
+            wff_element_center_state(el, X, u, e, F, dA);
+            if (em->static_amplitudes)
+                static_mean_dA(el, e, dA);
+            preload_apply(em, F, Fe);
+            mat->cell->wave_speeds(mat->params, mat->areal_density, Fe, dA, &speed, &omega);
+            double dt = element_stable_dt(el->size[e], speed, omega, amplitude_factor,
+                                          em->static_amplitudes);
+            if (!(dt >= mine)) { /* also catches NaN */
+                mine = dt;
+                mine_e = e;
+            }
+        }
+#pragma omp critical(wff_stable_step)
+        { /* the smallest step; on a tie the lowest element, whatever the thread order */
+            if (mine_e >= 0 && (best_e < 0 || !(mine >= best) ||
+                                (mine == best && mine_e < best_e))) {
+                best = mine;
+                best_e = mine_e;
+            }
+        }
+    }
+    *worst = best_e;
+    return best;
+}

@@ -1,0 +1,68 @@
+/* Element kinematics internal to the membrane code: the bilinear quad's
+ * reference geometry (shape functions, Gauss points, gradients), the
+ * deformation gradient and the preload; the force passes (membrane.c) and the
+ * centre state and stable step (membrane_centre.c) both use them. */
+#ifndef WOVENFF_MEMBRANE_GEOMETRY_H
+#define WOVENFF_MEMBRANE_GEOMETRY_H
+
+#include "wovenff/membrane.h"
+
+/* Bilinear quad: corners (ξ, η) = (−1,−1), (1,−1), (1,1), (−1,1); Gauss points ±1/√3. */
+static const double quad_corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+static const double gauss_1d __attribute__((unused)) = 0.57735026918962576451; /* 1/√3 */
+static const double quad_gauss[4][2] __attribute__((unused)) = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}; /* × gauss_1d */
+
+static inline double quad_shape(int a, double xi, double eta)
+{
+    return 0.25 * (1 + quad_corner[a][0] * xi) * (1 + quad_corner[a][1] * eta);
+}
+
+/* dN_a/dX at (ξ, η); returns det J. */
+static inline double quad_gradients(const double *X, const int *node, double xi, double eta,
+                             double grad[4][2])
+{
+    double dxi[4][2], J[2][2] = {{0, 0}, {0, 0}};
+    for (int a = 0; a < 4; a++) {
+        dxi[a][0] = 0.25 * quad_corner[a][0] * (1 + quad_corner[a][1] * eta);
+        dxi[a][1] = 0.25 * quad_corner[a][1] * (1 + quad_corner[a][0] * xi);
+        for (int i = 0; i < 2; i++)
+            for (int r = 0; r < 2; r++)
+                J[i][r] += X[2 * node[a] + i] * dxi[a][r]; /* ∂X_i/∂ξ_r */
+    }
+    double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    for (int a = 0; a < 4; a++) {
+        /* ∇_X N = J^{-T} ∇_ξ N */
+        grad[a][0] = (J[1][1] * dxi[a][0] - J[1][0] * dxi[a][1]) / det;
+        grad[a][1] = (-J[0][1] * dxi[a][0] + J[0][0] * dxi[a][1]) / det;
+    }
+    return det;
+}
+
+#include <string.h>
+
+/* F_eff = F F_pre */
+static inline __attribute__((always_inline)) void preload_apply(const wff_element_material *em, const double F[6], double Fe[6])
+{
+    const double *Fp = em->F_pre;
+    for (int i = 0; i < 3; i++) {
+        Fe[2 * i] = F[2 * i] * Fp[0] + F[2 * i + 1] * Fp[2];
+        Fe[2 * i + 1] = F[2 * i] * Fp[1] + F[2 * i + 1] * Fp[3];
+    }
+}
+
+/* F = Σ_a x_a ⊗ ∇N_a with x = X + u */
+static inline __attribute__((always_inline)) void deformation_gradient(const double *X, const double *u, const int *node, int n,
+                                 const double *grad, double F[6])
+{
+    memset(F, 0, 6 * sizeof(double));
+    for (int a = 0; a < n; a++) {
+        const double *ua = u + WFF_DOFS_PER_NODE * node[a];
+        double x[3] = {X[2 * node[a]] + ua[0], X[2 * node[a] + 1] + ua[1], ua[2]};
+        for (int i = 0; i < 3; i++) {
+            F[2 * i] += x[i] * grad[2 * a];
+            F[2 * i + 1] += x[i] * grad[2 * a + 1];
+        }
+    }
+}
+
+#endif
