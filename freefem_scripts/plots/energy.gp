@@ -3,11 +3,13 @@
 # gnuplot -e "data='history.csv'; out='energy.png'; mechs='yarn_stretch yarn_bending'" \
 #         freefem_scripts/plots/energy.gp
 # data: the ballistic scene's history.csv; mechs: the cell's mechanisms
-# (columns energy_<name>), space-separated.
+# (columns energy_<name>), space-separated; failure=1 (a -failure on run): the
+# columns failure_energy and eroded_energy drawn too.
 set datafile separator ','
 set datafile columnheaders
 set terminal pngcairo size 1100,800 font ',11'
 set output out
+if (!exists('failure')) failure = 0
 stats data using (column('internal_energy')) every ::0::0 nooutput name 'START'
 t_ms = '(column("time") * 1e3)'
 set multiplot title 'Energy of the impact (whole specimen); thin dashed: stored energy by mechanism'
@@ -25,6 +27,8 @@ plot data using @t_ms:(column('kinetic_projectile')) with lines lw 3 title 'proj
         title 'fabric kinetic', \
      '' using @t_ms:(column('internal_energy')) with lines lw 3 title 'stored (cells)', \
      '' using @t_ms:(column('dissipated_energy')) with lines lw 3 title 'dissipated', \
+     for [i=1:failure] '' using @t_ms:(column('failure_energy')) with lines lw 3 title 'failure (yarn damage)', \
+     for [i=1:failure] '' using @t_ms:(column('eroded_energy')) with lines lw 3 title 'in eroded elements', \
      for [m in mechs] '' using @t_ms:(column('energy_'.m)) with lines lw 1.5 dt 2 \
         title 'stored: '.m noenhanced
 unset label 1
