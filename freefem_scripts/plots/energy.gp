@@ -10,6 +10,8 @@ set datafile columnheaders
 set terminal pngcairo size 1100,800 font ',11'
 set output out
 if (!exists('failure')) failure = 0
+failure_curves = failure ? ", '' using @t_ms:(column('failure_energy')) with lines lw 3 lc rgb '#a50026' title 'failure (yarn damage)', " \
+    . "'' using @t_ms:(column('eroded_energy')) with lines lw 3 lc rgb '#555555' title 'in eroded elements'" : ""
 stats data using (column('internal_energy')) every ::0::0 nooutput name 'START'
 t_ms = '(column("time") * 1e3)'
 set multiplot title 'Energy of the impact (whole specimen); thin dashed: stored energy by mechanism'
@@ -27,10 +29,8 @@ plot data using @t_ms:(column('kinetic_projectile')) with lines lw 3 title 'proj
         title 'fabric kinetic', \
      '' using @t_ms:(column('internal_energy')) with lines lw 3 title 'stored (cells)', \
      '' using @t_ms:(column('dissipated_energy')) with lines lw 3 title 'dissipated', \
-     for [i=1:failure] '' using @t_ms:(column('failure_energy')) with lines lw 3 title 'failure (yarn damage)', \
-     for [i=1:failure] '' using @t_ms:(column('eroded_energy')) with lines lw 3 title 'in eroded elements', \
      for [m in mechs] '' using @t_ms:(column('energy_'.m)) with lines lw 1.5 dt 2 \
-        title 'stored: '.m noenhanced
+        title 'stored: '.m noenhanced @failure_curves
 unset label 1
 set origin 0, 0.02; set size 1, 0.30
 set format x '%g'

@@ -24,6 +24,13 @@ for key in elements nodes steps dt_min wall_seconds ns_per_element_step peak_dis
     grep -q "\"$key\"" "$out/summary.json" || { echo "summary.json lacks $key"; fail=1; }
 done
 grep -q '"status": "ok"' "$out/summary.json" || { echo "summary status not ok"; fail=1; }
+# -failure off (the default): no perforation keys, no failure columns (the files as before failure existed)
+for key in perforated residual_velocity eroded_elements failure_energy dtfactor_used; do
+    grep -q "\"$key\"" "$out/summary.json" && { echo "summary.json has $key with -failure off"; fail=1; }
+done
+head -1 "$out/history.csv" | grep -q 'failure_energy\|eroded_energy' && { echo "history.csv has failure columns with -failure off"; fail=1; }
+grep -q 'Name="damage1"' "$out/vtk/frame_2.vtu" && { echo "VTK frame has damage fields with -failure off"; fail=1; }
+[ -e "$out/damage.png" ] && { echo "damage.png with -failure off"; fail=1; }
 grep -q 'file="vtk/frame_2.vtu"' "$out/ballistic.pvd" || { echo "pvd does not index frame 2"; fail=1; }
 # profiles at 0.4 ms along warp and weft
 grep -q '^0.0004.*,warp,' "$out/profiles.csv" && grep -q '^0.0004.*,weft,' "$out/profiles.csv" \

@@ -1,0 +1,111 @@
+#!/bin/sh
+# The ballistic scene's -failure on|off (issue 13; docs/limits.md "Perforation").
+# Refusals, each exit 2 with one line naming the option and the file, and no
+# summary.json: -failure on with a material file without failure data, with a
+# cell that cannot fail or failure data it refuses, with -adapt, -zonal or
+# -amplitudes static; -erosion without -failure on. Then (the Kevlar file
+# holding failure data) two coarse runs: at 22 m/s nothing erodes and the
+# projectile is not perforated; fast, the projectile perforates: perforated
+# true, a residual speed > 0 and below the impact speed, eroded elements,
+# failure energy > 0, the energy balance within 1 % of the impact energy, the
+# history's failure columns, damage.png, the damage fields in the VTK frames.
+# (-failure off, the paper's scene unchanged: sh/ballistic_scene.sh, make run.)
+set -u
+tmp="${WFF_TEST_TMP:-/tmp}/failure_scene"
+rm -rf "$tmp"; mkdir -p "$tmp"
+fail=0
+scene=freefem_scripts/ballistic_impact.edp
+kevlar=freefem_scripts/materials/kevlar_s706.txt
+short="-mesh coarse -tend 2e-5 -plots 0"
+
+# refuse NAME PATTERN... -- ARGS: exit 2, every PATTERN (fixed string) in the
+# output, no summary.json
+refuse() {
+    name=$1; shift
+    patterns=""
+    while [ "$1" != "--" ]; do patterns="$patterns$1
+"; shift; done
+    shift
+    out="$tmp/$name"
+    sh tools/ff.sh "$scene" -out "$out" "$@" > "$out.log" 2>&1
+    rc=$?
+    ok=1
+    [ $rc -eq 2 ] || { echo "$name: exit $rc, want 2"; ok=0; }
+    printf '%s' "$patterns" | while IFS= read -r p; do
+        grep -qF -- "$p" "$out.log" || { echo "$name: output lacks '$p'"; exit 1; }
+    done || ok=0
+    [ -f "$out/summary.json" ] && { echo "$name: a summary.json was written"; ok=0; }
+    if [ $ok -eq 0 ]; then sed 's/^/    | /' "$out.log" | tail -6; fail=1; fi
+    grep -m1 '^error: ' "$out.log" | cut -c1-220 | sed "s/^/  $name: /"
+}
+
+refuse no_failure_data "error: ballistic_impact: -failure on: the material file tests/data/king_symmetric.txt holds no failure data" \
+    "fail_strain_1" -- $short -failure on -material tests/data/king_symmetric.txt
+# the linear and basket cells with failure keys added, the rupture strain below
+# the failure strain: refused either way (no failure in the cell, or the order)
+for cell in linear basket; do
+    grep -v '^ *\(failure\|fail_strain\|rupture_strain\)' "freefem_scripts/materials/kevlar_$cell.txt" > "$tmp/$cell.txt"
+    printf 'failure = 0\nfail_strain_1 = 0.04\nfail_strain_2 = 0.04\nrupture_strain_1 = 0.03\nrupture_strain_2 = 0.03\n' \
+        >> "$tmp/$cell.txt"
+    refuse "${cell}_refused" "error: ballistic_impact: -failure on: the material file $tmp/$cell.txt cannot fail: wovenffMaterialOverride:" \
+        -- $short -failure on -material "$tmp/$cell.txt"
+    [ -d "$tmp/${cell}_refused" ] && [ "$(ls -A "$tmp/${cell}_refused")" != "" ] \
+        && { echo "${cell}_refused: the refused run left files in its folder"; fail=1; }
+done
+refuse with_adapt "-failure on with -adapt 5: a mesh transfer does not carry the eroded elements" \
+    -- $short -failure on -adapt 5
+refuse with_zonal "-failure on with -zonal 0.05" -- $short -failure on -zonal 0.05
+refuse with_static "-failure on with -amplitudes static" -- $short -failure on -amplitudes static
+refuse erosion_alone "-erosion either is a setting of -failure on" -- $short -erosion either
+refuse bad_choice "-failure 'yes': must be one of on|off" -- $short -failure yes
+
+if ! grep -q '^ *failure *=' "$kevlar"; then
+    echo "FAIL: $kevlar holds no failure data: the perforation runs cannot be made"
+    exit 1
+fi
+
+# num FILE KEY: a number (or true/false/null) from summary.json
+num() { sed -n "s/^  \"$2\": \([^,]*\),*$/\1/p" "$1/summary.json"; }
+
+# 22 m/s, the paper's speed: nothing erodes, not perforated
+out="$tmp/slow"
+sh tools/ff.sh "$scene" -mesh coarse -tend 0.6e-3 -plots 0 -vtkdt 3e-4 -failure on -out "$out" > "$out.log" 2>&1
+rc=$?
+tail -2 "$out.log"
+if [ $rc -ne 0 ]; then echo "slow: exit $rc"; sed 's/^/    | /' "$out.log" | tail -6; fail=1
+else
+    [ "$(num "$out" perforated)" = false ] || { echo "slow: perforated at 22 m/s"; fail=1; }
+    [ "$(num "$out" eroded_elements)" = 0 ] || { echo "slow: $(num "$out" eroded_elements) elements eroded at 22 m/s"; fail=1; }
+    [ "$(num "$out" residual_velocity)" = 0 ] || { echo "slow: residual velocity not 0"; fail=1; }
+fi
+
+# fast: perforates
+v=600
+out="$tmp/fast"
+sh tools/ff.sh "$scene" -mesh coarse -tend 1e-3 -velocity $v -vtkdt 5e-5 -failure on -out "$out" > "$out.log" 2>&1
+rc=$?
+tail -3 "$out.log"
+if [ $rc -ne 0 ]; then echo "fast: exit $rc"; sed 's/^/    | /' "$out.log" | tail -6; fail=1
+else
+    [ "$(num "$out" perforated)" = true ] || { echo "fast: not perforated at $v m/s"; fail=1; }
+    awk -v r="$(num "$out" residual_velocity)" -v v=$v -v e="$(num "$out" eroded_elements)" \
+        -v w="$(num "$out" failure_energy)" -v err="$(num "$out" max_energy_error)" 'BEGIN {
+        if (!(r > 0 && r < v)) { print "fast: residual velocity " r " not in (0, " v ")"; bad = 1 }
+        if (!(e > 0)) { print "fast: no element eroded"; bad = 1 }
+        if (!(w > 0)) { print "fast: failure energy " w " J"; bad = 1 }
+        if (!(err <= 0.01)) { print "fast: energy error " err " above 1 %"; bad = 1 }
+        exit bad }' || fail=1
+    grep -q '"failure_end": "perforated"' "$out/summary.json" || { echo "fast: failure_end not perforated"; fail=1; }
+    for col in failure_energy eroded_energy; do
+        head -1 "$out/history.csv" | tr ',' '\n' | grep -qx "$col" || { echo "fast: history.csv lacks $col"; fail=1; }
+    done
+    [ -s "$out/damage.png" ] || { echo "fast: no damage.png"; fail=1; }
+    last=$(ls "$out"/vtk/frame_*.vtu | sort -t_ -k2 -n | tail -1)
+    for f in damage1 damage2 eroded; do
+        grep -q "Name=\"$f\"" "$last" || { echo "fast: $last lacks $f"; fail=1; }
+    done
+    # the run ended at perforation, before -tend
+    awk -F, 'NR > 1 { t = $1 } END { exit !(t < 0.99e-3) }' "$out/history.csv" \
+        || { echo "fast: the run went on to -tend after perforating"; fail=1; }
+fi
+exit $fail
