@@ -83,7 +83,7 @@ static void test_noise(check_state *st)
 {
     const double vbl = 150, a = 0.85, p = 2.2, noise = 3; /* m/s */
     int inside[3] = {0, 0, 0}, seeds = SEEDS, fitted = 0, off_inside = 0;
-    double sd_sum = 0;
+    double sd_sum = 0, se_sum = 0;
     for (int seed = 1; seed <= seeds; seed++) {
         wff_rng rng = {0x9E3779B97F4A7C15ULL * (uint64_t)seed};
         double vs[N_RUNS], vr[N_RUNS];
@@ -100,8 +100,9 @@ static void test_noise(check_state *st)
             inside[j] += fabs(f.value[j] - truth[j]) <= 2 * f.std_error[j];
         off_inside += fabs(f.value[WFF_LIMIT_VBL] - 1.1 * vbl) <= 2 * f.std_error[WFF_LIMIT_VBL];
         sd_sum += f.residual_sd;
-        CHECK(st, f.std_error[WFF_LIMIT_VBL] > 0 && f.std_error[WFF_LIMIT_VBL] < 0.05 * vbl,
-              "seed %d: se(V_bl) %g m/s", seed, f.std_error[WFF_LIMIT_VBL]);
+        se_sum += f.std_error[WFF_LIMIT_VBL];
+        CHECK(st, f.std_error[WFF_LIMIT_VBL] > 0, "seed %d: se(V_bl) %g m/s", seed,
+              f.std_error[WFF_LIMIT_VBL]);
     }
     CHECK(st, fitted == seeds, "fitted %d of %d", fitted, seeds);
     static const char *const names[3] = {"V_bl", "a", "p"};
@@ -115,6 +116,8 @@ static void test_noise(check_state *st)
            off_inside, seeds, sd_sum / seeds, noise);
     CHECK(st, off_inside <= 3 * seeds / 100, "a wrong V_bl admitted in %d seeds", off_inside);
     CHECK_CLOSE(st, sd_sum / seeds, noise, 0.4, 0, "mean residual sd vs noise");
+    printf("mean se(V_bl) %g m/s (V_bl %g m/s)\n", se_sum / seeds, vbl);
+    CHECK(st, se_sum / seeds < 0.03 * vbl, "mean se(V_bl) %g m/s", se_sum / seeds);
 
     /* a law not of the family: V_r = 0.6 (V − V_bl)² / V_bl above V_bl, convex
      * in V where every a (V^p − V_bl^p)^(1/p) with p >= 1 is concave */
