@@ -6,7 +6,8 @@
  * speed, V_bl the ballistic limit, a ≤ 1 for a projectile that loses momentum
  * to the plug or fabric, p ≥ 1 the shape of the knee) fitted by GSL nonlinear
  * least squares (Levenberg–Marquardt) to (V_s, V_r) pairs, and V50 from the
- * bracket of stopped and perforating runs. docs/limit.md gives the method.
+ * bracket of stopped and perforating runs (freefem_scripts/ballistic_limit.edp
+ * runs the sweep that gives the pairs).
  *
  * What each run says:
  *  - a perforating run (V_r > 0) is a fitted point: residual V_r − model;
