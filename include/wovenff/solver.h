@@ -87,6 +87,8 @@ typedef struct wff_energies {
     double dissipated_shear;
     double dissipated_friction;  /* clamp friction, projectile friction and the inelastic
                                     normal contact */
+    double dissipated_failure;   /* stored energy released by yarn damage */
+    double eroded;               /* stored energy of eroded elements at their erosion */
     double external_work;     /* work done on the model by prescribed-velocity DOFs */
     double transfer;          /* stored + kinetic energy changed by mesh transfers
                                  (wff_model_remesh), a term of the balance like W */
@@ -116,7 +118,11 @@ typedef struct wff_model {
     double *u, *v, *f, *mass;
     unsigned char *dof_kind;
     double *v_prescribed;     /* per DOF, used where dof_kind is PRESCRIBED */
-    double *gamma_f;
+    double *state;            /* internal state of the quadrature points (3 per tri, then
+                                 4 per quad), n_state per point: point p's state i at
+                                 state[n_state p + i] (cell.h; King: gamma_f first) */
+    int n_state;              /* states per point (mat.n_state; with zones the largest
+                                 of the zones' materials') */
     double *reaction;         /* per DOF: −f_int on fixed and prescribed DOFs, last step */
     double fabric_mass;       /* Σ nodal (displacement) masses, kg (model part) */
 
@@ -132,6 +138,9 @@ typedef struct wff_model {
     /* accumulated */
     double internal_energy;   /* at the last force pass, J (model part) */
     double dissipated_shear, dissipated_friction, external_work;
+    double dissipated_failure; /* stored energy released by yarn damage, J (model part) */
+    double eroded_energy;     /* stored energy of eroded elements at erosion, J (model part) */
+    int n_eroded;             /* elements eroded so far */
     double initial_total;     /* kinetic + internal at the start, J (model part) */
     double initial_kinetic;
     int v_half_valid;         /* 1 once v holds a half-step velocity */
