@@ -327,6 +327,9 @@ static inline int wff_material_evaluate(const wff_material *mat, const double F[
     return mat->cell->evaluate(mat->params, F, dA, state, dt, out);
 }
 
+/* The state every point starts from (all zeros), for evaluations at rest. */
+static const double wff_rest_state[WFF_STATE_MAX] = {0};
+
 /* Index of the state named `name` in mat's points (< mat->n_state), or −1. */
 int wff_material_state_index(const wff_material *mat, const char *name);
 

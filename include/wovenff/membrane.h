@@ -157,6 +157,11 @@ void wff_element_center_state(const wff_elements *el, const double *X, const dou
 int wff_element_center_eval(const wff_elements *el, const wff_element_material *em,
                             const double *X, const double *u, const double *state, int e,
                             wff_point_result *out);
+/* The same with the given state (em->mat->n_state values, e.g. a mean the
+ * caller formed) instead of the mean of the element's points. */
+int wff_element_center_eval_state(const wff_elements *el, const wff_element_material *em,
+                                  const double *X, const double *u, const double *held, int e,
+                                  wff_point_result *out);
 
 #ifdef __cplusplus
 }
