@@ -286,12 +286,12 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
 /* n (≤ WFF_BLOCK) triangles from e0 through the cell's blocked kernel.
  * Returns -1 if the cell declines these parameters (nothing done). Lanes past
  * n repeat the last element (a valid state whose results are dropped). */
-static int tri_block_forces(const wff_elements *el, const wff_element_material *em,
-                            const double *X, const double *u, double *state, double dt,
-                            double *f, int e0, int n, tri_sums *sums)
+static inline __attribute__((always_inline)) int
+tri_block_forces_n(const wff_elements *el, const wff_element_material *em, const double *X,
+                   const double *u, double *state, double dt, double *f, int e0, int n,
+                   tri_sums *sums, const int ns)
 {
     const wff_material *mat = em->mat;
-    const int ns = mat->n_state;
     wff_tri_block blk;
     blk.n = n;
     int finite[WFF_BLOCK];
@@ -314,6 +314,8 @@ static int tri_block_forces(const wff_elements *el, const wff_element_material *
             F5 += z * g[2 * a + 1];
             blk.dA[a][0][j] = ua[3];
             blk.dA[a][1][j] = ua[4];
+            for (int i = 0; i < ns; i++) /* the points' states, n_state each */
+                blk.state[a][i][j] = state[ns * (3 * e + a) + i];
             check += ua[3] + ua[4];
         }
         /* F_eff = F F_pre */
@@ -325,13 +327,6 @@ static int tri_block_forces(const wff_elements *el, const wff_element_material *
         blk.F[5][j] = F4 * Fp[1] + F5 * Fp[3];
         check += F0 + F1 + F2 + F3 + F4 + F5;
         finite[j] = check - check == 0; /* false for NaN and ±inf (isfinite does not vectorise) */
-    }
-    /* the points' states (n_state each, contiguous per element) */
-    for (int j = 0; j < WFF_BLOCK; j++) {
-        const double *se = state + ns * 3 * (e0 + (j < n ? j : n - 1));
-        for (int a = 0; a < 3; a++)
-            for (int i = 0; i < ns; i++)
-                blk.state[a][i][j] = se[ns * a + i];
     }
     if (mat->cell->evaluate_tri_block(mat->params, dt, &blk) != 0)
         return -1;
@@ -385,6 +380,34 @@ static int tri_block_forces(const wff_elements *el, const wff_element_material *
         sums->failure += el->tri_area[e] * blk.failure_dissipated[j];
     }
     return 0;
+}
+
+/* tri_block_forces_n with n_state a constant where it is 1 (King without
+ * failure: the loops over the states fold away, the gather joins the lanes'
+ * vector loads as γᶠ's did), the material's otherwise. */
+static __attribute__((noinline)) int
+tri_block_forces_one(const wff_elements *el, const wff_element_material *em, const double *X,
+                     const double *u, double *state, double dt, double *f, int e0, int n,
+                     tri_sums *sums)
+{
+    return tri_block_forces_n(el, em, X, u, state, dt, f, e0, n, sums, 1);
+}
+
+static __attribute__((noinline)) int
+tri_block_forces_any(const wff_elements *el, const wff_element_material *em, const double *X,
+                     const double *u, double *state, double dt, double *f, int e0, int n,
+                     tri_sums *sums)
+{
+    return tri_block_forces_n(el, em, X, u, state, dt, f, e0, n, sums, em->mat->n_state);
+}
+
+static int tri_block_forces(const wff_elements *el, const wff_element_material *em,
+                            const double *X, const double *u, double *state, double dt,
+                            double *f, int e0, int n, tri_sums *sums)
+{
+    return em->mat->n_state == 1
+               ? tri_block_forces_one(el, em, X, u, state, dt, f, e0, n, sums)
+               : tri_block_forces_any(el, em, X, u, state, dt, f, e0, n, sums);
 }
 
 int wff_elements_static_amplitudes(wff_elements *el, wff_element_material *em,
@@ -452,12 +475,12 @@ static void tri_forces_static(const wff_elements *el, const wff_element_material
  * balanced amplitudes; the same answer as tri_forces_static to round-off
  * (tested). Returns -1 if the cell has no blocked tangent or kernel or declines
  * these parameters (nothing done). Lanes past n repeat the last element. */
-static int tri_block_static_forces(const wff_elements *el, const wff_element_material *em,
-                                   const double *X, const double *u, double *state,
-                                   double dt, double *f, int e0, int n, tri_sums *sums)
+static inline __attribute__((always_inline)) int
+tri_block_static_forces_n(const wff_elements *el, const wff_element_material *em,
+                          const double *X, const double *u, double *state, double dt, double *f,
+                          int e0, int n, tri_sums *sums, const int ns)
 {
     const wff_material *mat = em->mat;
-    const int ns = mat->n_state;
     wff_tri_block blk;
     wff_tangent_block tb;
     blk.n = n;
@@ -543,6 +566,34 @@ static int tri_block_static_forces(const wff_elements *el, const wff_element_mat
         sums->failure += el->tri_area[e] * blk.failure_dissipated[j];
     }
     return 0;
+}
+
+/* tri_block_static_forces_n with one state per point (a constant: the state loops
+ * fold away) or the material's n_state. */
+static __attribute__((noinline)) int
+tri_block_static_one(const wff_elements *el, const wff_element_material *em, const double *X,
+                     const double *u, double *state, double dt, double *f, int e0, int n,
+                     tri_sums *sums)
+{
+    return tri_block_static_forces_n(el, em, X, u, state, dt, f, e0, n, sums, 1);
+}
+
+static __attribute__((noinline)) int
+tri_block_static_any(const wff_elements *el, const wff_element_material *em, const double *X,
+                     const double *u, double *state, double dt, double *f, int e0, int n,
+                     tri_sums *sums)
+{
+    return tri_block_static_forces_n(el, em, X, u, state, dt, f, e0, n, sums,
+                                     em->mat->n_state);
+}
+
+static int tri_block_static_forces(const wff_elements *el, const wff_element_material *em,
+                                   const double *X, const double *u, double *state,
+                                   double dt, double *f, int e0, int n, tri_sums *sums)
+{
+    return em->mat->n_state == 1
+               ? tri_block_static_one(el, em, X, u, state, dt, f, e0, n, sums)
+               : tri_block_static_any(el, em, X, u, state, dt, f, e0, n, sums);
 }
 
 void wff_elements_forces(const wff_elements *el, const wff_element_material *em, const double *X,

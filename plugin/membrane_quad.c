@@ -73,12 +73,12 @@ static void note_bad_point(quad_sums *s, int e, int q, int status)
  * the same to round-off). For each point q the lanes' point q goes through
  * the cell; forces are summed per lane and node, f updated once per node at
  * the end. Lanes past n repeat the last quad (a valid state, results dropped). */
-static void quad_block(const wff_elements *el, const wff_element_material *em,
-                       const quad_gauss *t, const double *X, const double *u, double *state,
-                       double dt, double *f, int e0, int n, quad_sums *sums)
+static inline __attribute__((always_inline)) void
+quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_gauss *t,
+             const double *X, const double *u, double *state, double dt, double *f, int e0,
+             int n, quad_sums *sums, const int ns)
 {
     const wff_material *mat = em->mat;
-    const int ns = mat->n_state;
     const double *Fp = em->F_pre;
     const double inv_J = 1 / em->J_pre;
     const int amplitudes = mat->cell->n_amplitudes;
@@ -155,10 +155,10 @@ static void quad_block(const wff_elements *el, const wff_element_material *em,
             double state = Fm[0] + Fm[1] + Fm[2] + Fm[3] + Fm[4] + Fm[5] + dA0 + dA1;
             finite[j] = state - state == 0; /* false for NaN and ±inf (isfinite does not vectorise) */
         }
-        for (int j = 0; j < WFF_BLOCK; j++) {
-            const double *sp = sq + ns * (4 * (e0 + (j < n ? j : n - 1)) + q);
-            for (int i = 0; i < ns; i++)
-                blk.state[i][j] = sp[i];
+        for (int i = 0; i < ns; i++) { /* the points' states: a vector gather per state */
+#pragma omp simd
+            for (int j = 0; j < WFF_BLOCK; j++)
+                blk.state[i][j] = sq[ns * (4 * (e0 + (j < n ? j : n - 1)) + q) + i];
         }
         mat->cell->evaluate_point_block(mat->params, dt, &blk); /* accepted: asked before the pass */
         /* per lane: the point's force −P_mesh adj(J)ᵀ ∇_ξ N_b (P_mesh = P F_preᵀ / J_pre)
@@ -224,6 +224,24 @@ static void quad_block(const wff_elements *el, const wff_element_material *em,
     }
 }
 
+/* quad_block_n with one state per point (a constant: its loops fold away), and with
+ * the material's n_state. */
+static __attribute__((noinline)) void
+quad_block_one(const wff_elements *el, const wff_element_material *em, const quad_gauss *t,
+               const double *X, const double *u, double *state, double dt, double *f, int e0,
+               int n, quad_sums *sums)
+{
+    quad_block_n(el, em, t, X, u, state, dt, f, e0, n, sums, 1);
+}
+
+static __attribute__((noinline)) void
+quad_block_any(const wff_elements *el, const wff_element_material *em, const quad_gauss *t,
+               const double *X, const double *u, double *state, double dt, double *f, int e0,
+               int n, quad_sums *sums)
+{
+    quad_block_n(el, em, t, X, u, state, dt, f, e0, n, sums, em->mat->n_state);
+}
+
 /* Whether the cell takes these parameters: one block of a valid state (the
  * unstrained preloaded point), results dropped. */
 static int cell_takes_points(const wff_element_material *em, double dt)
@@ -271,7 +289,10 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
         for (int blk = 0; blk < n_blocks; blk++) {
             int e0 = blk * WFF_BLOCK;
             int n = el->n_quads - e0 < WFF_BLOCK ? el->n_quads - e0 : WFF_BLOCK;
-            quad_block(el, em, &gauss, X, u, state, dt, ft, e0, n, &sums);
+            if (em->mat->n_state == 1) /* (King without failure: the state loops fold away) */
+                quad_block_one(el, em, &gauss, X, u, state, dt, ft, e0, n, &sums);
+            else
+                quad_block_any(el, em, &gauss, X, u, state, dt, ft, e0, n, &sums);
         }
         part[t] = sums;
         /* (past the loop's barrier) the other threads' buffers into f, a slice of
