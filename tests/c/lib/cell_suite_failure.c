@@ -146,13 +146,45 @@ static double fd(const wff_material *m, double F[6], double dA[2], const double 
     return (w[0] - 8 * w[1] + 8 * w[2] - w[3]) / (12 * h);
 }
 
+/* 1 when a yarn's tension changes sign (−, 0, +) within the difference
+ * stencil of any input: the damaged energy is C¹ only at zero yarn strain
+ * (its curvature jumps by d_k times the yarn stiffness there, as a
+ * tension-only yarn's does by all of it), where a difference is O(h) and says
+ * nothing about the derivative's consistency. */
+static int stencil_crosses_zero_strain(const wff_material *m, const double F0[6],
+                                       const double dA0[2], const double *state, double h_F,
+                                       double h_A)
+{
+    const wff_cell_type *cell = m->cell;
+    const double offs[5] = {-2, -1, 0, 1, 2};
+    for (int input = 0; input < 6 + cell->n_amplitudes; input++)
+        for (int k = 0; k < 2; k++) {
+            int seen[3] = {0, 0, 0};
+            for (int o = 0; o < 5; o++) {
+                double F[6], dA[2] = {dA0[0], dA0[1]};
+                memcpy(F, F0, sizeof F);
+                if (input < 6)
+                    F[input] += offs[o] * h_F;
+                else
+                    dA[input - 6] += offs[o] * h_A;
+                wff_point_result out;
+                wff_material_evaluate(m, F, dA, state, 0, &out);
+                double T = out.diag[cell->yarn_tension_diag[k]];
+                seen[T > 0 ? 2 : T < 0 ? 0 : 1] = 1;
+            }
+            if (seen[0] + seen[1] + seen[2] > 1)
+                return 1;
+        }
+    return 0;
+}
+
 /* Fixed damage: exact derivatives, held state; the state layout. */
 static void check_fixed_damage(check_state *st, const cell_case *c, const wff_material *mat,
                                const char *label, rng *r)
 {
     const wff_cell_type *cell = mat->cell;
     double worst_P = 0, worst_R = 0;
-    int held = 1;
+    int held = 1, at_kink = 0;
     for (int s = 0; s < FAILURE_STATES; s++) {
         double F[6], dA[2], state[WFF_STATE_MAX];
         random_F(r, F);
@@ -169,6 +201,10 @@ static void check_fixed_damage(check_state *st, const cell_case *c, const wff_ma
         held &= out.failure_dissipated == 0 && out.dissipated == 0;
         if (!c->energy_exact)
             continue;
+        if (stencil_crosses_zero_strain(mat, F, dA, state, 1e-5, 1e-5 * c->amplitude_range)) {
+            at_kink++;
+            continue;
+        }
         double err_P = 0, err_R = 0;
         for (int i = 0; i < 6; i++)
             err_P = fmax(err_P, fabs(fd(mat, F, dA, state, &F[i], 1e-5) - out.stress[i]));
@@ -179,8 +215,11 @@ static void check_fixed_damage(check_state *st, const cell_case *c, const wff_ma
         worst_R = fmax(worst_R, cell->n_amplitudes
                                     ? err_R / fmax(max_abs(out.residual, 2), 1e-300) : 0);
     }
-    printf("  %-48s failure, fixed damage: FD stress %.1e, FD residual %.1e\n", label, worst_P,
-           worst_R);
+    printf("  %-48s failure, fixed damage: FD stress %.1e, FD residual %.1e (%d of %d states "
+           "with a yarn at zero strain within the stencil left out)\n", label, worst_P, worst_R,
+           at_kink, FAILURE_STATES);
+    CHECK(st, at_kink <= FAILURE_STATES / 20, "%s: %d states at zero yarn strain: the check "
+          "says little", label, at_kink);
     CHECK(st, held, "%s: dt = 0 changed a state or released energy", label);
     if (c->energy_exact) {
         CHECK(st, worst_P <= 1e-6, "%s: damaged P vs dW/dF relative error %.3g", label, worst_P);
@@ -427,40 +466,51 @@ static void check_fast_paths(check_state *st, const cell_case *c, const wff_mate
 /* A point with dynamic amplitudes (and its state advancing) pulled through
  * rupture at a ballistic rate (1000 1/s), held, then released: its amplitudes
  * stay finite and within the quarter wavelength, the crimp geometry's limit. */
+/* The largest |ΔA_k|/p_k⁰ of a point with dynamic amplitudes driven along
+ * identity → F_max → held → identity → held, and its final state into *s;
+ * INFINITY if a segment fails or an amplitude is not finite. */
+static double drive_point(const wff_material *mat, const double pitch0[2], wff_point_state *s,
+                          wff_error *err)
+{
+    const wff_path_mode mode = {1, 1, WFF_PATH_STEP_SAFETY, WFF_PATH_FLOW_SUBSTEPS};
+    memset(s, 0, sizeof *s);
+    const double I[6] = {1, 0, 0, 1, 0, 0}, Fmax[6] = {1.08, 0, 0, 1.08, 0, 0};
+    const double *path[] = {I, Fmax, Fmax, I, I};
+    const double durations[] = {80e-6, 20e-6, 80e-6, 20e-6}; /* 1000 1/s, as in an impact */
+    const int n_seg = 40;
+    double worst = 0;
+    for (int leg = 0; leg < 4; leg++)
+        for (int i = 0; i < n_seg; i++) {
+            double Fa[6], Fb[6];
+            for (int j = 0; j < 6; j++) {
+                Fa[j] = path[leg][j] + (path[leg + 1][j] - path[leg][j]) * i / n_seg;
+                Fb[j] = path[leg][j] + (path[leg + 1][j] - path[leg][j]) * (i + 1) / n_seg;
+            }
+            if (wff_point_path_segment(mat, Fa, Fb, durations[leg] / n_seg, &mode, s, err))
+                return INFINITY;
+            for (int k = 0; k < 2; k++)
+                worst = fmax(worst, isfinite(s->dA[k]) ? fabs(s->dA[k]) / pitch0[k] : INFINITY);
+        }
+    return worst;
+}
+
 static void check_amplitudes_bounded(check_state *st, const wff_material *mat,
-                                     const char *label)
+                                     const wff_material *intact, const char *label)
 {
     const wff_cell_type *cell = mat->cell;
     if (cell->n_amplitudes == 0 || !cell->reference_geometry)
         return;
     double pitch0[2], amplitude0[2];
     cell->reference_geometry(mat->params, pitch0, amplitude0);
-    const wff_path_mode mode = {1, 1, WFF_PATH_STEP_SAFETY, WFF_PATH_FLOW_SUBSTEPS};
-    wff_point_state s;
-    memset(&s, 0, sizeof s);
-    wff_error err;
-    const double I[6] = {1, 0, 0, 1, 0, 0}, Fmax[6] = {1.06, 0, 0, 1.054, 0, 0};
-    const double *path[] = {I, Fmax, Fmax, I, I};
-    const double durations[] = {60e-6, 20e-6, 60e-6, 20e-6};
-    double worst = 0;
-    int ok = 1, n_seg = 40;
-    for (int leg = 0; leg < 4 && ok; leg++)
-        for (int i = 0; i < n_seg && ok; i++) {
-            double Fa[6], Fb[6];
-            for (int j = 0; j < 6; j++) {
-                Fa[j] = path[leg][j] + (path[leg + 1][j] - path[leg][j]) * i / n_seg;
-                Fb[j] = path[leg][j] + (path[leg + 1][j] - path[leg][j]) * (i + 1) / n_seg;
-            }
-            ok = wff_point_path_segment(mat, Fa, Fb, durations[leg] / n_seg, &mode, &s,
-                                        &err) == 0;
-            CHECK(st, ok, "%s: point through failure: %s", label, err.message);
-            for (int k = 0; k < 2; k++)
-                worst = fmax(worst, isfinite(s.dA[k]) ? fabs(s.dA[k]) / pitch0[k] : INFINITY);
-        }
+    wff_point_state s, s_intact;
+    wff_error err = {{0}};
+    double worst = drive_point(mat, pitch0, &s, &err);
+    CHECK(st, isfinite(worst), "%s: point through failure: %s", label, err.message);
+    double worst_intact = drive_point(intact, pitch0, &s_intact, &err);
     const int *dk = cell->damage_state;
-    printf("  %-48s failure, point driven through rupture: damage %.3f %.3f, largest "
-           "|dA|/p0 %.3g over %ld steps\n", label, s.state[dk[0]], s.state[dk[1]], worst,
-           s.substeps);
+    printf("  %-48s failure, point driven through rupture (1000 1/s to 8 %%, back): damage "
+           "%.3f %.3f, largest |dA|/p0 %.3g over %ld steps (without failure %.3g)\n", label,
+           s.state[dk[0]], s.state[dk[1]], worst, s.substeps, worst_intact);
     CHECK(st, s.state[dk[0]] == 1 && s.state[dk[1]] == 1,
           "%s: the driven point did not rupture (%g %g)", label, s.state[dk[0]], s.state[dk[1]]);
     CHECK(st, worst < 1, "%s: amplitudes of a point driven through failure reach %.3g of the "
@@ -505,6 +555,6 @@ void cell_suite_failure(check_state *st, const cell_case *c)
         check_path(st, &mat, label);
         check_fast_paths(st, c, &mat, label, &r);
         if (variant == 0)
-            check_amplitudes_bounded(st, &mat, label);
+            check_amplitudes_bounded(st, &mat, &off, label);
     }
 }
