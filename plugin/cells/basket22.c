@@ -451,7 +451,8 @@ static int basket_amplitude_tangent(const void *params, const double F[6], const
         int slack = k->tension_only != 0 && stretch < 0;
         double sb = y->sin_b, cb = y->cos_b, inv_L = 1 / y->length;
         double inv_d = 1 / y->spar_length, sa = y->amplitude * inv_d, ca = y->spar * inv_d;
-        double own = (slack ? 0.0 : 2 * k->yarn_stiffness[f] * y->tension_factor * sb) * sb +
+        double tension_slope = slack ? 0.0 : 2 * k->yarn_stiffness[f] * y->tension_factor * sb;
+        double own = tension_slope * sb +
                      y->tension * cb * cb * inv_L +
                      (k->bending_stiffness[f] * cb * cb - 2 * y->moment * sb * cb) * inv_L * inv_L +
                      y->lock.stiffness * sa * sa - y->lock.force * ca * ca * inv_d;
