@@ -59,8 +59,8 @@ refuse with_static "-failure on with -amplitudes static" -- $short -failure on -
 refuse erosion_alone "-erosion either is a setting of -failure on" -- $short -erosion either
 refuse bad_choice "-failure 'yes': must be one of on|off" -- $short -failure yes
 
-if ! grep -q '^ *failure *=' "$kevlar"; then   # (until the failure law and erosion are in the core)
-    echo "perforation runs not made: $kevlar holds no failure data yet (the refusals above were checked)"
+if ! grep -q '^ *failure *=' "$kevlar" || [ ! -f plugin/erosion.c ]; then   # (until both are in the core)
+    echo "perforation runs not made: the failure data ($kevlar) or the erosion (plugin/erosion.c) is not in the core yet (the refusals above were checked)"
     exit $fail
 fi
 
