@@ -158,7 +158,8 @@ void wff_elements_masses(const wff_elements *el, const wff_element_material *em,
 /* Stable explicit step over all elements at the current state: per element
  * 1/sqrt(1/dt_m² + 1/dt_A²) with dt_m = size/c (membrane waves) and
  * dt_A = 2/ω (amplitude oscillator), the bound for the two coupled.
- * *worst gets the element that sets it. */
+ * *worst gets the element that sets it. Eroded elements set none (every
+ * element eroded: INFINITY, *worst −1). */
 double wff_elements_stable_step(const wff_elements *el, const wff_element_material *em,
                                 const double *X, const double *u, int *worst);
 
