@@ -38,7 +38,7 @@ double wff_element_stored_energy(const wff_elements *el, const wff_element_mater
  * material carries none. */
 double wff_element_damage(const wff_model *m, int e, int k);
 /* 1 if an element has eroded or any point has damage > 0 (a mesh transfer
- * refuses such a model). */
+ * refuses such a model when erosion is on). */
 int wff_model_damaged(const wff_model *m);
 
 #endif

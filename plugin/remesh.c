@@ -498,7 +498,9 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
                      wff_error *err)
 {
     wff_remesh_report rep = {0, 0, 0, 0, 0};
-    if (wff_model_damaged(m)) { /* (m unchanged: the new mesh is freed) */
+    /* erosion is not transferred: refused once elements have eroded, or with erosion on
+     * and yarn damage anywhere (erosion off, the damage states transfer as any state) */
+    if (m->n_eroded > 0 || (m->el.eroded && wff_model_damaged(m))) { /* (m unchanged) */
         int eroded = m->n_eroded;
         wff_mesh_free(new_mesh);
         return wff_fail(err, "wff_model_remesh: the model has %s (%d elements eroded): a "

@@ -730,6 +730,17 @@ static void check_rules(check_state *st)
     free(R), free(U);
     wff_model_free(&m);
 
+    if (test_model_rect(&m, &r, EROSION, &err) == 0) { /* damage, none eroded yet */
+        set_damage(&m, 1, 0.5, 0);
+        wff_mesh same;
+        if (test_mesh_rect(&r, &same) == 0) {
+            rc = wff_model_remesh(&m, &same, NULL, &err);
+            CHECK(st, rc != 0 && strstr(err.message, "yarn damage"),
+                  "a mesh transfer with erosion on and yarn damage is refused: %s",
+                  rc ? err.message : "done");
+        }
+        wff_model_free(&m);
+    }
     if (test_model_rect(&m, &r, NODAMAGE, &err) == 0) {
         CHECK(st, m.el.eroded == NULL, "a cell without failure: erosion off by default");
         rc = wff_model_set_option(&m, "erosion", 1, &err);
