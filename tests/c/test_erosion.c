@@ -778,6 +778,72 @@ static void check_rules(check_state *st)
     }
 }
 
+/* ---- King with failure: a fast impact erodes, the balance closes --------- */
+
+static void check_king_impact(check_state *st)
+{
+    char dir[400], path[512];
+    if (test_tmp_dir("test_erosion_king", dir, sizeof dir)) {
+        CHECK(st, 0, "no temporary folder");
+        return;
+    }
+    test_tmp_path(dir, "kevlar_failure.txt", path, sizeof path);
+    FILE *in = fopen(KEVLAR, "r"), *out = fopen(path, "w");
+    char line[1024];
+    int switched = 0;
+    while (in && out && fgets(line, sizeof line, in)) {
+        if (strncmp(line, "failure = 0", 11) == 0) {
+            fputs("failure = 1\n", out);
+            switched = 1;
+        } else
+            fputs(line, out);
+    }
+    if (in)
+        fclose(in);
+    if (out)
+        fclose(out);
+    CHECK(st, switched, "%s has a line 'failure = 0'", KEVLAR);
+    wff_model m;
+    wff_error err;
+    int rc = test_model_rect(&m, &square, path, &err);
+    CHECK(st, rc == 0, "King with failure: %s", err.message);
+    if (rc) {
+        test_tmp_remove(dir);
+        return;
+    }
+    CHECK(st, m.el.eroded && m.el.erosion == WFF_EROSION_BOTH,
+          "King with failure = 1: erosion on (both) by default");
+    static const char *const edges[] = {"left", "right", "bottom", "top"};
+    for (int g = 0; g < 4 && rc >= 0; g++)
+        for (int c = WFF_UX; c <= WFF_UZ && rc >= 0; c++)
+            rc = wff_model_fix_group(&m, edges[g], c, &err);
+    const double v0 = 600, mass = 0.002;
+    if (rc >= 0)
+        rc = wff_model_set_projectile(&m, 2.5e-3, mass, v0, 0.2, &err);
+    if (rc >= 0)
+        rc = wff_model_set_option(&m, "dtfactor", 0.5, &err);
+    double worst = 0;
+    for (int k = 0; k < 40 && rc >= 0; k++) {
+        rc = wff_model_advance(&m, 1, 250, &err);
+        wff_energies e;
+        wff_model_energies(&m, &e);
+        worst = fmax(worst, fabs(e.error));
+    }
+    CHECK(st, rc == 0, "King impact with failure: %s", err.message);
+    wff_energies e;
+    wff_model_energies(&m, &e);
+    printf("  King, failure on, %.0f m/s, %.0f g: %ld steps (%.3g ms), %d of %d elements "
+           "eroded, projectile %.4g m/s, failure %.4g J, eroded %.4g J of %.4g J, largest "
+           "energy error %.2e\n", v0, mass * 1e3, m.step, m.time * 1e3, m.n_eroded,
+           n_elements(&m), m.projectile.velocity, e.dissipated_failure, e.eroded,
+           0.5 * mass * v0 * v0, worst);
+    CHECK(st, m.n_eroded > 0 && e.dissipated_failure > 0,
+          "a fast King impact with failure erodes elements (%d)", m.n_eroded);
+    CHECK(st, worst < 1e-2, "and the energy balance closes within 1 %% (largest %.2e)", worst);
+    wff_model_free(&m);
+    test_tmp_remove(dir);
+}
+
 int main(void)
 {
     check_state st = {0, 0};
@@ -790,5 +856,6 @@ int main(void)
     check_perforation(&st);
     check_free_node(&st);
     check_rules(&st);
+    check_king_impact(&st);
     return check_summary(&st, "test_erosion");
 }
