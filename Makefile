@@ -127,7 +127,7 @@ deps:
 # A scene with a run lock refuses a folder holding an earlier run's results;
 # `make run` into the scene's default folder starts afresh (-overwrite 1)
 # unless ARGS names its own -out or -overwrite.
-LOCKED_SCENES := ballistic_impact strip_tension explicit_loop unit_cell_explorer
+LOCKED_SCENES := ballistic_impact strip_tension explicit_loop unit_cell_explorer ballistic_limit
 RUN_FRESH := $(if $(filter $(SCENE),$(LOCKED_SCENES)),$(if $(findstring -out,$(ARGS))$(findstring -overwrite,$(ARGS)),,-overwrite 1))
 run: all
 	@sh tools/ff.sh freefem_scripts/$(SCENE).edp $(RUN_FRESH) $(ARGS)

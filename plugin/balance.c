@@ -22,7 +22,7 @@
 
 typedef struct problem {
     const wff_material *mat;
-    double gamma_f;
+    double state[WFF_STATE_MAX]; /* the point's internal state, held */
     double F[6];          /* used as is when no stretch is unknown */
     int biaxial;          /* 1: F = diag(stretch) with the unknown ones from x */
     wff_hold hold[2];
@@ -55,7 +55,7 @@ static int equations(const gsl_vector *x, void *data, gsl_vector *out)
     double F[6], dA[2], stretch[2];
     unpack(pb, x, F, dA, stretch);
     wff_point_result r;
-    if (wff_material_evaluate(pb->mat, F, dA, pb->gamma_f, 0, &r) != WFF_POINT_OK)
+    if (wff_material_evaluate(pb->mat, F, dA, pb->state, 0, &r) != WFF_POINT_OK)
         return GSL_EDOM;
     double cell = pb->mat->yarn_spacing[0] * pb->mat->yarn_spacing[1];
     if (pb->na) {
@@ -148,14 +148,22 @@ static int solve(problem *pb, gsl_vector *x, wff_error *err, const char *what)
     return 0;
 }
 
-int wff_balance_amplitudes(const wff_material *mat, const double F[6], double gamma_f,
+/* The held state: a copy of the caller's (mat->n_state values) or zeros. */
+static void hold_state(problem *pb, const double *state)
+{
+    for (int i = 0; i < WFF_STATE_MAX; i++)
+        pb->state[i] = state && i < pb->mat->n_state ? state[i] : 0;
+}
+
+int wff_balance_amplitudes(const wff_material *mat, const double F[6], const double *state,
                            double dA[2], wff_error *err)
 {
     if (mat->cell->n_amplitudes == 0) {
         dA[0] = dA[1] = 0;
         return 0;
     }
-    problem pb = {.mat = mat, .gamma_f = gamma_f, .na = 2};
+    problem pb = {.mat = mat, .na = 2};
+    hold_state(&pb, state);
     memcpy(pb.F, F, sizeof pb.F);
     gsl_vector *x = gsl_vector_alloc(2);
     gsl_vector_set(x, 0, dA[0] / AMPLITUDE_SCALE);
@@ -170,9 +178,11 @@ int wff_balance_amplitudes(const wff_material *mat, const double F[6], double ga
 }
 
 int wff_biaxial_static(const wff_material *mat, const wff_hold hold[2], const double target[2],
-                       double gamma_f, wff_biaxial_state *state, wff_error *err)
+                       const double *point_state, wff_biaxial_state *state,
+                       wff_error *err)
 {
-    problem pb = {.mat = mat, .gamma_f = gamma_f, .biaxial = 1};
+    problem pb = {.mat = mat, .biaxial = 1};
+    hold_state(&pb, point_state);
     for (int k = 0; k < 2; k++) {
         pb.hold[k] = hold[k];
         pb.target[k] = target[k];
@@ -189,7 +199,7 @@ int wff_biaxial_static(const wff_material *mat, const wff_hold hold[2], const do
         state->stretch[0] = target[0];
         state->stretch[1] = target[1];
         state->dA[0] = state->dA[1] = 0;
-        if (wff_material_evaluate(mat, F, state->dA, gamma_f, 0, &state->point) != WFF_POINT_OK)
+        if (wff_material_evaluate(mat, F, state->dA, pb.state, 0, &state->point) != WFF_POINT_OK)
             return wff_fail(err, "biaxial static state: degenerate at stretch (%g, %g)",
                             target[0], target[1]);
         state->resultant[0] = state->point.stress[0];
@@ -207,7 +217,7 @@ int wff_biaxial_static(const wff_material *mat, const wff_hold hold[2], const do
     if (rc == 0) {
         double F[6];
         unpack(&pb, x, F, state->dA, state->stretch);
-        wff_material_evaluate(mat, F, state->dA, gamma_f, 0, &state->point);
+        wff_material_evaluate(mat, F, state->dA, pb.state, 0, &state->point);
         state->resultant[0] = state->point.stress[0];
         state->resultant[1] = state->point.stress[3];
     }
@@ -220,7 +230,7 @@ int wff_preload_equal_force(const wff_material *mat, double yarn_force,
 {
     const wff_hold hold[2] = {WFF_HOLD_YARN_TENSION, WFF_HOLD_YARN_TENSION};
     const double target[2] = {yarn_force, yarn_force};
-    return wff_biaxial_static(mat, hold, target, 0, state, err);
+    return wff_biaxial_static(mat, hold, target, wff_rest_state, state, err);
 }
 
 int wff_uniaxial_static(const wff_material *mat, int family, double stretch,
@@ -234,7 +244,7 @@ int wff_uniaxial_static(const wff_material *mat, int family, double stretch,
     target[family] = stretch;
     hold[1 - family] = WFF_HOLD_RESULTANT;
     target[1 - family] = 0;
-    return wff_biaxial_static(mat, hold, target, 0, state, err);
+    return wff_biaxial_static(mat, hold, target, wff_rest_state, state, err);
 }
 
 int wff_shear_static(const wff_material *mat, double gamma, double dA[2],
@@ -246,10 +256,10 @@ int wff_shear_static(const wff_material *mat, double gamma, double dA[2],
     double c = cos(0.5 * gamma), s = sin(0.5 * gamma);
     const double F[6] = {c, s, s, c, 0, 0};
     double a[2] = {dA[0], dA[1]};
-    if (wff_balance_amplitudes(mat, F, 0, a, err))
+    if (wff_balance_amplitudes(mat, F, wff_rest_state, a, err))
         return -1;
     wff_point_result r;
-    if (wff_material_evaluate(mat, F, a, 0, 0, &r) != WFF_POINT_OK)
+    if (wff_material_evaluate(mat, F, a, wff_rest_state, 0, &r) != WFF_POINT_OK)
         return wff_fail(err, "shear static state: degenerate point at %g rad (material %s)",
                         gamma, mat->source);
     /* S = P : dF/dγ, dF/dγ = ½ [−s c; c −s; 0 0] */

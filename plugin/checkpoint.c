@@ -20,18 +20,21 @@ static const char checkpoint_magic[8] = {'W', 'F', 'F', 'S', 'T', 'A', 'T', 'E'}
 #define BYTE_ORDER_MARK 0x0102030405060708ULL
 
 
-static size_t n_gamma(const wff_model *m)
+static size_t n_points(const wff_model *m)
 {
     return (size_t)(WFF_TRI_POINTS * m->el.n_tris + WFF_QUAD_POINTS * m->el.n_quads);
 }
+
+#define STATE_LAYOUT_MAX 128
 
 /* What a checkpoint must match: sizes, fingerprints, settings. */
 typedef struct checkpoint_header {
     char magic[8];
     uint32_t version, header_size;
     uint64_t byte_order;
-    int32_t n_nodes, n_tris, n_quads, n_gamma, n_candidates, projectile_active, clamp_nodes,
-        dt_interval, reference_path, pad;
+    int32_t n_nodes, n_tris, n_quads, n_points, n_candidates, projectile_active, clamp_nodes,
+        dt_interval, reference_path, n_state;
+    char state_names[STATE_LAYOUT_MAX]; /* the points' states, space-separated ("gamma_f") */
     uint64_t mesh_hash, material_hash, mass_hash, bc_hash, settings_hash;
     double dt_factor, symmetry_factor, projectile_radius, projectile_mass, projectile_mu;
     uint64_t payload_size;
@@ -47,13 +50,18 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     h->n_nodes = m->n_nodes;
     h->n_tris = m->el.n_tris;
     h->n_quads = m->el.n_quads;
-    h->n_gamma = (int32_t)n_gamma(m);
+    h->n_points = (int32_t)n_points(m);
     h->n_candidates = m->projectile.active ? m->projectile.n_candidates : 0;
     h->projectile_active = m->projectile.active;
     h->clamp_nodes = m->clamp.n;
     h->dt_interval = m->dt_interval;
     h->reference_path = m->em.reference_path;
-    h->pad = 0;
+    h->n_state = m->n_state;
+    for (int i = 0; i < m->n_state; i++) {
+        size_t used = strlen(h->state_names);
+        snprintf(h->state_names + used, sizeof h->state_names - used, "%s%s", i ? " " : "",
+                 wff_model_state_name(m, i));
+    }
     uint64_t g = WFF_FNV_START;
     g = wff_fnv1a(g, m->mesh.xy, sizeof(double) * 2 * (size_t)m->n_nodes);
     g = wff_fnv1a(g, m->el.tri, sizeof(int) * 3 * (size_t)m->el.n_tris);
@@ -113,6 +121,9 @@ static int state_fields(wff_model *m, int n_candidates, state_field *f)
     FIELD(&m->internal_energy, 1);
     FIELD(&m->dissipated_shear, 1);
     FIELD(&m->dissipated_friction, 1);
+    FIELD(&m->dissipated_failure, 1);
+    FIELD(&m->eroded_energy, 1);
+    FIELD(&m->n_eroded, 1);
     FIELD(&m->external_work, 1);
     FIELD(&m->initial_total, 1);
     FIELD(&m->initial_kinetic, 1);
@@ -133,13 +144,13 @@ static int state_fields(wff_model *m, int n_candidates, state_field *f)
     FIELD(m->f, m->n_dofs);
     FIELD(m->reaction, m->n_dofs);
     FIELD(m->v_prescribed, m->n_dofs);
-    FIELD(m->gamma_f, n_gamma(m));
+    FIELD(m->state, n_points(m) * (size_t)m->n_state); /* every point's every state */
     if (m->em.static_amplitudes) /* the points' own amplitudes */
-        FIELD(m->el.point_dA, 2 * n_gamma(m));
+        FIELD(m->el.point_dA, 2 * n_points(m));
 #undef FIELD
     return k;
 }
-#define MAX_STATE_FIELDS 32
+#define MAX_STATE_FIELDS 40
 
 int wff_model_save(const wff_model *m, const char *path, wff_error *err)
 {
@@ -223,11 +234,19 @@ int wff_model_load_state(wff_model *m, const char *path, wff_error *err)
     }
     fingerprint(m, &want);
     if (h.n_nodes != want.n_nodes || h.n_tris != want.n_tris || h.n_quads != want.n_quads ||
-        h.n_gamma != want.n_gamma) {
+        h.n_points != want.n_points) {
         wff_fail(err, "checkpoint %s was written for a model of %d nodes, %d triangles, %d "
                  "quadrilaterals; this model has %d nodes, %d triangles, %d quadrilaterals "
                  "(another mesh)", path, h.n_nodes, h.n_tris, h.n_quads, want.n_nodes,
                  want.n_tris, want.n_quads);
+        goto done;
+    }
+    h.state_names[sizeof h.state_names - 1] = 0;
+    if (h.n_state != want.n_state || strcmp(h.state_names, want.state_names) != 0) {
+        wff_fail(err, "checkpoint %s carries %d internal states per point (%s); this model's "
+                 "points carry %d (%s): another cell or failure setting", path, h.n_state,
+                 h.n_state ? h.state_names : "none", want.n_state,
+                 want.n_state ? want.state_names : "none");
         goto done;
     }
     const char *why = hash_mismatch(&h, &want);

@@ -1,6 +1,7 @@
 /* element_fields.c: per-element output of a model's state by name
- * (include/wovenff/state.h): stress P, yarn stretches, shear angle, γᶠ, W,
- * yarn tensions and the cell's diagnostics, evaluated at each element's
+ * (include/wovenff/state.h): stress P, yarn stretches, shear angle, W, the
+ * points' internal states by name (γᶠ, ...), yarn tensions and the cell's
+ * diagnostics, evaluated at each element's
  * centre; the same on FreeFEM's triangle twin (a quadrilateral's value to
  * both its triangles). Reads the state; changes nothing. Knows cells only
  * through their names tables and evaluate (via the elements); nothing of the
@@ -13,18 +14,23 @@
 #include <stdio.h>
 #include <string.h>
 
-enum { EF_P = 0, EF_LAMBDA = 6, EF_SHEAR = 8, EF_GAMMA_F, EF_W, EF_TENSION, EF_DIAG = 16 };
+enum { EF_P = 0, EF_LAMBDA = 6, EF_SHEAR = 8, EF_W, EF_TENSION, EF_STATE = 16,
+       EF_DIAG = EF_STATE + WFF_STATE_MAX };
 
 static const char *const fixed_names[] = {"P11", "P12", "P21", "P22", "P31", "P32",
-                                          "lambda1", "lambda2", "shear_angle", "gamma_f", "W"};
+                                          "lambda1", "lambda2", "shear_angle", "W"};
 #define N_FIXED ((int)(sizeof fixed_names / sizeof fixed_names[0]))
 
-/* Code of a field name (EF_*, EF_TENSION + k, EF_DIAG + d) or -1. */
-static int field_code(const wff_cell_type *cell, const char *name)
+/* Code of a field name (EF_*, EF_STATE + j, EF_TENSION + k, EF_DIAG + d) or -1. */
+static int field_code(const wff_model *m, const char *name)
 {
+    const wff_cell_type *cell = m->mat.cell;
     for (int i = 0; i < N_FIXED; i++)
         if (strcmp(name, fixed_names[i]) == 0)
             return i;
+    for (int j = 0; j < m->n_state; j++)
+        if (strcmp(name, wff_model_state_name(m, j)) == 0)
+            return EF_STATE + j;
     for (int k = 0; k < 2; k++)
         if (strcmp(name, k ? "T2" : "T1") == 0 && cell->yarn_tension_diag[k] >= 0)
             return EF_TENSION + k;
@@ -34,20 +40,25 @@ static int field_code(const wff_cell_type *cell, const char *name)
     return -1;
 }
 
-static int unknown(const wff_cell_type *cell, const char *name, wff_error *err)
+static int unknown(const wff_model *m, const char *name, wff_error *err)
 {
+    const wff_cell_type *cell = m->mat.cell;
     char known[600] = "";
     for (int i = 0; i < N_FIXED; i++) {
         size_t used = strlen(known);
         snprintf(known + used, sizeof known - used, "%s%s", i ? " " : "", fixed_names[i]);
     }
+    for (int j = 0; j < m->n_state; j++) {
+        size_t used = strlen(known);
+        snprintf(known + used, sizeof known - used, " %s", wff_model_state_name(m, j));
+    }
     for (int k = 0; k < 2; k++)
-        if (cell->yarn_tension_diag[k] >= 0 && field_code(cell, k ? "T2" : "T1") < EF_DIAG) {
+        if (cell->yarn_tension_diag[k] >= 0 && field_code(m, k ? "T2" : "T1") < EF_DIAG) {
             size_t used = strlen(known);
             snprintf(known + used, sizeof known - used, " T%d", k + 1);
         }
     for (int d = 0; d < cell->n_diag; d++)
-        if (field_code(cell, cell->diag_names[d]) == EF_DIAG + d) {
+        if (field_code(m, cell->diag_names[d]) == EF_DIAG + d) {
             size_t used = strlen(known);
             snprintf(known + used, sizeof known - used, " %s", cell->diag_names[d]);
         }
@@ -65,22 +76,22 @@ int wff_model_element_values(const wff_model *m, const char *name, double *out,
 int wff_model_element_values_model(const wff_model *m, const char *name, double *out,
                                    wff_error *err)
 {
-    const wff_cell_type *cell = m->mat.cell;
-    int code = field_code(cell, name);
+    int code = field_code(m, name);
     if (code < 0)
-        return unknown(cell, name, err);
+        return unknown(m, name, err);
     int n_el = m->el.n_tris + m->el.n_quads;
     const double *Fp = m->em.F_pre;
     for (int e = 0; e < n_el; e++) {
         double value;
-        if (code == EF_GAMMA_F) {
-            int n = e < m->el.n_tris ? 3 : 4;
-            const double *g = e < m->el.n_tris
-                                  ? m->gamma_f + 3 * e
-                                  : m->gamma_f + 3 * m->el.n_tris + 4 * (e - m->el.n_tris);
+        if (code >= EF_STATE && code < EF_DIAG) { /* the mean of the element's points */
+            int n = e < m->el.n_tris ? 3 : 4, ns = m->n_state;
+            const double *g = m->state + (size_t)ns * (e < m->el.n_tris
+                                                           ? 3 * (size_t)e
+                                                           : 3 * (size_t)m->el.n_tris +
+                                                                 4 * (size_t)(e - m->el.n_tris));
             value = 0;
             for (int q = 0; q < n; q++)
-                value += g[q] / n;
+                value += g[ns * q + code - EF_STATE] / n;
         } else if (code == EF_LAMBDA || code == EF_LAMBDA + 1 || code == EF_SHEAR) {
             double F[6], dA[2], g[2][3];
             wff_element_center_state(&m->el, m->mesh.xy, m->u, e, F, dA);
@@ -102,8 +113,7 @@ int wff_model_element_values_model(const wff_model *m, const char *name, double 
             wff_point_result r;
             wff_element_material zone;
             const wff_element_material *em = wff_zones_element_material(m, e, &zone);
-            if (wff_element_center_eval(&m->el, em, m->mesh.xy, m->u, m->gamma_f, e, &r) !=
-                WFF_POINT_OK) {
+            if (wff_zones_center_eval(m, m->u, e, &r) != WFF_POINT_OK) {
                 char what[96];
                 wff_model_element_name(m, e, what, sizeof what);
                 return wff_fail(err, "element field '%s': %s is degenerate (yarns collapsed "

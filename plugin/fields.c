@@ -83,9 +83,7 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
             value = M_PI_2 - atan2(sqrt(cx * cx + cy * cy + cz * cz), dot);
         } else {
             wff_point_result r;
-            wff_element_material zone;
-            wff_element_center_eval(&m->el, wff_zones_element_material(m, e, &zone), m->mesh.xy,
-                                    m->u, m->gamma_f, e, &r);
+            wff_zones_center_eval(m, m->u, e, &r);
             int d = wff_zones_diag(m, e, diag); /* a zone's cell may lack it: 0 there */
             value = energy ? r.energy : d >= 0 ? r.diag[d] : 0;
         }
@@ -117,7 +115,7 @@ int wff_model_energy_split(const wff_model *m, double *out)
     int n = cell->n_mech < WFF_MECH_MAX ? cell->n_mech : WFF_MECH_MAX;
     double mech[WFF_MECH_MAX] = {0};
     if (n > 0)
-        wff_zones_energy_split(m, m->u, m->gamma_f, mech);
+        wff_zones_energy_split(m, m->u, m->state, mech);
     for (int k = 0; k < n; k++)
         out[k] = m->symmetry_factor * mech[k];
     return n;

@@ -258,7 +258,7 @@ static int tracker_solve(tracker *tr, double x, wff_error *err)
         const wff_hold hold[2] = {WFF_HOLD_STRETCH, WFF_HOLD_STRETCH};
         const double target[2] = {1 + x, 1 + x};
         wff_biaxial_state s = tr->bs;
-        if (wff_biaxial_static(tr->mat, hold, target, 0, &s, err))
+        if (wff_biaxial_static(tr->mat, hold, target, wff_rest_state, &s, err))
             return -1;
         tr->bs = s;
         tr->y = s.resultant[tr->test == WFF_FIT_EQUIBIAXIAL_WARP ? 0 : 1];

@@ -44,27 +44,28 @@ static int fail_unstable(const wff_model *m, const char *what, wff_error *err)
 }
 
 /* The element force pass (internal forces only) at displacement u into f
- * (zeroed first), γᶠ advanced by dt_flow in gamma_f; with `accumulate` the
- * model's stored energy, shear dissipation and element-step count follow it;
+ * (zeroed first), the points' state advanced by dt_flow in state; with
+ * `accumulate` the model's stored energy, shear and failure dissipation and
+ * element-step count follow it;
  * the pass's stored energy (J, model part) into *energy unless NULL.
  * Returns 0 or -1 (err set, naming the element and quadrature point). Shared
  * with operators.c (solver_internal.h). */
-static int force_pass_added(wff_model *m, const double *u, double *f, double *gamma_f,
+static int force_pass_added(wff_model *m, const double *u, double *f, double *state,
                             double dt_flow, int accumulate, double *energy, wff_error *err);
 
-int wff_force_pass(wff_model *m, const double *u, double *f, double *gamma_f, double dt_flow,
+int wff_force_pass(wff_model *m, const double *u, double *f, double *state, double dt_flow,
                    int accumulate, double *energy, wff_error *err)
 {
     wff_step_zero(m, f, m->n_dofs);
-    return force_pass_added(m, u, f, gamma_f, dt_flow, accumulate, energy, err);
+    return force_pass_added(m, u, f, state, dt_flow, accumulate, energy, err);
 }
 
 /* wff_force_pass into an f already zeroed. */
-static int force_pass_added(wff_model *m, const double *u, double *f, double *gamma_f,
+static int force_pass_added(wff_model *m, const double *u, double *f, double *state,
                             double dt_flow, int accumulate, double *energy, wff_error *err)
 {
     wff_force_totals t;
-    wff_zones_forces(m, u, gamma_f, dt_flow, f, &t);
+    wff_zones_forces(m, u, state, dt_flow, f, &t);
     if (accumulate) {
         m->element_steps += m->el.n_tris + m->el.n_quads;
         m->amplitude_iterations += t.amplitude_iterations;
@@ -99,6 +100,7 @@ static int force_pass_added(wff_model *m, const double *u, double *f, double *ga
     if (accumulate) {
         m->internal_energy = t.internal_energy;
         m->dissipated_shear += t.dissipated;
+        m->dissipated_failure += t.failure_dissipated;
     }
     return 0;
 }
@@ -107,13 +109,13 @@ static int force_pass_added(wff_model *m, const double *u, double *f, double *ga
  * velocity update); returns 0 or -1 (err set). */
 static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
 {
-    return wff_force_pass(m, m->u, m->f, m->gamma_f, dt_flow, 1, NULL, err);
+    return wff_force_pass(m, m->u, m->f, m->state, dt_flow, 1, NULL, err);
 }
 
 /* The same, f zeroed already (by the position update: one pass less a step). */
 static int compute_forces_zeroed(wff_model *m, double dt_flow, wff_error *err)
 {
-    return force_pass_added(m, m->u, m->f, m->gamma_f, dt_flow, 1, NULL, err);
+    return force_pass_added(m, m->u, m->f, m->state, dt_flow, 1, NULL, err);
 }
 
 /* Coulomb friction as a velocity correction: an impulse up to `limit`
@@ -223,9 +225,12 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     out->dissipated_friction = s * m->dissipated_friction;
     out->external_work = s * m->external_work;
     out->transfer = s * m->transfer_energy;
+    out->dissipated_failure = s * m->dissipated_failure;
+    out->eroded = s * m->eroded_energy;
+    /* initial + external work = kinetic + internal + shear + friction + failure + eroded */
     double total = k[0] + k[1] + k[2] + k[3] + m->internal_energy +
-                   m->dissipated_shear + m->dissipated_friction - m->external_work -
-                   m->transfer_energy;
+                   m->dissipated_shear + m->dissipated_friction + m->dissipated_failure +
+                   m->eroded_energy - m->external_work - m->transfer_energy;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
      * boundaries) the work done on it or the energy it now holds */
     double stored = m->internal_energy - (m->initial_total - m->initial_kinetic);

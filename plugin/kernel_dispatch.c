@@ -175,10 +175,10 @@ static const wff_kernel *kernel_of(const wff_element_material *em)
 }
 
 void wff_elements_forces(const wff_elements *el, const wff_element_material *em, const double *X,
-                         const double *u, double *gamma_f, double dt, double *f,
+                         const double *u, double *state, double dt, double *f,
                          wff_force_totals *totals)
 {
-    kernel_of(em)->forces(el, em, X, u, gamma_f, dt, f, totals);
+    kernel_of(em)->forces(el, em, X, u, state, dt, f, totals);
 }
 
 double wff_elements_stable_step(const wff_elements *el, const wff_element_material *em,

@@ -167,8 +167,15 @@ int wff_material_parse_text(const char *text, const char *source_name, wff_mater
         return -1;
     if (!(mat->areal_density > 0))
         return wff_kv_reject(&kv, "rho_A", err, "areal density must be > 0 kg/m^2");
+    mat->n_state = mat->cell->n_state_max; /* parse may carry fewer (a prefix) */
     if (mat->cell->parse(&kv, mat, err))
         return -1;
+    if (mat->n_state < 0 || mat->n_state > mat->cell->n_state_max ||
+        mat->cell->n_state_max > WFF_STATE_MAX)
+        return wff_fail(err, "%s: cell '%s' set %d internal states per point (at most "
+                        "n_state_max %d <= WFF_STATE_MAX %d): a bug in the cell",
+                        source_name, mat->cell->name, mat->n_state, mat->cell->n_state_max,
+                        WFF_STATE_MAX);
     for (int i = 0; i < kv.n; i++)
         if (!kv.entry[i].used)
             return wff_fail(err, "%s:%d: unknown key '%s' for cell '%s'", source_name,
@@ -383,4 +390,12 @@ int wff_material_override(const char *path, const char *overrides, const char *o
     }
     free(edited);
     return rc;
+}
+
+int wff_material_state_index(const wff_material *mat, const char *name)
+{
+    for (int i = 0; i < mat->n_state; i++)
+        if (strcmp(mat->cell->state_names[i], name) == 0)
+            return i;
+    return -1;
 }

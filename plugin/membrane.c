@@ -175,7 +175,7 @@ static void note_bad(wff_force_totals *t, int e, int q, int status)
 
 /* Sums one thread gathers over its triangles. */
 typedef struct tri_sums {
-    double energy, dissipated;
+    double energy, dissipated, failure;
     wff_force_totals bad; /* only bad_element, bad_point, bad_status are used */
 } tri_sums;
 
@@ -220,31 +220,33 @@ static inline __attribute__((always_inline)) void tri_scatter(const wff_elements
 /* One triangle by the general path: the cell's evaluate_shared if it has one
  * (and the reference path is not asked for), else evaluate() at each point. */
 static void tri_forces(const wff_elements *el, const wff_element_material *em, const double *X,
-                       const double *u, double *gamma_f, double dt, double *f, int e,
+                       const double *u, double *state, double dt, double *f, int e,
                        tri_sums *sums)
 {
     static const double third[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
     const wff_material *mat = em->mat;
+    const int ns = mat->n_state;
     const int *node = el->tri + 3 * e;
     double F[6], Fe[6], dA[6], P[6] = {0, 0, 0, 0, 0, 0}, R[6] = {0, 0, 0, 0, 0, 0};
-    double W = 0, Dis = 0, state = 0;
+    double W = 0, Dis = 0, Fail = 0, check = 0;
     deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
     preload_apply(em, F, Fe);
     for (int q = 0; q < WFF_TRI_POINTS; q++) {
         dA[2 * q] = u[D * node[q] + 3];
         dA[2 * q + 1] = u[D * node[q] + 4];
-        state += dA[2 * q] + dA[2 * q + 1];
+        check += dA[2 * q] + dA[2 * q + 1];
     }
     for (int i = 0; i < 6; i++)
-        state += Fe[i];
-    if (!isfinite(state)) {
+        check += Fe[i];
+    if (!isfinite(check)) {
         note_bad_sums(sums, e, 0, WFF_POINT_NONFINITE);
         return;
     }
     if (mat->cell->evaluate_shared && !em->reference_path) {
         int bad = 0;
-        int status = mat->cell->evaluate_shared(mat->params, Fe, 3, dA, third, gamma_f + 3 * e, dt,
-                                                P, R, &W, &Dis, &bad);
+        int status = mat->cell->evaluate_shared(mat->params, Fe, 3, dA, third,
+                                                state + ns * 3 * e, dt, P, R, &W, &Dis,
+                                                &Fail, &bad);
         double sum = W + R[0] + R[1] + R[2] + R[3] + R[4] + R[5];
         for (int i = 0; i < 6; i++)
             sum += P[i];
@@ -257,33 +259,37 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
     } else {
         for (int q = 0; q < WFF_TRI_POINTS; q++) {
             wff_point_result r;
-            double *gf = gamma_f + 3 * e + q;
-            int status = point_ok(mat->cell->evaluate(mat->params, Fe, dA + 2 * q, *gf, dt, &r),
+            double *ps = state + ns * (3 * e + q);
+            int status = point_ok(mat->cell->evaluate(mat->params, Fe, dA + 2 * q, ps, dt, &r),
                                   Fe, dA + 2 * q, &r);
             if (status != WFF_POINT_OK) {
                 note_bad_sums(sums, e, q, status);
                 return;
             }
-            *gf = r.gamma_f;
+            for (int i = 0; i < ns; i++)
+                ps[i] = r.state[i];
             for (int i = 0; i < 6; i++)
                 P[i] += r.stress[i] / 3;
             R[2 * q] = r.residual[0];
             R[2 * q + 1] = r.residual[1];
             W += r.energy / 3;
             Dis += r.dissipated / 3;
+            Fail += r.failure_dissipated / 3;
         }
     }
     tri_scatter(el, em, e, P, R, mat->cell->n_amplitudes, f);
     sums->energy += el->tri_area[e] * W;
     sums->dissipated += el->tri_area[e] * Dis;
+    sums->failure += el->tri_area[e] * Fail;
 }
 
 /* n (≤ WFF_BLOCK) triangles from e0 through the cell's blocked kernel.
  * Returns -1 if the cell declines these parameters (nothing done). Lanes past
  * n repeat the last element (a valid state whose results are dropped). */
-static int tri_block_forces(const wff_elements *el, const wff_element_material *em,
-                            const double *X, const double *u, double *gamma_f, double dt,
-                            double *f, int e0, int n, tri_sums *sums)
+static inline __attribute__((always_inline)) int
+tri_block_forces_n(const wff_elements *el, const wff_element_material *em, const double *X,
+                   const double *u, double *state, double dt, double *f, int e0, int n,
+                   tri_sums *sums, const int ns)
 {
     const wff_material *mat = em->mat;
     wff_tri_block blk;
@@ -296,7 +302,7 @@ static int tri_block_forces(const wff_elements *el, const wff_element_material *
         int e = e0 + (j < n ? j : n - 1);
         const int *node = el->tri + 3 * e;
         const double *g = el->tri_grad + 6 * e;
-        double F0 = 0, F1 = 0, F2 = 0, F3 = 0, F4 = 0, F5 = 0, state = 0;
+        double F0 = 0, F1 = 0, F2 = 0, F3 = 0, F4 = 0, F5 = 0, check = 0;
         for (int a = 0; a < 3; a++) {
             const double *ua = u + D * node[a];
             double x = X[2 * node[a]] + ua[0], y = X[2 * node[a] + 1] + ua[1], z = ua[2];
@@ -308,8 +314,9 @@ static int tri_block_forces(const wff_elements *el, const wff_element_material *
             F5 += z * g[2 * a + 1];
             blk.dA[a][0][j] = ua[3];
             blk.dA[a][1][j] = ua[4];
-            blk.gamma_f[a][j] = gamma_f[3 * e + a];
-            state += ua[3] + ua[4];
+            for (int i = 0; i < ns; i++) /* the points' states, n_state each */
+                blk.state[a][i][j] = state[ns * (3 * e + a) + i];
+            check += ua[3] + ua[4];
         }
         /* F_eff = F F_pre */
         blk.F[0][j] = F0 * Fp[0] + F1 * Fp[2];
@@ -318,8 +325,8 @@ static int tri_block_forces(const wff_elements *el, const wff_element_material *
         blk.F[3][j] = F2 * Fp[1] + F3 * Fp[3];
         blk.F[4][j] = F4 * Fp[0] + F5 * Fp[2];
         blk.F[5][j] = F4 * Fp[1] + F5 * Fp[3];
-        state += F0 + F1 + F2 + F3 + F4 + F5;
-        finite[j] = state - state == 0; /* false for NaN and ±inf (isfinite does not vectorise) */
+        check += F0 + F1 + F2 + F3 + F4 + F5;
+        finite[j] = check - check == 0; /* false for NaN and ±inf (isfinite does not vectorise) */
     }
     if (mat->cell->evaluate_tri_block(mat->params, dt, &blk) != 0)
         return -1;
@@ -365,12 +372,42 @@ static int tri_block_forces(const wff_elements *el, const wff_element_material *
                 fb[3] += wa[j] * blk.residual[b][0][j];
                 fb[4] += wa[j] * blk.residual[b][1][j];
             }
-            gamma_f[3 * e + b] = blk.gamma_f[b][j];
+            for (int i = 0; i < ns; i++)
+                state[ns * (3 * e + b) + i] = blk.state[b][i][j];
         }
         sums->energy += el->tri_area[e] * blk.energy[j];
         sums->dissipated += el->tri_area[e] * blk.dissipated[j];
+        sums->failure += el->tri_area[e] * blk.failure_dissipated[j];
     }
     return 0;
+}
+
+/* tri_block_forces_n with n_state a constant where it is 1 (King without
+ * failure: the loops over the states fold away, the gather joins the lanes'
+ * vector loads as γᶠ's did), the material's otherwise. */
+static __attribute__((noinline)) int
+tri_block_forces_one(const wff_elements *el, const wff_element_material *em, const double *X,
+                     const double *u, double *state, double dt, double *f, int e0, int n,
+                     tri_sums *sums)
+{
+    return tri_block_forces_n(el, em, X, u, state, dt, f, e0, n, sums, 1);
+}
+
+static __attribute__((noinline)) int
+tri_block_forces_any(const wff_elements *el, const wff_element_material *em, const double *X,
+                     const double *u, double *state, double dt, double *f, int e0, int n,
+                     tri_sums *sums)
+{
+    return tri_block_forces_n(el, em, X, u, state, dt, f, e0, n, sums, em->mat->n_state);
+}
+
+static int tri_block_forces(const wff_elements *el, const wff_element_material *em,
+                            const double *X, const double *u, double *state, double dt,
+                            double *f, int e0, int n, tri_sums *sums)
+{
+    return em->mat->n_state == 1
+               ? tri_block_forces_one(el, em, X, u, state, dt, f, e0, n, sums)
+               : tri_block_forces_any(el, em, X, u, state, dt, f, e0, n, sums);
 }
 
 int wff_elements_static_amplitudes(wff_elements *el, wff_element_material *em,
@@ -392,20 +429,23 @@ int wff_elements_static_amplitudes(wff_elements *el, wff_element_material *em,
 
 /* One triangle with quasi-static amplitudes at its three points. */
 static void tri_forces_static(const wff_elements *el, const wff_element_material *em,
-                              const double *X, const double *u, double *gamma_f, double dt,
+                              const double *X, const double *u, double *state, double dt,
                               double *f, int e, tri_sums *sums)
 {
     const wff_material *mat = em->mat;
+    const int ns = mat->n_state;
     const int *node = el->tri + 3 * e;
     double F[6], Fe[6], P[6] = {0, 0, 0, 0, 0, 0}, R[6] = {0, 0, 0, 0, 0, 0}, W = 0, Dis = 0;
+    double Fail = 0;
     deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
     preload_apply(em, F, Fe);
     for (int q = 0; q < WFF_TRI_POINTS; q++) {
         double *dA = el->point_dA + 6 * e + 2 * q;
         wff_point_result r;
         int iterations = 0;
-        int status = point_ok(wff_balance_point(mat, Fe, dA, gamma_f[3 * e + q], dt, &r,
-                                                &iterations), Fe, dA, &r);
+        double *ps = state + ns * (3 * e + q);
+        int status = point_ok(wff_balance_point(mat, Fe, dA, ps, dt, &r, &iterations), Fe, dA,
+                              &r);
         sums->bad.amplitude_iterations += iterations;
         if (status == WFF_POINT_UNBALANCED) {
             note_unbalanced_sums(sums, e, q, r.residual, iterations);
@@ -415,15 +455,18 @@ static void tri_forces_static(const wff_elements *el, const wff_element_material
             note_bad_sums(sums, e, q, status);
             return;
         }
-        gamma_f[3 * e + q] = r.gamma_f;
+        for (int i = 0; i < ns; i++)
+            ps[i] = r.state[i];
         for (int i = 0; i < 6; i++)
             P[i] += r.stress[i] / 3;
         W += r.energy / 3;
         Dis += r.dissipated / 3;
+        Fail += r.failure_dissipated / 3;
     }
     tri_scatter(el, em, e, P, R, 0, f); /* no amplitude forces: balanced at the points */
     sums->energy += el->tri_area[e] * W;
     sums->dissipated += el->tri_area[e] * Dis;
+    sums->failure += el->tri_area[e] * Fail;
 }
 
 /* n (≤ WFF_BLOCK) triangles from e0 with quasi-static amplitudes, blocked: per
@@ -432,9 +475,10 @@ static void tri_forces_static(const wff_elements *el, const wff_element_material
  * balanced amplitudes; the same answer as tri_forces_static to round-off
  * (tested). Returns -1 if the cell has no blocked tangent or kernel or declines
  * these parameters (nothing done). Lanes past n repeat the last element. */
-static int tri_block_static_forces(const wff_elements *el, const wff_element_material *em,
-                                   const double *X, const double *u, double *gamma_f,
-                                   double dt, double *f, int e0, int n, tri_sums *sums)
+static inline __attribute__((always_inline)) int
+tri_block_static_forces_n(const wff_elements *el, const wff_element_material *em,
+                          const double *X, const double *u, double *state, double dt, double *f,
+                          int e0, int n, tri_sums *sums, const int ns)
 {
     const wff_material *mat = em->mat;
     wff_tri_block blk;
@@ -444,18 +488,19 @@ static int tri_block_static_forces(const wff_elements *el, const wff_element_mat
     for (int j = 0; j < WFF_BLOCK; j++) {
         int e = e0 + (j < n ? j : n - 1);
         const int *node = el->tri + 3 * e;
-        double F[6], Fe[6], state = 0;
+        double F[6], Fe[6], check = 0;
         deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
         preload_apply(em, F, Fe);
         for (int i = 0; i < 6; i++) {
             blk.F[i][j] = tb.F[i][j] = Fe[i];
-            state += Fe[i];
+            check += Fe[i];
         }
         for (int q = 0; q < WFF_TRI_POINTS; q++) {
-            blk.gamma_f[q][j] = gamma_f[3 * e + q];
-            state += el->point_dA[6 * e + 2 * q] + el->point_dA[6 * e + 2 * q + 1];
+            for (int i = 0; i < ns; i++)
+                blk.state[q][i][j] = state[ns * (3 * e + q) + i];
+            check += el->point_dA[6 * e + 2 * q] + el->point_dA[6 * e + 2 * q + 1];
         }
-        finite[j] = isfinite(state);
+        finite[j] = isfinite(check);
     }
     int iterations[WFF_TRI_POINTS][WFF_BLOCK], converged[WFF_TRI_POINTS][WFF_BLOCK];
     static const double rest[2] = {0, 0};
@@ -466,7 +511,8 @@ static int tri_block_static_forces(const wff_elements *el, const wff_element_mat
             const double *dA = finite[j] ? el->point_dA + 6 * e + 2 * q : rest;
             tb.dA[0][j] = dA[0];
             tb.dA[1][j] = dA[1];
-            tb.gamma_f[j] = blk.gamma_f[q][j];
+            for (int i = 0; i < ns; i++)
+                tb.state[i][j] = blk.state[q][i][j];
             if (!finite[j])
                 for (int i = 0; i < 6; i++)
                     tb.F[i][j] = i == 0 || i == 3 ? 1 : 0;
@@ -512,32 +558,64 @@ static int tri_block_static_forces(const wff_elements *el, const wff_element_mat
             continue;
         }
         for (int q = 0; q < WFF_TRI_POINTS; q++)
-            gamma_f[3 * e + q] = blk.gamma_f[q][j];
+            for (int i = 0; i < ns; i++)
+                state[ns * (3 * e + q) + i] = blk.state[q][i][j];
         tri_scatter(el, em, e, P, zero, 0, f); /* no amplitude forces: balanced at the points */
         sums->energy += el->tri_area[e] * blk.energy[j];
         sums->dissipated += el->tri_area[e] * blk.dissipated[j];
+        sums->failure += el->tri_area[e] * blk.failure_dissipated[j];
     }
     return 0;
 }
 
+/* tri_block_static_forces_n with one state per point (a constant: the state loops
+ * fold away) or the material's n_state. */
+static __attribute__((noinline)) int
+tri_block_static_one(const wff_elements *el, const wff_element_material *em, const double *X,
+                     const double *u, double *state, double dt, double *f, int e0, int n,
+                     tri_sums *sums)
+{
+    return tri_block_static_forces_n(el, em, X, u, state, dt, f, e0, n, sums, 1);
+}
+
+static __attribute__((noinline)) int
+tri_block_static_any(const wff_elements *el, const wff_element_material *em, const double *X,
+                     const double *u, double *state, double dt, double *f, int e0, int n,
+                     tri_sums *sums)
+{
+    return tri_block_static_forces_n(el, em, X, u, state, dt, f, e0, n, sums,
+                                     em->mat->n_state);
+}
+
+static int tri_block_static_forces(const wff_elements *el, const wff_element_material *em,
+                                   const double *X, const double *u, double *state,
+                                   double dt, double *f, int e0, int n, tri_sums *sums)
+{
+    return em->mat->n_state == 1
+               ? tri_block_static_one(el, em, X, u, state, dt, f, e0, n, sums)
+               : tri_block_static_any(el, em, X, u, state, dt, f, e0, n, sums);
+}
+
 void wff_elements_forces(const wff_elements *el, const wff_element_material *em, const double *X,
-                         const double *u, double *gamma_f, double dt, double *f,
+                         const double *u, double *state, double dt, double *f,
                          wff_force_totals *totals)
 {
     const wff_material *mat = em->mat;
     const int amplitudes = mat->cell->n_amplitudes;
-    totals->internal_energy = totals->dissipated = 0;
+    const int ns = mat->n_state;
+    totals->internal_energy = totals->dissipated = totals->failure_dissipated = 0;
     totals->bad_element = -1;
     totals->bad_point = -1;
     totals->bad_status = 0;
     totals->bad_residual = 0;
     totals->bad_iterations = 0;
     totals->amplitude_iterations = 0;
-    double energy = 0, dissipated = 0;
+    double energy = 0, dissipated = 0, failure = 0;
 
     /* small meshes are not worth a thread team (membrane.h, WFF_TEAM_MIN_TRIS) */
     int threads = wff_elements_team(el);
     double part_energy[WFF_MAX_THREADS] = {0}, part_dissipated[WFF_MAX_THREADS] = {0};
+    double part_failure[WFF_MAX_THREADS] = {0};
     wff_force_totals part_bad[WFF_MAX_THREADS];
     for (int t = 0; t < threads; t++)
         part_bad[t].bad_element = -1;
@@ -552,7 +630,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
         team = omp_team();
         double *ft = t == 0 ? f : el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
         /* (an extra thread's buffer is zero here: the last reduction cleared it) */
-        tri_sums sums = {0, 0, {0, 0, -1, -1, 0, 0, 0, 0}};
+        tri_sums sums = {0, 0, 0, {0, 0, 0, -1, -1, 0, 0, 0, 0}};
         int blocked = use_block; /* a cell declines by its parameters: ask once per thread */
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
@@ -560,21 +638,22 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
             int n = el->n_tris - e0 < WFF_BLOCK ? el->n_tris - e0 : WFF_BLOCK;
             if (em->static_amplitudes) {
                 if (blocked &&
-                    tri_block_static_forces(el, em, X, u, gamma_f, dt, ft, e0, n, &sums) != 0)
+                    tri_block_static_forces(el, em, X, u, state, dt, ft, e0, n, &sums) != 0)
                     blocked = 0;
                 if (!blocked)
                     for (int e = e0; e < e0 + n; e++)
-                        tri_forces_static(el, em, X, u, gamma_f, dt, ft, e, &sums);
+                        tri_forces_static(el, em, X, u, state, dt, ft, e, &sums);
             } else {
-                if (blocked && tri_block_forces(el, em, X, u, gamma_f, dt, ft, e0, n, &sums) != 0)
+                if (blocked && tri_block_forces(el, em, X, u, state, dt, ft, e0, n, &sums) != 0)
                     blocked = 0;
                 if (!blocked)
                     for (int e = e0; e < e0 + n; e++)
-                        tri_forces(el, em, X, u, gamma_f, dt, ft, e, &sums);
+                        tri_forces(el, em, X, u, state, dt, ft, e, &sums);
             }
         }
         part_energy[t] = sums.energy;
         part_dissipated[t] = sums.dissipated;
+        part_failure[t] = sums.failure;
         part_bad[t] = sums.bad;
         /* (the element loop's barrier is behind us) the other threads' buffers into f, each
          * thread a slice of the DOFs, buffers added in thread order and cleared as read
@@ -584,6 +663,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
     for (int t = 0; t < team; t++) { /* in thread order: the same sums every run */
         energy += part_energy[t];
         dissipated += part_dissipated[t];
+        failure += part_failure[t];
         totals->amplitude_iterations += part_bad[t].amplitude_iterations;
         if (part_bad[t].bad_element >= 0 &&
             (totals->bad_element < 0 || part_bad[t].bad_element < totals->bad_element)) {
@@ -597,7 +677,8 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
 
     /* quads: the blocked path (membrane_quad.c) where it applies, else point by point */
     const int quads_blocked =
-        wff_quad_block_forces(el, em, X, u, gamma_f, dt, f, &energy, &dissipated, totals) == 0;
+        wff_quad_block_forces(el, em, X, u, state, dt, f, &energy, &dissipated, &failure,
+                              totals) == 0;
     for (int e = 0; !quads_blocked && e < el->n_quads; e++) {
         const int *node = el->quad + 4 * e;
         int id = el->n_tris + e;
@@ -613,7 +694,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
             deformation_gradient(X, u, node, 4, grad, F);
             preload_apply(em, F, Fe);
             wff_point_result r;
-            double *gf = gamma_f + 3 * el->n_tris + 4 * e + q;
+            double *ps = state + ns * (3 * el->n_tris + 4 * e + q);
             int point_amplitudes = amplitudes;
             double *pdA = dA;
             if (em->static_amplitudes) { /* the point's own balanced amplitudes */
@@ -622,8 +703,8 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
             }
             int iterations = 0;
             int status = point_ok(em->static_amplitudes
-                                      ? wff_balance_point(mat, Fe, pdA, *gf, dt, &r, &iterations)
-                                      : mat->cell->evaluate(mat->params, Fe, dA, *gf, dt, &r),
+                                      ? wff_balance_point(mat, Fe, pdA, ps, dt, &r, &iterations)
+                                      : mat->cell->evaluate(mat->params, Fe, dA, ps, dt, &r),
                                   Fe, pdA, &r);
             totals->amplitude_iterations += iterations;
             if (status != WFF_POINT_OK) {
@@ -634,7 +715,8 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
                 note_bad(totals, id, q, status);
                 continue;
             }
-            *gf = r.gamma_f;
+            for (int i = 0; i < ns; i++)
+                ps[i] = r.state[i];
             double w = el->quad_weight[4 * e + q];
             preload_pull_add(em, r.stress, 1.0, Pm);
             for (int b = 0; b < 4; b++) {
@@ -646,17 +728,20 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
             }
             energy += w * r.energy;
             dissipated += w * r.dissipated;
+            failure += w * r.failure_dissipated;
         }
     }
     totals->internal_energy = energy / em->J_pre;
     totals->dissipated = dissipated / em->J_pre;
+    totals->failure_dissipated = failure / em->J_pre;
 }
 
 void wff_elements_energy_split(const wff_elements *el, const wff_element_material *em,
-                               const double *X, const double *u, const double *gamma_f,
+                               const double *X, const double *u, const double *state,
                                double *mech)
 {
     const wff_cell_type *cell = em->mat->cell;
+    const int ns = em->mat->n_state;
     for (int k = 0; k < cell->n_mech; k++)
         mech[k] = 0;
     if (!cell->energy_split)
@@ -672,7 +757,7 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
             double dA[2] = {u[D * node[q] + 3], u[D * node[q] + 4]};
             if (em->static_amplitudes) /* the point's own balanced amplitudes */
                 memcpy(dA, el->point_dA + 6 * e + 2 * q, sizeof dA);
-            cell->energy_split(em->mat->params, Fe, dA, gamma_f[3 * e + q], point);
+            cell->energy_split(em->mat->params, Fe, dA, state + ns * (3 * e + q), point);
             for (int k = 0; k < cell->n_mech; k++)
                 mech[k] += w * point[k];
         }
@@ -693,7 +778,7 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
             if (em->static_amplitudes)
                 memcpy(dA, el->point_dA + 6 * el->n_tris + 8 * e + 2 * q, sizeof dA);
             cell->energy_split(em->mat->params, Fe, dA,
-                               gamma_f[3 * el->n_tris + 4 * e + q], point);
+                               state + ns * (3 * el->n_tris + 4 * e + q), point);
             double w = el->quad_weight[4 * e + q] / em->J_pre;
             for (int k = 0; k < cell->n_mech; k++)
                 mech[k] += w * point[k];

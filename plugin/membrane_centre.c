@@ -55,20 +55,28 @@ static void static_mean_dA(const wff_elements *el, int e, double dA[2])
 }
 
 int wff_element_center_eval(const wff_elements *el, const wff_element_material *em,
-                            const double *X, const double *u, const double *gamma_f, int e,
+                            const double *X, const double *u, const double *state, int e,
                             wff_point_result *out)
 {
-    double F[6], Fe[6], dA[2], gf = 0;
+    double mean[WFF_STATE_MAX] = {0};
+    const int n = e < el->n_tris ? 3 : 4, ns = em->mat->n_state;
+    const double *g = state + ns * (e < el->n_tris ? 3 * e : 3 * el->n_tris + 4 * (e - el->n_tris));
+    for (int q = 0; q < n; q++)
+        for (int i = 0; i < ns; i++)
+            mean[i] += g[ns * q + i] / n;
+    return wff_element_center_eval_state(el, em, X, u, mean, e, out);
+}
+
+int wff_element_center_eval_state(const wff_elements *el, const wff_element_material *em,
+                                  const double *X, const double *u, const double *held, int e,
+                                  wff_point_result *out)
+{
+    double F[6], Fe[6], dA[2];
     wff_element_center_state(el, X, u, e, F, dA);
     if (em->static_amplitudes)
         static_mean_dA(el, e, dA);
     preload_apply(em, F, Fe);
-    int n = e < el->n_tris ? 3 : 4;
-    const double *g =
-        e < el->n_tris ? gamma_f + 3 * e : gamma_f + 3 * el->n_tris + 4 * (e - el->n_tris);
-    for (int q = 0; q < n; q++)
-        gf += g[q] / n;
-    return em->mat->cell->evaluate(em->mat->params, Fe, dA, gf, 0, out);
+    return em->mat->cell->evaluate(em->mat->params, Fe, dA, held, 0, out);
 }
 
 /* An element's stable step from its size and its cell's wave speeds:

@@ -48,7 +48,7 @@ static void quad_gauss_init(quad_gauss *t)
 
 /* Sums one thread gathers over its quads. */
 typedef struct quad_sums {
-    double energy, dissipated;
+    double energy, dissipated, failure;
     int bad_element, bad_point, bad_status; /* bad_element: quad index, −1 if none */
 } quad_sums;
 
@@ -73,21 +73,23 @@ static void note_bad_point(quad_sums *s, int e, int q, int status)
  * the same to round-off). For each point q the lanes' point q goes through
  * the cell; forces are summed per lane and node, f updated once per node at
  * the end. Lanes past n repeat the last quad (a valid state, results dropped). */
-static void quad_block(const wff_elements *el, const wff_element_material *em,
-                       const quad_gauss *t, const double *X, const double *u, double *gamma_f,
-                       double dt, double *f, int e0, int n, quad_sums *sums)
+static inline __attribute__((always_inline)) void
+quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_gauss *t,
+             const double *X, const double *u, double *state, double dt, double *f, int e0,
+             int n, quad_sums *sums, const int ns)
 {
     const wff_material *mat = em->mat;
     const double *Fp = em->F_pre;
     const double inv_J = 1 / em->J_pre;
     const int amplitudes = mat->cell->n_amplitudes;
-    double *gf = gamma_f + WFF_TRI_POINTS * el->n_tris; /* the quads' points */
+    double *sq = state + ns * WFF_TRI_POINTS * el->n_tris; /* the quads' points' states */
     const int *quad = el->quad;
     double dx[3][3][WFF_BLOCK];  /* a₁, a₂, a₁₂ of x (3 components) */
     double dX[3][2][WFF_BLOCK];  /* a₁, a₂, a₁₂ of X (2 components) */
     double amp[4][2][WFF_BLOCK]; /* ΔA1, ΔA2 at the nodes */
     double acc[4][D][WFF_BLOCK]; /* force on node a of each lane's quad */
-    double lane_energy[WFF_BLOCK], lane_dissipated[WFF_BLOCK], gf_new[WFF_QUAD_POINTS][WFF_BLOCK];
+    double lane_energy[WFF_BLOCK], lane_dissipated[WFF_BLOCK], lane_failure[WFF_BLOCK];
+    double state_new[WFF_QUAD_POINTS][WFF_STATE_MAX][WFF_BLOCK]; /* where the point is sound */
     int status[WFF_QUAD_POINTS][WFF_BLOCK]; /* WFF_POINT_* per point */
 #pragma omp simd
     for (int j = 0; j < WFF_BLOCK; j++) {
@@ -116,7 +118,7 @@ static void quad_block(const wff_elements *el, const wff_element_material *em,
             dX[1][i][j] = 0.25 * (-Xn[0][i] - Xn[1][i] + Xn[2][i] + Xn[3][i]);
             dX[2][i][j] = 0.25 * (Xn[0][i] - Xn[1][i] + Xn[2][i] - Xn[3][i]);
         }
-        lane_energy[j] = lane_dissipated[j] = 0;
+        lane_energy[j] = lane_dissipated[j] = lane_failure[j] = 0;
     }
     wff_point_block blk;
     blk.n = n;
@@ -126,7 +128,6 @@ static void quad_block(const wff_elements *el, const wff_element_material *em,
         double adj[2][2][WFF_BLOCK], det[WFF_BLOCK]; /* adj J = det J · J⁻¹ */
 #pragma omp simd
         for (int j = 0; j < WFF_BLOCK; j++) {
-            int e = e0 + (j < n ? j : n - 1);
             /* J = ∂X/∂ξ: J[i][r] = ∂X_i/∂ξ_r */
             double J00 = dX[0][0][j] + eta * dX[2][0][j], J01 = dX[1][0][j] + xi * dX[2][0][j];
             double J10 = dX[0][1][j] + eta * dX[2][1][j], J11 = dX[1][1][j] + xi * dX[2][1][j];
@@ -151,9 +152,13 @@ static void quad_block(const wff_elements *el, const wff_element_material *em,
             }
             blk.dA[0][j] = dA0;
             blk.dA[1][j] = dA1;
-            blk.gamma_f[j] = gf[4 * e + q];
             double state = Fm[0] + Fm[1] + Fm[2] + Fm[3] + Fm[4] + Fm[5] + dA0 + dA1;
             finite[j] = state - state == 0; /* false for NaN and ±inf (isfinite does not vectorise) */
+        }
+        for (int i = 0; i < ns; i++) { /* the points' states: a vector gather per state */
+#pragma omp simd
+            for (int j = 0; j < WFF_BLOCK; j++)
+                blk.state[i][j] = sq[ns * (4 * (e0 + (j < n ? j : n - 1)) + q) + i];
         }
         mat->cell->evaluate_point_block(mat->params, dt, &blk); /* accepted: asked before the pass */
         /* per lane: the point's force −P_mesh adj(J)ᵀ ∇_ξ N_b (P_mesh = P F_preᵀ / J_pre)
@@ -161,8 +166,7 @@ static void quad_block(const wff_elements *el, const wff_element_material *em,
          * sound (a failed point adds nothing, as on the plain path) */
 #pragma omp simd
         for (int j = 0; j < WFF_BLOCK; j++) {
-            int e = e0 + (j < n ? j : n - 1);
-            double gamma_before = gf[4 * e + q], w = det[j];
+            double w = det[j];
             double sum = blk.energy[j] + blk.dissipated[j] + blk.residual[0][j] + blk.residual[1][j];
             for (int i = 0; i < 6; i++)
                 sum += blk.stress[i][j];
@@ -189,10 +193,13 @@ static void quad_block(const wff_elements *el, const wff_element_material *em,
                 acc[b][3][j] += t->N[q][b] * r0;
                 acc[b][4][j] += t->N[q][b] * r1;
             }
-            gf_new[q][j] = sound ? blk.gamma_f[j] : gamma_before;
             lane_energy[j] += sound ? w * blk.energy[j] : 0;
             lane_dissipated[j] += sound ? w * blk.dissipated[j] : 0;
+            lane_failure[j] += sound ? w * blk.failure_dissipated[j] : 0;
         }
+        for (int i = 0; i < ns; i++)
+            for (int j = 0; j < WFF_BLOCK; j++)
+                state_new[q][i][j] = blk.state[i][j];
     }
     for (int j = 0; j < n; j++) {
         int e = e0 + j;
@@ -203,13 +210,36 @@ static void quad_block(const wff_elements *el, const wff_element_material *em,
                 fb[c] += acc[b][c][j];
         }
         for (int q = 0; q < WFF_QUAD_POINTS; q++) {
-            gf[4 * e + q] = gf_new[q][j];
-            if (status[q][j] != WFF_POINT_OK)
-                note_bad_point(sums, e, q, status[q][j]);
+            if (status[q][j] != WFF_POINT_OK) {
+                note_bad_point(sums, e, q, status[q][j]); /* its state is kept */
+                continue;
+            }
+            double *sp = sq + ns * (4 * e + q);
+            for (int i = 0; i < ns; i++)
+                sp[i] = state_new[q][i][j];
         }
         sums->energy += lane_energy[j];
         sums->dissipated += lane_dissipated[j];
+        sums->failure += lane_failure[j];
     }
+}
+
+/* quad_block_n with one state per point (a constant: its loops fold away), and with
+ * the material's n_state. */
+static __attribute__((noinline)) void
+quad_block_one(const wff_elements *el, const wff_element_material *em, const quad_gauss *t,
+               const double *X, const double *u, double *state, double dt, double *f, int e0,
+               int n, quad_sums *sums)
+{
+    quad_block_n(el, em, t, X, u, state, dt, f, e0, n, sums, 1);
+}
+
+static __attribute__((noinline)) void
+quad_block_any(const wff_elements *el, const wff_element_material *em, const quad_gauss *t,
+               const double *X, const double *u, double *state, double dt, double *f, int e0,
+               int n, quad_sums *sums)
+{
+    quad_block_n(el, em, t, X, u, state, dt, f, e0, n, sums, em->mat->n_state);
 }
 
 /* Whether the cell takes these parameters: one block of a valid state (the
@@ -229,8 +259,8 @@ static int cell_takes_points(const wff_element_material *em, double dt)
 }
 
 int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em,
-                          const double *X, const double *u, double *gamma_f, double dt,
-                          double *f, double *energy, double *dissipated,
+                          const double *X, const double *u, double *state, double dt,
+                          double *f, double *energy, double *dissipated, double *failure,
                           wff_force_totals *totals)
 {
     if (el->n_quads == 0 || !em->mat->cell->evaluate_point_block || em->reference_path ||
@@ -254,27 +284,32 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
 #endif
         double *ft = t == 0 ? f : el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
         /* (an extra thread's buffer is zero here: every reduction clears what it reads) */
-        quad_sums sums = {0, 0, -1, -1, 0};
+        quad_sums sums = {0, 0, 0, -1, -1, 0};
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
             int e0 = blk * WFF_BLOCK;
             int n = el->n_quads - e0 < WFF_BLOCK ? el->n_quads - e0 : WFF_BLOCK;
-            quad_block(el, em, &gauss, X, u, gamma_f, dt, ft, e0, n, &sums);
+            if (em->mat->n_state == 1) /* (King without failure: the state loops fold away) */
+                quad_block_one(el, em, &gauss, X, u, state, dt, ft, e0, n, &sums);
+            else
+                quad_block_any(el, em, &gauss, X, u, state, dt, ft, e0, n, &sums);
         }
         part[t] = sums;
         /* (past the loop's barrier) the other threads' buffers into f, a slice of
          * the DOFs per thread, buffers in thread order */
         wff_thread_buffers_reduce(el, f, team);
     }
-    quad_sums all = {0, 0, -1, -1, 0};
+    quad_sums all = {0, 0, 0, -1, -1, 0};
     for (int t = 0; t < team; t++) { /* in thread order: the same sums every run */
         all.energy += part[t].energy;
         all.dissipated += part[t].dissipated;
+        all.failure += part[t].failure;
         if (part[t].bad_element >= 0)
             note_bad_point(&all, part[t].bad_element, part[t].bad_point, part[t].bad_status);
     }
     *energy += all.energy;
     *dissipated += all.dissipated;
+    *failure += all.failure;
     if (all.bad_element >= 0 && totals->bad_element < 0) {
         totals->bad_element = el->n_tris + all.bad_element;
         totals->bad_point = all.bad_point;

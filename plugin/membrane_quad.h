@@ -9,16 +9,17 @@
 #include <stddef.h>
 
 /* Internal forces of every quad through the cell's evaluate_point_block,
- * added into f; γᶠ of the quads' points updated with step dt. Adds Σ w W and
- * Σ w × dissipation (w = Gauss weight × det J, not yet divided by J_pre) into
- * *energy and *dissipated, and notes the first bad point (lowest quad, then
+ * added into f; the state of the quads' points (mat->n_state each) updated
+ * with step dt. Adds Σ w W, Σ w × dissipation and Σ w × failure dissipation
+ * (w = Gauss weight × det J, not yet divided by J_pre) into *energy,
+ * *dissipated and *failure, and notes the first bad point (lowest quad, then
  * lowest point) in totals if totals has none. Threads: el->n_threads on large
  * meshes, the same bits for a given count. Returns 0, or −1 with nothing done
  * when the fast path does not apply (no evaluate_point_block, the reference
  * path asked for, static amplitudes, or the cell declines its parameters). */
 int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em,
-                          const double *X, const double *u, double *gamma_f, double dt,
-                          double *f, double *energy, double *dissipated,
+                          const double *X, const double *u, double *state, double dt,
+                          double *f, double *energy, double *dissipated, double *failure,
                           wff_force_totals *totals);
 
 /* Inside a force pass's parallel region, past its element loop's barrier: the

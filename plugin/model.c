@@ -22,7 +22,7 @@ void wff_model_free(wff_model *m)
     free(m->mass);
     free(m->dof_kind);
     free(m->v_prescribed);
-    free(m->gamma_f);
+    free(m->state);
     free(m->reaction);
     free(m->projectile.candidates);
     free(m->projectile.contact_node);
@@ -64,7 +64,7 @@ static int share_clamp_force(wff_model *m, wff_error *err);
 
 /* Before the first step: the stored energy of the state as set up (e.g. the
  * preload), so that energies read before any step are complete. A force pass
- * with γᶠ held; its forces are recomputed when the run starts, and a bad
+ * with the state held; its forces are recomputed when the run starts, and a bad
  * element is reported then. */
 static void stored_energy_now(wff_model *m)
 {
@@ -72,7 +72,7 @@ static void stored_energy_now(wff_model *m)
         return;
     wff_force_totals t;
     memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
-    wff_zones_forces(m, m->u, m->gamma_f, 0, m->f, &t);
+    wff_zones_forces(m, m->u, m->state, 0, m->f, &t);
     m->internal_energy = t.bad_element >= 0 ? 0 : t.internal_energy;
 }
 
@@ -134,9 +134,11 @@ int wff_model_create_ordered(wff_model *m, wff_mesh *mesh, const char *material_
     m->dof_kind = calloc(nd, 1);
     m->v_prescribed = calloc(nd, sizeof(double));
     m->reaction = calloc(nd, sizeof(double));
-    m->gamma_f = calloc(nq ? nq : 1, sizeof(double));
+    m->n_state = m->mat.n_state;
+    size_t ns = nq * (size_t)m->n_state;
+    m->state = calloc(ns ? ns : 1, sizeof(double)); /* every state starts at 0 */
     if (!m->u || !m->v || !m->f || !m->mass || !m->dof_kind || !m->v_prescribed ||
-        !m->reaction || !m->gamma_f) {
+        !m->reaction || !m->state) {
         wff_model_free(m);
         return wff_fail(err, "out of memory for a model of %d nodes", m->n_nodes);
     }

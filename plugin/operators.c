@@ -22,13 +22,13 @@ static size_t n_points(const wff_model *m)
     return (size_t)(WFF_TRI_POINTS * m->el.n_tris + WFF_QUAD_POINTS * m->el.n_quads);
 }
 
-/* The scratch copy of γᶠ (n_points) followed by room for the static
+/* The scratch copy of the points' state (n_points × n_state) followed by room for the static
  * amplitudes (2 per point), allocated once. */
 static double *scratch(wff_model *m, wff_error *err)
 {
     if (!m->operator_scratch) {
         size_t nq = n_points(m);
-        m->operator_scratch = malloc(3 * sizeof(double) * (nq ? nq : 1));
+        m->operator_scratch = malloc((size_t)(m->n_state + 2) * sizeof(double) * (nq ? nq : 1));
         if (!m->operator_scratch)
             wff_fail(err, "out of memory for the force operator's workspace");
     }
@@ -78,20 +78,20 @@ static int forces_model(wff_model *m, const double *U, double *R, double dt, dou
         return wff_fail(err, "time step dt = %g s: must be >= 0 and finite (0: γᶠ held)", dt);
     double e = 0;
     if (dt > 0) { /* as the built-in step's force pass */
-        if (wff_force_pass(m, U, R, m->gamma_f, dt, 1, &e, err))
+        if (wff_force_pass(m, U, R, m->state, dt, 1, &e, err))
             return -1;
     } else {      /* γᶠ (and static amplitudes) on a copy: the model stays as it was */
-        double *gf = scratch(m, err);
-        if (!gf)
+        double *held = scratch(m, err);
+        if (!held)
             return -1;
-        size_t nq = n_points(m);
-        memcpy(gf, m->gamma_f, sizeof(double) * nq);
+        size_t nq = n_points(m), ns = nq * (size_t)m->n_state;
+        memcpy(held, m->state, sizeof(double) * ns);
         double *dA = m->el.point_dA;
         if (dA)
-            memcpy(gf + nq, dA, 2 * sizeof(double) * nq);
-        int rc = wff_force_pass(m, U, R, gf, 0, 0, &e, err);
+            memcpy(held + ns, dA, 2 * sizeof(double) * nq);
+        int rc = wff_force_pass(m, U, R, held, 0, 0, &e, err);
         if (dA)
-            memcpy(dA, gf + nq, 2 * sizeof(double) * nq);
+            memcpy(dA, held + ns, 2 * sizeof(double) * nq);
         if (rc)
             return -1;
     }

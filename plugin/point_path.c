@@ -5,6 +5,7 @@
 #include "wovenff/point_path.h"
 
 #include <math.h>
+#include <string.h>
 
 /* A segment that would need more steps than this is a wrong input (a duration
  * of seconds for a microsecond oscillator), not a computation to wait for. */
@@ -49,10 +50,10 @@ static int dynamic_segment(const wff_material *mat, const double F_a[6], const d
         double F[6];
         lerp_F(F_a, F_b, (double)i / (double)n, F);
         wff_point_result r;
-        if (wff_material_evaluate(mat, F, s->dA, s->gamma_f, mode->shear_flow ? dt : 0, &r))
+        if (wff_material_evaluate(mat, F, s->dA, s->state, mode->shear_flow ? dt : 0, &r))
             return degenerate(mat, F, err);
         if (mode->shear_flow)
-            s->gamma_f = r.gamma_f;
+            memcpy(s->state, r.state, sizeof(double) * (size_t)mat->n_state);
         double half = 0.5 * (s->previous_step + dt);
         for (int k = 0; k < 2; k++) {
             s->velocity[k] += half * r.residual[k] / mass;
@@ -76,9 +77,9 @@ static int flow_segment(const wff_material *mat, const double F_a[6], const doub
         double F[6];
         lerp_F(F_a, F_b, (double)i / n, F);
         wff_point_result r;
-        if (wff_material_evaluate(mat, F, s->dA, s->gamma_f, dt, &r))
+        if (wff_material_evaluate(mat, F, s->dA, s->state, dt, &r))
             return degenerate(mat, F, err);
-        s->gamma_f = r.gamma_f;
+        memcpy(s->state, r.state, sizeof(double) * (size_t)mat->n_state);
     }
     s->substeps += n;
     return 0;
@@ -108,7 +109,7 @@ int wff_point_path_record(const wff_material *mat, const double F[6],
                           const wff_point_state *state, wff_point_record *rec, wff_error *err)
 {
     const wff_cell_type *cell = mat->cell;
-    if (wff_material_evaluate(mat, F, state->dA, state->gamma_f, 0, &rec->point))
+    if (wff_material_evaluate(mat, F, state->dA, state->state, 0, &rec->point))
         return degenerate(mat, F, err);
     double g1g2 = F[0] * F[1] + F[2] * F[3] + F[4] * F[5]; /* g_1·g_2 */
     rec->stretch[0] = sqrt(F[0] * F[0] + F[2] * F[2] + F[4] * F[4]);
@@ -116,7 +117,7 @@ int wff_point_path_record(const wff_material *mat, const double F[6],
     rec->shear_angle = asin(g1g2 / (rec->stretch[0] * rec->stretch[1]));
     rec->n_mech = cell->energy_split ? cell->n_mech : 0;
     if (rec->n_mech)
-        cell->energy_split(mat->params, F, state->dA, state->gamma_f, rec->mech_energy);
+        cell->energy_split(mat->params, F, state->dA, state->state, rec->mech_energy);
     double v2 = state->velocity[0] * state->velocity[0] + state->velocity[1] * state->velocity[1];
     rec->amplitude_kinetic = 0.5 * (mat->areal_density / 6) * v2;
     return 0;

@@ -310,7 +310,7 @@ static void point_position(const wff_mesh *mesh, int e, int q, double p[2], doub
     pick[0] = p[0], pick[1] = p[1];
 }
 
-/* Old quadrature-point index (into γᶠ) and weight list for new point p in
+/* Old quadrature-point index (into the points' states) and weight list for new point p in
  * old triangle t (barycentric lam at p): a triangle element's three points
  * with weights lam, or a quad's nearest Gauss point. Returns how many. */
 static int old_points(const wff_model *m, const locator *L, int t, const double lam_in[3],
@@ -357,9 +357,10 @@ static int allocate(wff_model *nm, wff_error *err)
     nm->dof_kind = calloc(nd, 1);
     nm->v_prescribed = calloc(nd, sizeof(double));
     nm->reaction = calloc(nd, sizeof(double));
-    nm->gamma_f = calloc(nq ? nq : 1, sizeof(double));
+    size_t ns = nq * (size_t)nm->n_state;
+    nm->state = calloc(ns ? ns : 1, sizeof(double));
     int ok = nm->u && nm->v && nm->f && nm->mass && nm->dof_kind && nm->v_prescribed &&
-             nm->reaction && nm->gamma_f;
+             nm->reaction && nm->state;
     if (nm->projectile.active) {
         nm->projectile.candidates = malloc(sizeof(int) * nn);
         nm->projectile.contact_node = malloc(sizeof(int) * nn);
@@ -373,7 +374,12 @@ static int allocate(wff_model *nm, wff_error *err)
     return 0;
 }
 
-/* Interpolate the nodal state and the point state of m onto nm. */
+/* Interpolate the nodal state and the point state of m onto nm. Every
+ * internal state of a point is the weighted mean of the old points' (the
+ * weights old_points gives: barycentric over an old triangle's three points,
+ * or a quad's nearest Gauss point), except a yarn damage (the cell's
+ * damage_state), which must not decrease: the largest of the old points'
+ * with a positive weight. */
 static int transfer_state(const wff_model *m, wff_model *nm, const locator *L,
                           wff_remesh_report *rep, wff_error *err)
 {
@@ -406,6 +412,13 @@ static int transfer_state(const wff_model *m, wff_model *nm, const locator *L,
             nm->v[D * n + j] = v;
         }
     }
+    const int ns = m->n_state;
+    int is_damage[WFF_STATE_MAX] = {0};
+    for (int k = 0; k < 2; k++) {
+        int d = m->mat.cell->damage_state[k];
+        if (d >= 0 && d < ns)
+            is_damage[d] = 1;
+    }
     int n_el = nm->el.n_tris + nm->el.n_quads;
     for (int e = 0; e < n_el; e++) {
         int np = e < nm->el.n_tris ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
@@ -420,14 +433,24 @@ static int transfer_state(const wff_model *m, wff_model *nm, const locator *L,
             int idx[3];
             double w[3];
             int k_n = old_points(m, L, t, lam, idx, w);
-            double g = 0, dA[2] = {0, 0};
+            double s[WFF_STATE_MAX] = {0}, dA[2] = {0, 0};
+            for (int j = 0; j < ns; j++)
+                s[j] = is_damage[j] ? -INFINITY : 0;
             for (int k = 0; k < k_n; k++) {
-                g += w[k] * m->gamma_f[idx[k]];
+                const double *old = m->state + (size_t)ns * (size_t)idx[k];
+                for (int j = 0; j < ns; j++) {
+                    if (!is_damage[j])
+                        s[j] += w[k] * old[j];
+                    else if (w[k] > 0)
+                        s[j] = fmax(s[j], old[j]);
+                }
                 if (m->el.point_dA)
                     dA[0] += w[k] * m->el.point_dA[2 * idx[k]],
                     dA[1] += w[k] * m->el.point_dA[2 * idx[k] + 1];
             }
-            nm->gamma_f[base + q] = g;
+            for (int j = 0; j < ns; j++) /* (a damage with no positive weight: the first's) */
+                nm->state[(size_t)ns * (size_t)(base + q) + (size_t)j] =
+                    s[j] == -INFINITY ? m->state[(size_t)ns * (size_t)idx[0] + (size_t)j] : s[j];
             if (nm->el.point_dA)
                 nm->el.point_dA[2 * (base + q)] = dA[0],
                 nm->el.point_dA[2 * (base + q) + 1] = dA[1];
@@ -484,7 +507,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     nm.mesh = *new_mesh;
     memset(new_mesh, 0, sizeof *new_mesh);
     memset(&nm.el, 0, sizeof nm.el);
-    nm.u = nm.v = nm.f = nm.mass = nm.v_prescribed = nm.gamma_f = nm.reaction = NULL;
+    nm.u = nm.v = nm.f = nm.mass = nm.v_prescribed = nm.state = nm.reaction = NULL;
     nm.dof_kind = NULL;
     nm.projectile.candidates = nm.projectile.contact_node = NULL;
     nm.projectile.impulse = NULL;
@@ -542,9 +565,9 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
         wff_contact_refresh_candidates(&nm);
         rep.retraction = wff_contact_retract(&nm);
     }
-    /* forces at uⁿ, γᶠ held */
+    /* forces at uⁿ, the states held */
     wff_force_totals tot;
-    wff_elements_forces(&nm.el, &nm.em, nm.mesh.xy, nm.u, nm.gamma_f, 0, nm.f, &tot);
+    wff_elements_forces(&nm.el, &nm.em, nm.mesh.xy, nm.u, nm.state, 0, nm.f, &tot);
     if (tot.bad_element >= 0) {
         wff_fail(err, "wff_model_remesh: element %d of the new mesh, quadrature point %d: the "
                  "interpolated state is degenerate or not finite",

@@ -23,12 +23,12 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
  * modelled mass follows; -1 (err set) if its axis is off the symmetry
  * planes. */
 int wff_contact_symmetry_changed(wff_model *m, wff_error *err);
-/* integrator.c: the element force pass at u into f (zeroed first), γᶠ
- * advanced by dt_flow in gamma_f (0: held); accumulate 1: the model's stored
+/* integrator.c: the element force pass at u into f (zeroed first), the
+ * points' state (m->n_state each) advanced by dt_flow in state (0: held); accumulate 1: the model's stored
  * energy, shear dissipation and element-step count updated as a step does.
  * The pass's stored energy into *energy (J, model part; NULL: not wanted).
  * -1 (err set, naming the element) on a bad point. */
-int wff_force_pass(wff_model *m, const double *u, double *f, double *gamma_f, double dt_flow,
+int wff_force_pass(wff_model *m, const double *u, double *f, double *state, double dt_flow,
                    int accumulate, double *energy, wff_error *err);
 /* integrator.c: the friction clamp's Coulomb correction of the in-plane
  * velocities v (5 per node) of the clamped nodes over dt_mid; returns the

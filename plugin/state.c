@@ -76,7 +76,7 @@ static int forces_now(wff_model *m, wff_error *err)
 {
     wff_force_totals t;
     memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
-    wff_zones_forces(m, m->u, m->gamma_f, 0, m->f, &t);
+    wff_zones_forces(m, m->u, m->state, 0, m->f, &t);
     if (t.bad_element >= 0) {
         char name[96];
         wff_model_element_name(m, t.bad_element, name, sizeof name);

@@ -4,8 +4,9 @@
  * the mesh at assignment, node numbers the model's), so the element kernels
  * run unchanged on each; the model's own m->el stays the whole mesh (geometry
  * and output). The force pass, masses, stable step and energy split loop over
- * the zones; γᶠ is gathered from the model's array into a zone's and scattered
- * back around each pass. A zone's cell may see its own diagonal preload,
+ * the zones; the points' internal state is gathered from the model's array
+ * (m->n_state per point) into a zone's (its material's n_state per point: a
+ * prefix of the model's, the same names) and scattered back around each pass. A zone's cell may see its own diagonal preload,
  * matched to the model cell's membrane forces at the model's preload
  * (docs/model.md "Zonal materials"). Knows the model, elements and cells
  * through their tables; nothing of the integrator's step, contact, output
@@ -29,7 +30,8 @@ typedef struct wff_zone {
     int *element;
     int *tri, *quad;          /* connectivity copies the zone's wff_elements points into */
     wff_elements el;
-    double *gamma_f;          /* the zone's γᶠ (3 per tri, then 4 per quad) */
+    double *state;            /* the zone's points' states (3 points per tri, then 4 per
+                                 quad; the zone material's n_state each) */
 } wff_zone;
 
 struct wff_zones {
@@ -45,10 +47,10 @@ static void zone_unbuild(wff_zone *z)
     free(z->element);
     free(z->tri);
     free(z->quad);
-    free(z->gamma_f);
+    free(z->state);
     wff_elements_free(&z->el);
     z->element = z->tri = z->quad = NULL;
-    z->gamma_f = NULL;
+    z->state = NULL;
     z->n_elements = z->n_tris = 0;
 }
 
@@ -87,21 +89,85 @@ static size_t point_base(int e, int n_tris)
                             (size_t)WFF_QUAD_POINTS * (size_t)(e - n_tris);
 }
 
-/* γᶠ of zone z's elements from (to_model 0) or into (1) the model's array. */
-static void zone_gamma(const wff_model *m, wff_zone *z, double *gamma_f, int to_model)
+/* The material of zone k (zone 0: the model's). */
+static const wff_material *zone_mat(const wff_model *m, int k)
 {
-    int nt = m->el.n_tris;
+    return k == 0 ? &m->mat : &m->zones->zone[k].mat;
+}
+
+/* The states of zone k's points from (to_model 0) or into (1) the model's
+ * array state (m->n_state per point): the zone's n_state first of each. */
+static void zone_state(const wff_model *m, int k, double *state, int to_model)
+{
+    wff_zone *z = &m->zones->zone[k];
+    const int nt = m->el.n_tris, ns = m->n_state, nz = zone_mat(m, k)->n_state;
+    if (nz == 0)
+        return;
     for (int i = 0; i < z->n_elements; i++) {
         int e = z->element[i];
         int np = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
-        double *global = gamma_f + point_base(e, nt), *local = z->gamma_f + point_base(i, z->n_tris);
-        for (int q = 0; q < np; q++) {
-            if (to_model)
-                global[q] = local[q];
-            else
-                local[q] = global[q];
-        }
+        double *global = state + (size_t)ns * point_base(e, nt);
+        double *local = z->state + (size_t)nz * point_base(i, z->n_tris);
+        for (int q = 0; q < np; q++)
+            for (int j = 0; j < nz; j++) {
+                if (to_model)
+                    global[ns * q + j] = local[nz * q + j];
+                else
+                    local[nz * q + j] = global[ns * q + j];
+            }
     }
+}
+
+/* The material whose state_names name the model's states: the one with the
+ * most states (the model's own without zones or on a tie). */
+static const wff_material *state_material(const wff_model *m)
+{
+    const wff_material *best = &m->mat;
+    for (int k = 1; m->zones && k < m->zones->n; k++)
+        if (zone_mat(m, k)->n_state > best->n_state)
+            best = zone_mat(m, k);
+    return best;
+}
+
+const char *wff_model_state_name(const wff_model *m, int i)
+{
+    const wff_material *mat = state_material(m);
+    return i >= 0 && i < mat->n_state ? mat->cell->state_names[i] : "";
+}
+
+/* A zone of material mat: its states must be a prefix of the model's (the
+ * same names) or the model's a prefix of its; in the second case the model's
+ * points take its layout (m->state re-laid with the larger stride, each
+ * point's values kept, the new states 0). -1 (err set) otherwise. */
+static int zone_states_fit(wff_model *m, const wff_material *mat, const char *path,
+                           wff_error *err)
+{
+    const wff_material *have = state_material(m);
+    int common = mat->n_state < have->n_state ? mat->n_state : have->n_state;
+    for (int i = 0; i < common; i++)
+        if (strcmp(mat->cell->state_names[i], have->cell->state_names[i]) != 0)
+            return wff_fail(err, "zone material '%s': cell '%s' carries state %d '%s' where "
+                            "the model's points carry '%s' (cell '%s'): a zone's states must "
+                            "be a prefix of the model's or extend them", path,
+                            mat->cell->name, i + 1, mat->cell->state_names[i],
+                            have->cell->state_names[i], have->cell->name);
+    if (mat->n_state <= m->n_state)
+        return 0;
+    size_t np = (size_t)(WFF_TRI_POINTS * m->el.n_tris + WFF_QUAD_POINTS * m->el.n_quads);
+    size_t ns = (size_t)mat->n_state;
+    double *wide = calloc(np * ns > 0 ? np * ns : 1, sizeof(double));
+    if (!wide)
+        return wff_fail(err, "zone material '%s': out of memory for %zu points' states", path,
+                        np);
+    for (size_t p = 0; p < np; p++)
+        for (int j = 0; j < m->n_state; j++)
+            wide[ns * p + (size_t)j] = m->state[(size_t)m->n_state * p + (size_t)j];
+    free(m->state);
+    m->state = wide;
+    m->n_state = mat->n_state;
+    free(m->operator_scratch); /* sized for the old layout: operators.c allocates anew */
+    m->operator_scratch = NULL;
+    return 0;
 }
 
 /* The zones' element sets from element_zone. */
@@ -124,8 +190,9 @@ static int build(wff_model *m, wff_error *err)
         z->element = malloc(sizeof(int) * (size_t)count);
         z->tri = malloc(sizeof(int) * 3 * (size_t)(tris ? tris : 1));
         z->quad = malloc(sizeof(int) * 4 * (size_t)(quads ? quads : 1));
-        z->gamma_f = malloc(sizeof(double) * (point_base(count, tris) + 1));
-        if (!z->element || !z->tri || !z->quad || !z->gamma_f) {
+        z->state = malloc(sizeof(double) *
+                          ((size_t)zone_mat(m, k)->n_state * point_base(count, tris) + 1));
+        if (!z->element || !z->tri || !z->quad || !z->state) {
             zone_unbuild(z);
             return wff_fail(err, "zones: out of memory for zone %d (%d elements)", k, count);
         }
@@ -157,7 +224,7 @@ static int preload_forces(const wff_material *mat, const double a[2], const doub
 {
     const double F[6] = {a[0], 0, 0, a[1], 0, 0};
     wff_point_result r;
-    if (wff_material_evaluate(mat, F, dA, 0, 0, &r) != WFF_POINT_OK)
+    if (wff_material_evaluate(mat, F, dA, wff_rest_state, 0, &r) != WFF_POINT_OK)
         return -1;
     sigma[0] = r.stress[0] / a[1];
     sigma[1] = r.stress[3] / a[0];
@@ -254,6 +321,8 @@ static int zone_elements_model(wff_model *m, const unsigned char *selected,
         return wff_fail(err, "zone material '%s': a matched preload is for a cell without "
                         "amplitudes (cell '%s' has them: use the shared preload)",
                         material_path, mat.cell->name);
+    if (zone_states_fit(m, &mat, material_path, err))
+        return -1;
     int fresh = m->zones == NULL;
     if (fresh) {
         struct wff_zones *Z = calloc(1, sizeof *Z);
@@ -384,15 +453,15 @@ int wff_model_zone_elements(wff_model *m, const unsigned char *selected,
     return n;
 }
 
-void wff_zones_forces(wff_model *m, const double *u, double *gamma_f, double dt, double *f,
+void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, double *f,
                       wff_force_totals *totals)
 {
     struct wff_zones *Z = m->zones;
     if (!Z) {
-        wff_elements_forces(&m->el, &m->em, m->mesh.xy, u, gamma_f, dt, f, totals);
+        wff_elements_forces(&m->el, &m->em, m->mesh.xy, u, state, dt, f, totals);
         return;
     }
-    totals->internal_energy = totals->dissipated = 0;
+    totals->internal_energy = totals->dissipated = totals->failure_dissipated = 0;
     totals->bad_element = -1;
     totals->bad_point = 0;
     totals->bad_status = WFF_POINT_OK;
@@ -406,12 +475,13 @@ void wff_zones_forces(wff_model *m, const double *u, double *gamma_f, double dt,
         wff_element_material em;
         zone_material(m, k, &em);
         z->el.n_threads = m->el.n_threads <= z->el.max_threads ? m->el.n_threads : 1;
-        zone_gamma(m, z, gamma_f, 0);
+        zone_state(m, k, state, 0);
         wff_force_totals t;
-        wff_elements_forces(&z->el, &em, m->mesh.xy, u, z->gamma_f, dt, f, &t);
-        zone_gamma(m, z, gamma_f, 1);
+        wff_elements_forces(&z->el, &em, m->mesh.xy, u, z->state, dt, f, &t);
+        zone_state(m, k, state, 1);
         totals->internal_energy += t.internal_energy;
         totals->dissipated += t.dissipated;
+        totals->failure_dissipated += t.failure_dissipated;
         totals->amplitude_iterations += t.amplitude_iterations;
         if (t.bad_element >= 0 && totals->bad_element < 0) {
             totals->bad_element = z->element[t.bad_element];
@@ -466,26 +536,26 @@ double wff_zones_stable_step(const wff_model *m, const double *u, int *worst)
     return dt;
 }
 
-void wff_zones_energy_split(const wff_model *m, const double *u, const double *gamma_f,
+void wff_zones_energy_split(const wff_model *m, const double *u, const double *state,
                             double *mech)
 {
     const struct wff_zones *Z = m->zones;
     if (!Z) {
-        wff_elements_energy_split(&m->el, &m->em, m->mesh.xy, u, gamma_f, mech);
+        wff_elements_energy_split(&m->el, &m->em, m->mesh.xy, u, state, mech);
         return;
     }
     const wff_cell_type *base = m->mat.cell;
     for (int j = 0; j < base->n_mech && j < WFF_MECH_MAX; j++)
         mech[j] = 0;
     for (int k = 0; k < Z->n; k++) {
-        wff_zone *z = (wff_zone *)&Z->zone[k]; /* its γᶠ scratch only */
+        wff_zone *z = (wff_zone *)&Z->zone[k]; /* its state scratch only */
         if (z->n_elements == 0)
             continue;
         wff_element_material em;
         zone_material(m, k, &em);
-        zone_gamma(m, z, (double *)gamma_f, 0);
+        zone_state(m, k, (double *)state, 0);
         double part[WFF_MECH_MAX] = {0};
-        wff_elements_energy_split(&z->el, &em, m->mesh.xy, u, z->gamma_f, part);
+        wff_elements_energy_split(&z->el, &em, m->mesh.xy, u, z->state, part);
         const wff_cell_type *cell = em.mat->cell;
         for (int i = 0; i < cell->n_mech && i < WFF_MECH_MAX; i++)
             for (int j = 0; j < base->n_mech && j < WFF_MECH_MAX; j++)
@@ -501,6 +571,20 @@ const wff_element_material *wff_zones_element_material(const wff_model *m, int e
         return &m->em;
     zone_material(m, m->zones->element_zone[e], scratch);
     return scratch;
+}
+
+int wff_zones_center_eval(const wff_model *m, const double *u, int e, wff_point_result *out)
+{
+    wff_element_material scratch;
+    const wff_element_material *em = wff_zones_element_material(m, e, &scratch);
+    const int nt = m->el.n_tris, n = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
+    const int ns = m->n_state, nz = em->mat->n_state;
+    const double *g = m->state + (size_t)ns * point_base(e, nt);
+    double mean[WFF_STATE_MAX] = {0}; /* as wff_element_center_eval: Σ_q s_q / n */
+    for (int q = 0; q < n; q++)
+        for (int j = 0; j < nz; j++)
+            mean[j] += g[ns * q + j] / n;
+    return wff_element_center_eval_state(&m->el, em, m->mesh.xy, u, mean, e, out);
 }
 
 int wff_zones_diag(const wff_model *m, int e, int diag)

@@ -12,10 +12,11 @@
 /* Free the zones (wff_model_free). */
 void wff_zones_free(wff_model *m);
 /* The element force pass: wff_elements_forces over each zone with its own
- * material and preload, adding into f (not zeroed here), γᶠ (the model's
- * layout, 3 per tri then 4 per quad) advanced by dt; totals summed, a bad
+ * material and preload, adding into f (not zeroed here), the points' states
+ * (the model's layout: 3 points per tri then 4 per quad, m->n_state each; a
+ * zone's material carries a prefix) advanced by dt; totals summed, a bad
  * element numbered in the model. */
-void wff_zones_forces(wff_model *m, const double *u, double *gamma_f, double dt, double *f,
+void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, double *f,
                       wff_force_totals *totals);
 /* Lumped masses of every zone into m->mass (zeroed first). */
 void wff_zones_masses(wff_model *m);
@@ -24,8 +25,12 @@ double wff_zones_stable_step(const wff_model *m, const double *u, int *worst);
 /* Energy per mechanism in the order of the model's cell's mech_names; a zone
  * of another cell adds each of its mechanisms to the one of the same name
  * (one without a namesake is left out). */
-void wff_zones_energy_split(const wff_model *m, const double *u, const double *gamma_f,
+void wff_zones_energy_split(const wff_model *m, const double *u, const double *state,
                             double *mech);
+/* Element e (model numbering) evaluated at its centre with its zone's
+ * material and preload, each of its material's states held at the mean of
+ * the element's points (m->state), displacement u; the point status. */
+int wff_zones_center_eval(const wff_model *m, const double *u, int e, wff_point_result *out);
 /* The material and preload element e (model numbering) sees: &m->em, or
  * *scratch filled for its zone. */
 const wff_element_material *wff_zones_element_material(const wff_model *m, int e,

@@ -17,9 +17,10 @@
 extern "C" {
 #endif
 
-/* Solve R(F, dA) = 0 for dA (in: first guess, out: solution) with gamma_f
- * held. Fails (naming the state) if GSL does not converge. */
-int wff_balance_amplitudes(const wff_material *mat, const double F[6], double gamma_f,
+/* Solve R(F, dA) = 0 for dA (in: first guess, out: solution) with the
+ * point's internal state (mat->n_state values; NULL: all 0) held. Fails
+ * (naming the state) if GSL does not converge. */
+int wff_balance_amplitudes(const wff_material *mat, const double F[6], const double *state,
                            double dA[2], wff_error *err);
 
 typedef enum wff_hold {
@@ -40,7 +41,8 @@ typedef struct wff_biaxial_state {
  * stretch, a resultant P_kk (N/m) or a yarn tension (N). state holds the first guess on entry
  * (stretch for free directions, dA) and the solution on return. */
 int wff_biaxial_static(const wff_material *mat, const wff_hold hold[2], const double target[2],
-                       double gamma_f, wff_biaxial_state *state, wff_error *err);
+                       const double *point_state, wff_biaxial_state *state,
+                       wff_error *err);
 
 /* Equal-force biaxial preload: every yarn of both families carries the
  * tension yarn_force (N), amplitudes balanced, no shear. This is how the paper
@@ -70,20 +72,20 @@ int wff_shear_static(const wff_material *mat, double gamma, double dA[2],
 #define WFF_BALANCE_STEP_TOLERANCE 1e-13 /* m: amplitudes are ~1e-5 m */
 #define WFF_BALANCE_STEP_LIMIT 1e-5      /* m */
 
-/* R_k and ∂R_k/∂ΔA_m (tangent[2k + m]) at one point, γᶠ held: the cell's
+/* R_k and ∂R_k/∂ΔA_m (tangent[2k + m]) at one point, state held: the cell's
  * amplitude_tangent, or for a cell without it forward differences of
  * evaluate() with a 1 nm step (the static path's Jacobian before the op).
  * Returns the cell's status (WFF_POINT_DEGENERATE: outputs NaN). */
 static inline int wff_amplitude_tangent(const wff_material *mat, const double F[6],
-                                        const double dA[2], double gamma_f,
+                                        const double dA[2], const double *state,
                                         double residual[2], double tangent[4])
 {
     const wff_cell_type *cell = mat->cell;
     if (cell->amplitude_tangent)
-        return cell->amplitude_tangent(mat->params, F, dA, gamma_f, residual, tangent);
+        return cell->amplitude_tangent(mat->params, F, dA, state, residual, tangent);
     const double h = 1e-9; /* m */
     wff_point_result r0, r1, r2;
-    int status = cell->evaluate(mat->params, F, dA, gamma_f, 0, &r0);
+    int status = cell->evaluate(mat->params, F, dA, state, 0, &r0);
     residual[0] = r0.residual[0];
     residual[1] = r0.residual[1];
     if (status != WFF_POINT_OK) {
@@ -92,8 +94,8 @@ static inline int wff_amplitude_tangent(const wff_material *mat, const double F[
         return status;
     }
     const double d1[2] = {dA[0] + h, dA[1]}, d2[2] = {dA[0], dA[1] + h};
-    cell->evaluate(mat->params, F, d1, gamma_f, 0, &r1);
-    cell->evaluate(mat->params, F, d2, gamma_f, 0, &r2);
+    cell->evaluate(mat->params, F, d1, state, 0, &r1);
+    cell->evaluate(mat->params, F, d2, state, 0, &r2);
     tangent[0] = (r1.residual[0] - r0.residual[0]) / h;
     tangent[1] = (r2.residual[0] - r0.residual[0]) / h;
     tangent[2] = (r1.residual[1] - r0.residual[1]) / h;
@@ -124,7 +126,7 @@ wff_balance_newton_step(const double residual[2], const double tangent[4], doubl
 
 /* Quasi-static amplitudes at one point, for the elements' static-amplitude
  * path (membrane.c; docs/model.md §13): Newton on R(F, ΔA) = 0 with the
- * cell's tangent (wff_amplitude_tangent, γᶠ held), from the point's last ΔA
+ * cell's tangent (wff_amplitude_tangent, the state held), from the point's last ΔA
  * (dA: in and out), at most WFF_BALANCE_MAX_ITERATIONS tangents (their count
  * into *iterations); then the evaluation with the step dt into out. Returns
  * the evaluation's status, or WFF_POINT_UNBALANCED when Newton did not
@@ -135,14 +137,14 @@ wff_balance_newton_step(const double residual[2], const double tangent[4], doubl
  * kernels', and kept out of line (noinline) so that the element loops that
  * call it keep their size and speed. */
 static __attribute__((noinline, unused)) int
-wff_balance_point(const wff_material *mat, const double Fe[6], double dA[2], double gf, double dt,
-                  wff_point_result *out, int *iterations)
+wff_balance_point(const wff_material *mat, const double Fe[6], double dA[2], const double *state,
+                  double dt, wff_point_result *out, int *iterations)
 {
     int it = 0, converged = 0;
     while (!converged && it < WFF_BALANCE_MAX_ITERATIONS) {
         double residual[2], tangent[4];
         it++;
-        if (wff_amplitude_tangent(mat, Fe, dA, gf, residual, tangent) != WFF_POINT_OK)
+        if (wff_amplitude_tangent(mat, Fe, dA, state, residual, tangent) != WFF_POINT_OK)
             break;
         double big = wff_balance_newton_step(residual, tangent, dA, 1);
         if (!(big >= 0))
@@ -150,7 +152,7 @@ wff_balance_point(const wff_material *mat, const double Fe[6], double dA[2], dou
         converged = big < WFF_BALANCE_STEP_TOLERANCE;
     }
     *iterations = it;
-    int status = mat->cell->evaluate(mat->params, Fe, dA, gf, dt, out);
+    int status = mat->cell->evaluate(mat->params, Fe, dA, state, dt, out);
     if (status == WFF_POINT_OK && !converged && isfinite(out->residual[0] + out->residual[1]))
         return WFF_POINT_UNBALANCED;
     return status;
@@ -158,7 +160,7 @@ wff_balance_point(const wff_material *mat, const double Fe[6], double dA[2], dou
 
 /* The same Newton for a block of WFF_BLOCK points, lanes in lockstep (a lane
  * that converged or failed holds), with the cell's amplitude_tangent_block:
- * blk holds F, γᶠ and the first guesses ΔA on entry, the solutions on
+ * blk holds F, the state and the first guesses ΔA on entry, the solutions on
  * return; iterations[b] the tangents lane b used, converged[b] 1 where it
  * converged (0: degenerate, singular or out of iterations; the caller
  * reports it). Returns −1, with nothing changed, when the cell has no

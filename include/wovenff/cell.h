@@ -1,9 +1,10 @@
 /* wovenff — the weave unit-cell interface.
  *
  * A unit cell turns the membrane deformation gradient F (3x2), the changes in
- * crimp amplitude dA and the dissipative shear angle gamma_f at one material
- * point into a membrane stress resultant, amplitude residuals, stored energy
- * and diagnostics. It is pure pointwise physics: no mesh, no I/O, no
+ * crimp amplitude dA and the point's internal state (n_state values the cell
+ * names: King's dissipative shear angle gamma_f, ...) at one material point
+ * into a membrane stress resultant, amplitude residuals, an updated state,
+ * stored energy and diagnostics. It is pure pointwise physics: no mesh, no I/O, no
  * allocation.
  *
  * A cell is a constant ops table (in the spirit of SUNDIALS' N_Vector):
@@ -22,11 +23,22 @@
  *   - Reentrant. The ops run inside OpenMP loops, many threads at once on
  *     the same params: no static mutable state, nothing written but the
  *     outputs given; params are read only after parse().
- *   - Static names. diag_names, diag_units and mech_names (and name, summary)
- *     live as long as the program: static storage, never freed or rewritten.
+ *   - Static names. diag_names, diag_units, mech_names, state_names and
+ *     state_units (and name, summary) live as long as the program: static
+ *     storage, never freed or rewritten.
  *   - Sizes. n_amplitudes is 0 or 2 (WFF_AMPLITUDES_MAX); n_diag <=
  *     WFF_DIAG_MAX; n_mech <= WFF_MECH_MAX; parse()'s struct fits in
- *     WFF_CELL_PARAMS_MAX doubles.
+ *     WFF_CELL_PARAMS_MAX doubles; 0 <= mat->n_state <= n_state_max <=
+ *     WFF_STATE_MAX.
+ *   - Internal state. A point carries mat->n_state doubles (parse sets the
+ *     count: a prefix of state_names), every one 0 at the start (the
+ *     reference state is state 0 everywhere). evaluate reads them and writes
+ *     the updated values to out->state[0 .. n_state−1] (entries beyond are
+ *     not read by callers). A state never changes in a dt = 0 evaluation
+ *     (held): then out->state equals the input. damage_state[k] names the
+ *     state holding yarn family k's damage (0 intact .. 1 ruptured, never
+ *     decreasing) or is −1. A cell with n_state 0 gets a valid pointer it
+ *     must not read.
  *   - Statuses. evaluate and evaluate_shared return WFF_POINT_OK or
  *     WFF_POINT_DEGENERATE; the element code adds WFF_POINT_NONFINITE for a
  *     NaN or infinite state or result (a cell need not check for it).
@@ -76,6 +88,8 @@ extern "C" {
 #define WFF_MECH_MAX 8
 /* Most amplitude degrees of freedom per node (the two crimp amplitudes). */
 #define WFF_AMPLITUDES_MAX 2
+/* Most internal state variables per material point (γᶠ, damage, ...). */
+#define WFF_STATE_MAX 6
 
 typedef struct wff_cell_type wff_cell_type;
 typedef struct wff_kv wff_kv; /* parsed material file, see material.h */
@@ -91,11 +105,14 @@ typedef struct wff_tri_block {
     int n;                                  /* lanes in use */
     double F[6][WFF_BLOCK];                 /* F seen by the cell (preload applied) */
     double dA[3][2][WFF_BLOCK];             /* amplitudes at the three points, m */
-    double gamma_f[3][WFF_BLOCK];           /* in: state, out: updated */
+    double state[3][WFF_STATE_MAX][WFF_BLOCK]; /* in: point p's state i at [p][i], out:
+                                               updated (entries i < n_state only) */
     double stress[6][WFF_BLOCK];            /* out: mean P of the three points, N/m */
     double residual[3][2][WFF_BLOCK];       /* out: R_k at each point, N/m² */
     double energy[WFF_BLOCK];               /* out: mean W of the three points, J/m² */
-    double dissipated[WFF_BLOCK];           /* out: mean dissipation, J/m² */
+    double dissipated[WFF_BLOCK];           /* out: mean shear dissipation, J/m² */
+    double failure_dissipated[WFF_BLOCK];   /* out: mean energy released by yarn damage,
+                                               J/m² */
     int degenerate[WFF_BLOCK];              /* out: 1 where a yarn collapsed or the yarns
                                                are parallel (outputs then meaningless) */
 } wff_tri_block;
@@ -108,11 +125,14 @@ typedef struct wff_point_block {
     int n;                                  /* lanes in use */
     double F[6][WFF_BLOCK];                 /* F seen by the cell (preload applied) */
     double dA[2][WFF_BLOCK];                /* amplitude changes ΔA_k, m */
-    double gamma_f[WFF_BLOCK];              /* in: state, out: updated */
+    double state[WFF_STATE_MAX][WFF_BLOCK]; /* in: state i at [i], out: updated
+                                               (entries i < n_state only) */
     double stress[6][WFF_BLOCK];            /* out: P, N/m */
     double residual[2][WFF_BLOCK];          /* out: R_k, N/m² */
     double energy[WFF_BLOCK];               /* out: W, J/m² */
-    double dissipated[WFF_BLOCK];           /* out: dissipation of this update, J/m² */
+    double dissipated[WFF_BLOCK];           /* out: shear dissipation of this update, J/m² */
+    double failure_dissipated[WFF_BLOCK];   /* out: energy released by yarn damage in this
+                                               update, J/m² */
     int degenerate[WFF_BLOCK];              /* out: 1 where a yarn collapsed or the yarns
                                                are parallel (outputs then meaningless) */
 } wff_point_block;
@@ -123,7 +143,7 @@ typedef struct wff_point_block {
 typedef struct wff_tangent_block {
     double F[6][WFF_BLOCK];          /* F seen by the cell (preload applied) */
     double dA[2][WFF_BLOCK];         /* ΔA_k, m */
-    double gamma_f[WFF_BLOCK];       /* γᶠ, held */
+    double state[WFF_STATE_MAX][WFF_BLOCK]; /* the point's state (n_state entries), held */
     double residual[2][WFF_BLOCK];   /* out: R_k, N/m² */
     double tangent[4][WFF_BLOCK];    /* out: ∂R_k/∂ΔA_m at [2k + m], N/m³ */
     int degenerate[WFF_BLOCK];       /* out: 1 where evaluate() would say degenerate */
@@ -145,6 +165,9 @@ typedef struct wff_material {
     double yarn_spacing[2];              /* distance between neighbouring yarns of
                                             family k, m: one yarn carries
                                             P_kk * yarn_spacing[k] (set by parse) */
+    int n_state;                         /* internal state variables per point, a prefix
+                                            of the cell's state_names (set by parse;
+                                            <= cell->n_state_max) */
     double params[WFF_CELL_PARAMS_MAX];  /* the cell's own parameter struct */
     char source[256];                    /* where it came from, for messages */
 } wff_material;
@@ -153,9 +176,13 @@ typedef struct wff_material {
 typedef struct wff_point_result {
     double stress[6];             /* P, N/m, row-major 3x2 */
     double residual[WFF_AMPLITUDES_MAX]; /* R_k, N/m^2 (0 for cells without amplitudes) */
-    double gamma_f;               /* updated dissipative shear angle, rad */
+    double state[WFF_STATE_MAX];  /* updated internal state (entries < n_state), named by
+                                     state_names (King: state[0] = γᶠ, rad) */
     double energy;                /* stored energy W, J/m^2 */
-    double dissipated;            /* energy dissipated by this update, J/m^2 (>= 0) */
+    double dissipated;            /* energy dissipated by shear flow in this update,
+                                     J/m^2 (>= 0) */
+    double failure_dissipated;    /* stored energy released by yarn damage in this update,
+                                     J/m^2 (>= 0; 0 for cells without failure) */
     double diag[WFF_DIAG_MAX];    /* cell-specific, named by diag_names */
 } wff_point_result;
 
@@ -185,17 +212,28 @@ struct wff_cell_type {
     int n_mech;                         /* mechanisms in energy_split */
     const char *const *mech_names;      /* e.g. "yarn_stretch" */
 
+    int n_state_max;                    /* most internal states a point of this cell
+                                           carries (a material's n_state <= this) */
+    const char *const *state_names;     /* n_state_max names, e.g. "gamma_f" (the field
+                                           names of the state in outputs) */
+    const char *const *state_units;     /* e.g. "rad" */
+    int damage_state[2];                /* index in a point's state of yarn family k's
+                                           damage (0 intact .. 1 ruptured), or −1 when
+                                           the cell has no yarn failure */
+
     /* Required. Read this cell's keys from kv (wff_kv_number and friends),
      * validate them, compute derived reference quantities into mat->params.
-     * Keys the cell does not take are reported by the caller as unknown. */
+     * Keys the cell does not take are reported by the caller as unknown.
+     * Sets mat->n_state (the caller presets it to n_state_max). */
     int (*parse)(wff_kv *kv, wff_material *mat, wff_error *err);
 
-    /* Required. One material point. dt > 0 advances gamma_f by the cell's flow
-     * rule (backward Euler); dt = 0 holds it fixed, which makes stress and
-     * residual the exact derivatives of energy. Returns WFF_POINT_OK or
-     * WFF_POINT_DEGENERATE (out is then filled with NaN). */
+    /* Required. One material point with state[0 .. n_state−1]. dt > 0 advances
+     * the state (King: γᶠ by the flow rule, backward Euler) into out->state;
+     * dt = 0 holds it fixed, which makes stress and residual the exact
+     * derivatives of energy. Returns WFF_POINT_OK or WFF_POINT_DEGENERATE (out
+     * is then filled with NaN). */
     int (*evaluate)(const void *params, const double F[6], const double dA[2],
-                    double gamma_f, double dt, wff_point_result *out);
+                    const double *state, double dt, wff_point_result *out);
 
     /* Required. Upper bounds for the stable explicit step at this state:
      * membrane_speed, m/s, the fastest in-plane wave (dt <= h / speed), and
@@ -209,21 +247,22 @@ struct wff_cell_type {
     /* Optional. Stored energy per mechanism, J/m^2, n_mech values that add up
      * to evaluate()'s energy. */
     void (*energy_split)(const void *params, const double F[6], const double dA[2],
-                         double gamma_f, double *mech_energy);
+                         const double *state, double *mech_energy);
 
     /* Optional fast path: n_points material points sharing one F (a linear
      * triangle with nodal quadrature), so the F-dependent kinematics are done
      * once. Point q has amplitudes dA[2q], dA[2q+1], weight weight[q] and state
-     * gamma_f[q] (updated in place with step dt). Adds Σ_q weight[q] P_q into
-     * stress_sum, writes residual[2q + k] = R_k at point q (unweighted), and
-     * adds Σ weight[q] W_q to *energy and Σ weight[q] × dissipated_q to
-     * *dissipated. Must agree with evaluate() to round-off (tested). Returns
-     * WFF_POINT_OK, or the status of the first failing point, whose index goes
-     * to *bad_point. */
+     * state[q n_state .. q n_state + n_state − 1] (n_state the material's;
+     * updated in place with step dt). Adds Σ_q weight[q] P_q into stress_sum,
+     * writes residual[2q + k] = R_k at point q (unweighted), and adds
+     * Σ weight[q] W_q to *energy, Σ weight[q] × dissipated_q to *dissipated
+     * and Σ weight[q] × failure_dissipated_q to *failure_dissipated. Must
+     * agree with evaluate() to round-off (tested). Returns WFF_POINT_OK, or
+     * the status of the first failing point, whose index goes to *bad_point. */
     int (*evaluate_shared)(const void *params, const double F[6], int n_points,
-                           const double *dA, const double *weight, double *gamma_f, double dt,
+                           const double *dA, const double *weight, double *state, double dt,
                            double stress_sum[6], double *residual, double *energy,
-                           double *dissipated, int *bad_point);
+                           double *dissipated, double *failure_dissipated, int *bad_point);
 
     /* Optional, faster still: a whole block of triangles at once, written so
      * the compiler vectorises across the lanes. Returns 0 when it handled the
@@ -239,21 +278,21 @@ struct wff_cell_type {
      * the cell has no such geometry (nothing is drawn). */
     void (*reference_geometry)(const void *params, double pitch0[2], double amplitude0[2]);
 
-    /* Optional: a block of independent points (each its own F, ΔA, γᶠ; the
+    /* Optional: a block of independent points (each its own F, ΔA, state; the
      * Gauss points of quads), vectorised across the lanes like
      * evaluate_tri_block. Returns 0 when it handled the block, −1 when these
      * parameters need evaluate() (params only, never the state). Must agree
-     * with evaluate() to round-off, γᶠ update included (tested). */
+     * with evaluate() to round-off, state update included (tested). */
     int (*evaluate_point_block)(const void *params, double dt, wff_point_block *block);
 
     /* Optional (cells with amplitudes). The amplitude residual R_k at one
-     * point with γᶠ held, as evaluate() gives it with dt = 0, into residual,
+     * point with its state held, as evaluate() gives it with dt = 0, into residual,
      * and its exact tangent ∂R_k/∂ΔA_m into tangent[2k + m] (N/m³): the
      * static-amplitude Newton's Jacobian (balance.h). Returns WFF_POINT_OK or
      * WFF_POINT_DEGENERATE, as evaluate() would. When NULL, callers use
      * wff_amplitude_tangent's forward differences of evaluate(). */
     int (*amplitude_tangent)(const void *params, const double F[6], const double dA[2],
-                             double gamma_f, double residual[2], double tangent[4]);
+                             const double *state, double residual[2], double tangent[4]);
 
     /* Optional, the same for a block of points, vectorised across the lanes.
      * Returns 0, or −1 when these parameters need the general path (on params
@@ -282,11 +321,17 @@ const wff_cell_type *wff_cell_at(int index);            /* 0 <= index < count */
 
 /* Convenience: evaluate a material point with a loaded material. */
 static inline int wff_material_evaluate(const wff_material *mat, const double F[6],
-                                        const double dA[2], double gamma_f, double dt,
+                                        const double dA[2], const double *state, double dt,
                                         wff_point_result *out)
 {
-    return mat->cell->evaluate(mat->params, F, dA, gamma_f, dt, out);
+    return mat->cell->evaluate(mat->params, F, dA, state, dt, out);
 }
+
+/* The state every point starts from (all zeros), for evaluations at rest. */
+static const double wff_rest_state[WFF_STATE_MAX] = {0};
+
+/* Index of the state named `name` in mat's points (< mat->n_state), or −1. */
+int wff_material_state_index(const wff_material *mat, const char *name);
 
 #ifdef __cplusplus
 }

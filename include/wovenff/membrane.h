@@ -80,6 +80,7 @@ typedef struct wff_element_material {
 typedef struct wff_force_totals {
     double internal_energy;  /* Σ ∫ W dA, J */
     double dissipated;       /* shear-flow dissipation in this pass, J */
+    double failure_dissipated; /* stored energy released by yarn damage in this pass, J */
     int bad_element;         /* −1, or the first element whose point failed */
     int bad_point;           /* quadrature point of bad_element */
     int bad_status;          /* WFF_POINT_DEGENERATE, WFF_POINT_NONFINITE or
@@ -110,9 +111,11 @@ void wff_elements_free(wff_elements *el);
 int wff_elements_set_threads(wff_elements *el, int n_threads, wff_error *err);
 
 /* Add internal forces of every element at displacement u (5 per node) into f,
- * update gamma_f (3 per tri then 4 per quad) with step dt (0: hold it). */
+ * update the points' internal state (em->mat->n_state per quadrature point,
+ * 3 points per tri then 4 per quad: point p's state i at state[n_state p + i])
+ * with step dt (0: hold it). */
 void wff_elements_forces(const wff_elements *el, const wff_element_material *em, const double *X,
-                         const double *u, double *gamma_f, double dt, double *f,
+                         const double *u, double *state, double dt, double *f,
                          wff_force_totals *totals);
 
 /* Switch to quasi-static amplitudes (King 2005): every quadrature point keeps
@@ -125,9 +128,9 @@ int wff_elements_static_amplitudes(wff_elements *el, wff_element_material *em,
 
 /* Stored energy per mechanism summed over the mesh, J (model part), in the
  * order of the cell's mech_names (n_mech values into mech); all zeros if the
- * cell has no energy_split. Quadrature as in the force pass, γᶠ held. */
+ * cell has no energy_split. Quadrature as in the force pass, state held. */
 void wff_elements_energy_split(const wff_elements *el, const wff_element_material *em,
-                               const double *X, const double *u, const double *gamma_f,
+                               const double *X, const double *u, const double *state,
                                double *mech);
 
 /* Lumped masses: each element's ρ_A A / J_pre shared equally among its
@@ -149,10 +152,16 @@ void wff_element_center_state(const wff_elements *el, const double *X, const dou
                               double F[6], double dA[2]);
 
 /* Point evaluation at the centre of element e with the preload applied
- * (gamma_f held at the element's mean); for output. Returns the status. */
+ * (every state held at the mean of the element's points); for output.
+ * Returns the status. */
 int wff_element_center_eval(const wff_elements *el, const wff_element_material *em,
-                            const double *X, const double *u, const double *gamma_f, int e,
+                            const double *X, const double *u, const double *state, int e,
                             wff_point_result *out);
+/* The same with the given state (em->mat->n_state values, e.g. a mean the
+ * caller formed) instead of the mean of the element's points. */
+int wff_element_center_eval_state(const wff_elements *el, const wff_element_material *em,
+                                  const double *X, const double *u, const double *held, int e,
+                                  wff_point_result *out);
 
 #ifdef __cplusplus
 }

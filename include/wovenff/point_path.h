@@ -28,7 +28,8 @@ extern "C" {
 typedef struct wff_point_state {
     double dA[2];         /* ΔA_k, m */
     double velocity[2];   /* dΔA_k/dt, m/s (dynamic amplitudes; else 0) */
-    double gamma_f;       /* γᶠ, rad */
+    double state[WFF_STATE_MAX]; /* the point's internal state (mat->n_state entries;
+                                    King: state[0] = γᶠ, rad) */
     double previous_step; /* the last amplitude step, s (0 before the first: the
                              first velocity update is then a half step) */
     long substeps;        /* amplitude or flow steps taken so far */

@@ -3,7 +3,7 @@
  * At build a model renumbers its mesh so that neighbours sit close in memory
  * (elements along a Hilbert curve through their centroids, nodes in the
  * order those elements first use them); the order depends only on the mesh.
- * The model's arrays (m->mesh, u, v, f, mass, dof_kind, gamma_f, clamp and
+ * The model's arrays (m->mesh, u, v, f, mass, dof_kind, state, clamp and
  * contact node lists, dt_worst_element) are in that order; every function of
  * the API that takes or returns node indices, DOF or node vectors, element
  * indices or element values speaks the numbering of the mesh the caller gave

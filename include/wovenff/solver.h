@@ -87,10 +87,14 @@ typedef struct wff_energies {
     double dissipated_shear;
     double dissipated_friction;  /* clamp friction, projectile friction and the inelastic
                                     normal contact */
+    double dissipated_failure;   /* stored energy released by yarn damage */
+    double eroded;               /* stored energy of eroded elements at their erosion */
     double external_work;     /* work done on the model by prescribed-velocity DOFs */
     double transfer;          /* stored + kinetic energy changed by mesh transfers
                                  (wff_model_remesh), a term of the balance like W */
-    double error;             /* (E_now + D − W) − E_0, relative to the reference energy */
+    double error;             /* (E_now + D − W) − E_0, relative to the reference energy
+                                 (D: shear, friction and failure dissipation and the
+                                 eroded energy) */
     double reference;         /* normaliser: the largest of the initial kinetic energy,
                                  the external work, the kinetic energy now and the change
                                  of stored energy since the start */
@@ -116,7 +120,11 @@ typedef struct wff_model {
     double *u, *v, *f, *mass;
     unsigned char *dof_kind;
     double *v_prescribed;     /* per DOF, used where dof_kind is PRESCRIBED */
-    double *gamma_f;
+    double *state;            /* internal state of the quadrature points (3 per tri, then
+                                 4 per quad), n_state per point: point p's state i at
+                                 state[n_state p + i] (cell.h; King: gamma_f first) */
+    int n_state;              /* states per point (mat.n_state; with zones the largest
+                                 of the zones' materials') */
     double *reaction;         /* per DOF: −f_int on fixed and prescribed DOFs, last step */
     double fabric_mass;       /* Σ nodal (displacement) masses, kg (model part) */
 
@@ -132,6 +140,9 @@ typedef struct wff_model {
     /* accumulated */
     double internal_energy;   /* at the last force pass, J (model part) */
     double dissipated_shear, dissipated_friction, external_work;
+    double dissipated_failure; /* stored energy released by yarn damage, J (model part) */
+    double eroded_energy;     /* stored energy of eroded elements at erosion, J (model part) */
+    int n_eroded;             /* elements eroded so far */
     double initial_total;     /* kinetic + internal at the start, J (model part) */
     double initial_kinetic;
     int v_half_valid;         /* 1 once v holds a half-step velocity */
@@ -293,18 +304,25 @@ double wff_model_step_estimate(const wff_model *m);
  * returns n_mech (at most WFF_MECH_MAX). */
 int wff_model_energy_split(const wff_model *m, double *out);
 
+/* Name of state i (0 <= i < m->n_state) of the model's points: the cell's
+ * state_names (with zones, those of the material carrying the most states;
+ * every zone's are a prefix of them), e.g. "gamma_f". */
+const char *wff_model_state_name(const wff_model *m, int i);
+
 /* Move the projectile (set with wff_model_set_projectile) so that its nose
  * tip is at z = tip (m; < 0: a stand-off in front of the fabric at z = 0).
  * An error, naming the node, if a fabric node would be inside it. */
 int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
 
-/* Checkpoints. wff_model_save writes the whole evolving state (u, v, f, γᶠ,
- * reactions, prescribed velocities, time, step, Δt, stable-step estimate,
+/* Checkpoints. wff_model_save writes the whole evolving state (u, v, f, every
+ * internal state of every point, reactions, prescribed velocities, time, step, Δt, stable-step estimate,
  * projectile state and contact candidates, energy accumulators, initial
  * energies) to `path`, binary, atomically (path.tmp, fsync, rename):
  *
  *   header   magic "WFFSTATE", format version, byte-order mark, the model's
  *            sizes (nodes, triangles, quads, quadrature points, candidates),
+ *            the points' state layout (n_state and the states' names: a
+ *            checkpoint of another layout is refused, naming both),
  *            64-bit FNV-1a fingerprints of the mesh (coordinates and
  *            connectivity), the material (cell and parameters), the lumped
  *            masses (material and preload) and the boundary conditions
@@ -320,7 +338,9 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 2 /* 2: the projectile's impulse_total added */
+#define WFF_CHECKPOINT_VERSION 3 /* 2: the projectile's impulse_total added; 3: the points'
+                                    generic state (n_state and names in the header, every
+                                    state saved), failure and eroded energies */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 
@@ -331,7 +351,7 @@ int wff_model_nearest_node(const wff_model *m, double x, double y);
  * Names: ux uy uz dA1 dA2 vx vy vz (the stored velocity, see state.h), A1 A2
  * (absolute amplitudes A_k0 + dA_k, m), the cell's diagnostics (e.g. T1 T2
  * F_I), gamma (shear angle, rad) and every element field of state.h (P11 ..
- * lambda1 .. gamma_f ...). Element values are averaged to nodes by area (the
+ * lambda1 .. gamma_f, every internal state by name ...). Element values are averaged to nodes by area (the
  * area-weighted mean over the elements around the node).
  * Returns -1 for an unknown name (listing the known ones). */
 int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff_error *err);

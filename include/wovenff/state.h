@@ -30,14 +30,19 @@
  *
  * Element fields (wff_model_element_field): one value per element (triangles,
  * then quadrilaterals), evaluated at the element's centre with the preload
- * applied and γᶠ held at the mean of its points (as the nodal fields are):
+ * applied and every internal state held at the mean of its points (as the
+ * nodal fields are):
  *   P11 P12 P21 P22 P31 P32   first Piola-Kirchhoff membrane stress of the
  *                             cell at F_eff = F F_pre, N/m (wovenffPoint's P)
  *   lambda1 lambda2           yarn stretches |F_eff E_k| (preload applied)
  *   shear_angle               π/2 − angle between F_eff E_1 and F_eff E_2, rad
- *   gamma_f                   mean of the element's points, rad
  *   W                         stored energy per unit cell reference area, J/m²
  *                             (per mesh area: W / det F_pre)
+ *   every internal state by its name (the cell's state_names; wff_model_state_name):
+ *                             the mean of the element's points (King, basket:
+ *                             gamma_f, the dissipative shear angle γᶠ, rad; a cell
+ *                             with yarn failure adds its damages; a zone whose
+ *                             material carries fewer states reads 0 for the rest)
  *   T1 T2                     yarn tensions, N (the cell's yarn-tension
  *                             diagnostics)
  *   every cell diagnostic by its name (a diagnostic named like one of the

@@ -135,6 +135,10 @@ _Static_assert(DIAG_COUNT <= WFF_DIAG_MAX, "basket_2x2 reports too many diagnost
 static const char *const basket_mech_names[] = {"yarn_stretch", "yarn_bending", "compaction",
                                                 "locking", "shear"};
 enum { MECH_YARN, MECH_BENDING, MECH_COMPACTION, MECH_LOCKING, MECH_SHEAR, MECH_COUNT };
+/* The internal state of a point: γᶠ, the dissipative shear angle. */
+static const char *const basket_state_names[] = {"gamma_f"};
+static const char *const basket_state_units[] = {"rad"};
+enum { STATE_GAMMA_F, STATE_COUNT };
 
 /* Kinematics, laws and energies (all but shear, which needs the flow update):
  * the yarn path, T_k, M_bk and both spars of each family, as in the header. */
@@ -188,8 +192,9 @@ static double basket_energy_but_shear(const basket_point *pt)
  * Σ_k Q_k ⊗ G_k with Q_k from wff_q_coefficients (yarn term 4 (T_k (1 + cosβ_k)
  * − M_bk sinβ_k/L_k), four shear couples, spar pulls N_m); dt > 0 advances γᶠ. */
 static int basket_evaluate(const void *params, const double F[6], const double dA[2],
-                           double gamma_f, double dt, wff_point_result *out)
+                           const double *state, double dt, wff_point_result *out)
 {
+    const double gamma_f = state[STATE_GAMMA_F];
     const basket_params *k = params;
     basket_point pt;
     if (basket_point_eval(k, F, dA, &pt) != WFF_POINT_OK) {
@@ -232,8 +237,9 @@ static int basket_evaluate(const void *params, const double F[6], const double d
 
     double energy_shear = CROSSOVERS * 0.5 * k->shear_stiffness * shear_elastic * shear_elastic;
     out->energy = (basket_energy_but_shear(&pt) + energy_shear) / k->cell_area;
-    out->gamma_f = gamma_f_new;
+    out->state[STATE_GAMMA_F] = gamma_f_new;
     out->dissipated = CROSSOVERS * shear_moment * (gamma_f_new - gamma_f) / k->cell_area;
+    out->failure_dissipated = 0;
     out->diag[DIAG_T1] = pt.yarn[0].tension;
     out->diag[DIAG_T2] = pt.yarn[1].tension;
     out->diag[DIAG_BETA1] = k->crimp_angle0[0] + pt.yarn[0].bend;
@@ -248,7 +254,7 @@ static int basket_evaluate(const void *params, const double F[6], const double d
 }
 
 static void basket_energy_split(const void *params, const double F[6], const double dA[2],
-                                double gamma_f, double *mech)
+                                const double *state, double *mech)
 {
     const basket_params *k = params;
     basket_point pt;
@@ -257,7 +263,7 @@ static void basket_energy_split(const void *params, const double F[6], const dou
             mech[i] = NAN;
         return;
     }
-    double shear_elastic = pt.fr.gamma - gamma_f;
+    double shear_elastic = pt.fr.gamma - state[STATE_GAMMA_F];
     mech[MECH_YARN] = (pt.yarn[0].energy_yarn + pt.yarn[1].energy_yarn) / k->cell_area;
     mech[MECH_BENDING] = (pt.yarn[0].energy_bending + pt.yarn[1].energy_bending) / k->cell_area;
     mech[MECH_COMPACTION] = CROSSOVERS * pt.compaction.energy / k->cell_area;
@@ -348,6 +354,7 @@ static int basket_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         mat->yarn_spacing[f] = 2 * k->pitch0[l];
     }
     k->cell_area = 16 * k->pitch0[0] * k->pitch0[1];
+    mat->n_state = STATE_COUNT;
     return 0;
 }
 
@@ -361,9 +368,9 @@ static int basket_parse(wff_kv *kv, wff_material *mat, wff_error *err)
  *   Σ_m F_Pm/e_m − (A_1 + A_2)² Σ_m [(−∂F_Pm/∂e_m)/e_m² + F_Pm/e_m³],
  * and ∂F_I/∂A_m = −∂F_I/∂I:  ∂R_k/∂ΔA_m = 4 (−∂F_I/∂I − ∂F_k^N/∂A_m)/(16 p1⁰ p2⁰). */
 static int basket_amplitude_tangent(const void *params, const double F[6], const double dA[2],
-                                    double gamma_f, double residual[2], double tangent[4])
+                                    const double *state, double residual[2], double tangent[4])
 {
-    (void)gamma_f;
+    (void)state;
     const basket_params *k = params;
     basket_point pt;
     if (basket_point_eval(k, F, dA, &pt) != WFF_POINT_OK) {
@@ -418,6 +425,10 @@ static const wff_cell_type basket_2x2 = {
     .yarn_tension_diag = {DIAG_T1, DIAG_T2},
     .n_mech = MECH_COUNT,
     .mech_names = basket_mech_names,
+    .n_state_max = STATE_COUNT,
+    .state_names = basket_state_names,
+    .state_units = basket_state_units,
+    .damage_state = {-1, -1},
     .parse = basket_parse,
     .evaluate = basket_evaluate,
     .wave_speeds = basket_wave_speeds,

@@ -233,7 +233,9 @@ static inline void wff_point_result_nan(wff_point_result *out, int n_diag)
     for (int i = 0; i < 6; i++)
         out->stress[i] = NAN;
     out->residual[0] = out->residual[1] = NAN;
-    out->energy = out->dissipated = out->gamma_f = NAN;
+    out->energy = out->dissipated = out->failure_dissipated = NAN;
+    for (int i = 0; i < WFF_STATE_MAX; i++)
+        out->state[i] = NAN;
     for (int i = 0; i < n_diag; i++)
         out->diag[i] = NAN;
 }

@@ -74,6 +74,7 @@ typedef struct king_params {
     double crimp_angle0[FAMILIES];       /* β_k⁰, rad */
     double spar_length0[FAMILIES];       /* d_k⁰, m */
     double cell_area;                    /* 4 p1⁰ p2⁰, m² */
+    int n_state;                         /* states per point (mat->n_state): γᶠ */
 } king_params;
 
 _Static_assert(sizeof(king_params) <= sizeof(((wff_material *)0)->params),
@@ -88,6 +89,11 @@ _Static_assert(DIAG_COUNT <= WFF_DIAG_MAX, "king_plain reports too many diagnost
 static const char *const king_mech_names[] = {"yarn_stretch", "yarn_bending", "compaction",
                                               "locking", "shear"};
 enum { MECH_YARN, MECH_BENDING, MECH_COMPACTION, MECH_LOCKING, MECH_SHEAR, MECH_COUNT };
+/* The internal state of a point: γᶠ, the dissipative shear angle. */
+static const char *const king_state_names[] = {"gamma_f"};
+static const char *const king_state_units[] = {"rad"};
+enum { STATE_GAMMA_F, STATE_COUNT };
+_Static_assert(STATE_COUNT <= WFF_STATE_MAX, "king_plain carries too many states");
 
 /* One yarn family k at one point: king_family_at fills the laws,
  * king_family_forces the last two forces. */
@@ -271,7 +277,7 @@ static wff_shear_flow king_flow(const king_params *k, double dt)
 /* docs/model.md §1–7: one material point. P = (1/(4 p1⁰ p2⁰)) Σ_k Q_k ⊗ G_k,
  * R_k, W = W_cell/(4 p1⁰ p2⁰); dt > 0 advances γᶠ. */
 static int king_evaluate(const void *params, const double F[6], const double dA[2],
-                         double gamma_f, double dt, wff_point_result *out)
+                         const double *state, double dt, wff_point_result *out)
 {
     const king_params *k = params;
     wff_yarn_frame fr;
@@ -281,15 +287,17 @@ static int king_evaluate(const void *params, const double F[6], const double dA[
     }
     const wff_shear_flow flow = king_flow(k, dt);
     king_point pt;
-    king_point_at(k, &fr, dA, gamma_f, &flow, k->locking_exponent, k->flow_exponent, &pt);
+    king_point_at(k, &fr, dA, state[STATE_GAMMA_F], &flow, k->locking_exponent,
+                  k->flow_exponent, &pt);
     const double inv_cell = 1 / k->cell_area;
     const double scale[FAMILIES] = {k->pitch0[0] * inv_cell, k->pitch0[1] * inv_cell};
     wff_stress_from_q(&fr, pt.q, scale, out->stress);
     out->residual[0] = pt.residual[0];
     out->residual[1] = pt.residual[1];
     out->energy = pt.energy * inv_cell;
-    out->gamma_f = pt.gamma_f;
+    out->state[STATE_GAMMA_F] = pt.gamma_f;
     out->dissipated = pt.dissipated * inv_cell;
+    out->failure_dissipated = 0;
     out->diag[DIAG_T1] = pt.yarn[0].tension;
     out->diag[DIAG_T2] = pt.yarn[1].tension;
     out->diag[DIAG_BETA1] = k->crimp_angle0[0] + pt.yarn[0].bend;
@@ -303,7 +311,7 @@ static int king_evaluate(const void *params, const double F[6], const double dA[
 
 /* docs/model.md §5: W by mechanism, γᶠ held; the terms of king_point_at's W_cell. */
 static void king_energy_split(const void *params, const double F[6], const double dA[2],
-                              double gamma_f, double *mech)
+                              const double *state, double *mech)
 {
     const king_params *k = params;
     wff_yarn_frame fr;
@@ -314,7 +322,8 @@ static void king_energy_split(const void *params, const double F[6], const doubl
     }
     const wff_shear_flow held = king_flow(k, 0);
     king_point pt;
-    king_point_at(k, &fr, dA, gamma_f, &held, k->locking_exponent, k->flow_exponent, &pt);
+    king_point_at(k, &fr, dA, state[STATE_GAMMA_F], &held, k->locking_exponent,
+                  k->flow_exponent, &pt);
     const double inv_cell = 1 / k->cell_area;
     mech[MECH_YARN] = (pt.yarn[0].energy_yarn + pt.yarn[1].energy_yarn) * inv_cell;
     mech[MECH_BENDING] = (pt.yarn[0].energy_bending + pt.yarn[1].energy_bending) * inv_cell;
@@ -413,9 +422,10 @@ static int king_wave_speeds_block(const void *params, double areal_density, wff_
  * stress assembled once from the weighted sum of the points' Q_k coefficients:
  *   P = Σ_q w_q P_q = (1/(4 p1⁰ p2⁰)) Σ_k (Σ_q w_q Q_k,q) ⊗ G_k. */
 static int king_evaluate_shared(const void *params, const double F[6], int n_points,
-                                const double *dA, const double *weight, double *gamma_f,
+                                const double *dA, const double *weight, double *state,
                                 double dt, double stress_sum[6], double *residual,
-                                double *energy, double *dissipated, int *bad_point)
+                                double *energy, double *dissipated,
+                                double *failure_dissipated, int *bad_point)
 {
     const king_params *k = params;
     wff_yarn_frame fr;
@@ -427,8 +437,9 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
     double energy_sum = 0, dissipated_sum = 0;
     for (int i = 0; i < n_points; i++) {
         king_point pt;
-        king_point_at(k, &fr, dA + 2 * i, gamma_f[i], &flow, k->locking_exponent,
-                      k->flow_exponent, &pt);
+        double *point_state = state + i * k->n_state;
+        king_point_at(k, &fr, dA + 2 * i, point_state[STATE_GAMMA_F], &flow,
+                      k->locking_exponent, k->flow_exponent, &pt);
         const double w = weight[i];
         for (int f = 0; f < FAMILIES; f++) {
             residual[2 * i + f] = pt.residual[f];
@@ -437,7 +448,7 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
         }
         energy_sum += w * pt.energy;
         dissipated_sum += w * pt.dissipated;
-        gamma_f[i] = pt.gamma_f;
+        point_state[STATE_GAMMA_F] = pt.gamma_f;
     }
     const double inv_cell = 1 / k->cell_area;
     const double scale[FAMILIES] = {k->pitch0[0] * inv_cell, k->pitch0[1] * inv_cell};
@@ -447,6 +458,7 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
         stress_sum[i] += stress[i];
     *energy += energy_sum * inv_cell;
     *dissipated += dissipated_sum * inv_cell;
+    (void)failure_dissipated; /* no yarn failure: nothing released */
     return WFF_POINT_OK;
 }
 
@@ -469,10 +481,10 @@ WFF_INLINE void king_tri_lane(const king_params *k, const wff_shear_flow *flow,
     for (int p = 0; p < 3; p++) {
         const double dA[2] = {blk->dA[p][0][b], blk->dA[p][1][b]};
         king_point pt;
-        king_point_at(k, &fr, dA, blk->gamma_f[p][b], flow, 2.0, 1.0, &pt);
+        king_point_at(k, &fr, dA, blk->state[p][STATE_GAMMA_F][b], flow, 2.0, 1.0, &pt);
         blk->residual[p][0][b] = pt.residual[0];
         blk->residual[p][1][b] = pt.residual[1];
-        blk->gamma_f[p][b] = pt.gamma_f;
+        blk->state[p][STATE_GAMMA_F][b] = pt.gamma_f;
 #pragma GCC unroll 2
         for (int f = 0; f < FAMILIES; f++)
 #pragma GCC unroll 2
@@ -489,6 +501,7 @@ WFF_INLINE void king_tri_lane(const king_params *k, const wff_shear_flow *flow,
     const double inv_cell = 1 / k->cell_area, third = 1.0 / 3.0;
     blk->energy[b] = energy * third * inv_cell;
     blk->dissipated[b] = dissipated * third * inv_cell;
+    blk->failure_dissipated[b] = 0;
 }
 
 /* Blocked fast path (docs/model.md §11): WFF_BLOCK triangles at once, one
@@ -528,10 +541,10 @@ WFF_INLINE void king_point_lane(const king_params *k, const wff_shear_flow *flow
     blk->degenerate[b] = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
     const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
     king_point pt;
-    king_point_at(k, &fr, dA, blk->gamma_f[b], flow, 2.0, 1.0, &pt);
+    king_point_at(k, &fr, dA, blk->state[STATE_GAMMA_F][b], flow, 2.0, 1.0, &pt);
     blk->residual[0][b] = pt.residual[0];
     blk->residual[1][b] = pt.residual[1];
-    blk->gamma_f[b] = pt.gamma_f;
+    blk->state[STATE_GAMMA_F][b] = pt.gamma_f;
     double stress[6];
     wff_stress_from_q(&fr, pt.q, scale, stress);
 #pragma GCC unroll 6
@@ -540,6 +553,7 @@ WFF_INLINE void king_point_lane(const king_params *k, const wff_shear_flow *flow
     const double inv_cell = 1 / k->cell_area;
     blk->energy[b] = pt.energy * inv_cell;
     blk->dissipated[b] = pt.dissipated * inv_cell;
+    blk->failure_dissipated[b] = 0;
 }
 
 /* Blocked independent points (docs/model.md §11): WFF_BLOCK points at once,
@@ -561,11 +575,11 @@ static int king_evaluate_point_block(const void *params, double dt, wff_point_bl
 }
 
 /* The amplitude residual and its exact tangent at one point (king_residual_tangent_at);
- * γᶠ does not enter R. */
+ * the state (γᶠ) does not enter R. */
 static int king_amplitude_tangent(const void *params, const double F[6], const double dA[2],
-                                  double gamma_f, double residual[2], double tangent[4])
+                                  const double *state, double residual[2], double tangent[4])
 {
-    (void)gamma_f;
+    (void)state;
     const king_params *k = params;
     wff_yarn_frame fr;
     if (wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK) {
@@ -641,6 +655,7 @@ static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         mat->yarn_spacing[f] = 2 * k->pitch0[l];
     }
     k->cell_area = 4 * k->pitch0[0] * k->pitch0[1];
+    mat->n_state = k->n_state = STATE_COUNT;
     return 0;
 }
 
@@ -661,6 +676,10 @@ static const wff_cell_type king_plain = {
     .yarn_tension_diag = {DIAG_T1, DIAG_T2},
     .n_mech = MECH_COUNT,
     .mech_names = king_mech_names,
+    .n_state_max = STATE_COUNT,
+    .state_names = king_state_names,
+    .state_units = king_state_units,
+    .damage_state = {-1, -1},
     .parse = king_parse,
     .evaluate = king_evaluate,
     .wave_speeds = king_wave_speeds,

@@ -31,8 +31,8 @@
  * One yarn carries T_k = N_k × yarn_spacing_k (N), reported as T1, T2.
  *
  * No crimp, so no amplitudes (n_amplitudes = 0): R = 0 and the solver holds
- * ΔA fixed. No shear flow either: the dissipative angle γᶠ is not used (W uses
- * γ), evaluate returns gamma_f unchanged and dissipated = 0 for any dt.
+ * ΔA fixed. No shear flow either (W uses γ) and no internal state (n_state 0):
+ * dissipated = 0 for any dt.
  */
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
@@ -93,9 +93,10 @@ static int linear_point_eval(const linear_params *c, const double F[6], linear_p
 /* P = Σ_k Q_k ⊗ E_k, Q_k = N_k ĝ_k + G γ/(λ_k sinθ) (ĝ_l − cosθ ĝ_k): the
  * shared Q coefficients with the yarn term N_k, the couple G γ, no spars. */
 static int linear_evaluate(const void *params, const double F[6], const double dA[2],
-                           double gamma_f, double dt, wff_point_result *out)
+                           const double *state, double dt, wff_point_result *out)
 {
-    (void)dA; /* no amplitudes */
+    (void)dA;    /* no amplitudes */
+    (void)state; /* no internal state */
     (void)dt; /* no flow: nothing advances in time */
     const linear_params *c = params;
     linear_point pt;
@@ -111,8 +112,8 @@ static int linear_evaluate(const void *params, const double F[6], const double d
     wff_stress_from_q(&pt.fr, q, unit_scale, out->stress);
     out->residual[0] = out->residual[1] = 0;
     out->energy = pt.energy_yarn + pt.energy_shear;
-    out->gamma_f = gamma_f;
     out->dissipated = 0;
+    out->failure_dissipated = 0;
     out->diag[DIAG_T1] = pt.force[0] * c->yarn_spacing[0];
     out->diag[DIAG_T2] = pt.force[1] * c->yarn_spacing[1];
     out->diag[DIAG_LAMBDA1] = pt.fr.p[0];
@@ -121,18 +122,19 @@ static int linear_evaluate(const void *params, const double F[6], const double d
 }
 
 /* Fast path for n_points sharing one F (linear triangles): the result does
- * not depend on ΔA or γᶠ, so one evaluation serves every point. */
+ * not depend on ΔA (and there is no state), so one evaluation serves every point. */
 static int linear_evaluate_shared(const void *params, const double F[6], int n_points,
-                                  const double *dA, const double *weight, double *gamma_f,
+                                  const double *dA, const double *weight, double *state,
                                   double dt, double stress_sum[6], double *residual,
-                                  double *energy, double *dissipated, int *bad_point)
+                                  double *energy, double *dissipated,
+                                  double *failure_dissipated, int *bad_point)
 {
     (void)dA;
-    (void)gamma_f; /* held: no flow */
-    (void)dissipated; /* += 0 */
+    (void)dissipated;         /* += 0 */
+    (void)failure_dissipated; /* += 0 */
     wff_point_result r;
     *bad_point = 0;
-    if (linear_evaluate(params, F, NULL, 0, dt, &r) != WFF_POINT_OK)
+    if (linear_evaluate(params, F, NULL, state, dt, &r) != WFF_POINT_OK)
         return WFF_POINT_DEGENERATE;
     double weight_sum = 0;
     for (int q = 0; q < n_points; q++) {
@@ -186,6 +188,7 @@ static int linear_evaluate_tri_block(const void *params, double dt, wff_tri_bloc
     memset(blk->residual, 0, sizeof blk->residual); /* (outside the lanes' loop: a store
                                                      gcc makes a memset stops it vectorising) */
     memset(blk->dissipated, 0, sizeof blk->dissipated);
+    memset(blk->failure_dissipated, 0, sizeof blk->failure_dissipated);
 #pragma omp simd
     for (int b = 0; b < WFF_BLOCK; b++)
         linear_tri_lane(&local, slack, blk, b);
@@ -193,10 +196,10 @@ static int linear_evaluate_tri_block(const void *params, double dt, wff_tri_bloc
 }
 
 static void linear_energy_split(const void *params, const double F[6], const double dA[2],
-                                double gamma_f, double *mech)
+                                const double *state, double *mech)
 {
     (void)dA;
-    (void)gamma_f;
+    (void)state;
     const linear_params *c = params;
     linear_point pt;
     if (linear_point_eval(c, F, &pt) != WFF_POINT_OK) {
@@ -267,6 +270,7 @@ static int linear_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         return wff_kv_reject(kv, "tension_only", err, "must be 0 or 1");
     c->yarn_spacing[0] = mat->yarn_spacing[0];
     c->yarn_spacing[1] = mat->yarn_spacing[1];
+    mat->n_state = 0; /* no internal state */
     return 0;
 }
 
@@ -281,6 +285,10 @@ static const wff_cell_type linear_yarns = {
     .yarn_tension_diag = {DIAG_T1, DIAG_T2},
     .n_mech = MECH_COUNT,
     .mech_names = linear_mech_names,
+    .n_state_max = 0,
+    .state_names = NULL,
+    .state_units = NULL,
+    .damage_state = {-1, -1},
     .parse = linear_parse,
     .evaluate = linear_evaluate,
     .wave_speeds = linear_wave_speeds,

@@ -8,7 +8,9 @@
 //   int n = wovenffPathSegment(mat, Fa, Fb, duration, dynamicAmplitudes, shearFlow, state);
 //       F linear in time from Fa to Fb over duration (s): dynamic amplitudes
 //       (0|1) and/or shear flow (0|1); state = [dA1, dA2, vA1, vA2, gamma_f,
-//       previous step] in and out (m, m/s, rad, s); n: steps taken
+//       previous step] in and out (m, m/s, rad, s), then optionally the cell's
+//       other internal states in order (absent: 0); n: steps taken. gamma_f is
+//       the cell's state of that name (ignored by a cell without one)
 //   string cols = wovenffExploreColumns(mat);   // "lambda1,lambda2,...,E_shear"
 //   string units = wovenffExploreUnits(mat);    // their units, space-separated
 //   int i = wovenffExploreColumn(mat, "F_L1");  // index of a column, -1 if none
@@ -59,11 +61,41 @@ void take_F(const char *fn, const char *name, const KN<double> *v, double F[6])
         F[i] = (*v)[i];
 }
 
-wff_point_state take_state(const char *fn, const KN<double> *v)
+// Where the explorer's state array keeps the cell's internal state i: slot 4
+// for the state named gamma_f, then the others from slot kStateSize on.
+long state_slot(const wff_material &mat, int i)
 {
-    require_finite(fn, "state", v, kStateSize, kStateLayout);
-    wff_point_state s = {{(*v)[0], (*v)[1]}, {(*v)[2], (*v)[3]}, (*v)[4], (*v)[5], 0};
+    int g = wff_material_state_index(&mat, "gamma_f");
+    if (i == g)
+        return 4;
+    return kStateSize + i - (g >= 0 && i > g ? 1 : 0);
+}
+
+wff_point_state take_state(const char *fn, const KN<double> *v, const wff_material &mat)
+{
+    if (v && v->N() > kStateSize) // the optional further states, checked whole
+        require_finite(fn, "state", v, v->N(), kStateLayout);
+    else
+        require_finite(fn, "state", v, kStateSize, kStateLayout);
+    wff_point_state s = {{(*v)[0], (*v)[1]}, {(*v)[2], (*v)[3]}, {0}, (*v)[5], 0};
+    for (int i = 0; i < mat.n_state; i++) {
+        long slot = state_slot(mat, i);
+        s.state[i] = slot < v->N() ? (*v)[slot] : 0;
+    }
     return s;
+}
+
+void give_state(const wff_point_state &s, const wff_material &mat, KN<double> *v)
+{
+    const double back[kStateSize] = {s.dA[0], s.dA[1], s.velocity[0], s.velocity[1],
+                                     (*v)[4], s.previous_step};
+    for (long i = 0; i < kStateSize; i++)
+        (*v)[i] = back[i];
+    for (int i = 0; i < mat.n_state; i++) {
+        long slot = state_slot(mat, i);
+        if (slot < v->N())
+            (*v)[slot] = s.state[i];
+    }
 }
 
 struct Column {
@@ -80,13 +112,19 @@ std::vector<Column> columns(const wff_material &mat, const wff_point_record &rec
                             const wff_point_state &s, const double dA_static[2])
 {
     const wff_cell_type *c = mat.cell;
+    // gamma_f always (0 for a cell without it: the shear path's plot reads it), then
+    // the cell's other internal states by name
+    int g = wff_material_state_index(&mat, "gamma_f");
     std::vector<Column> out = {{"lambda1", "-", rec.stretch[0]},
                                {"lambda2", "-", rec.stretch[1]},
                                {"gamma", "rad", rec.shear_angle},
-                               {"gamma_f", "rad", s.gamma_f},
-                               {"P11", "N/m", rec.point.stress[0]},
-                               {"P22", "N/m", rec.point.stress[3]},
-                               {"P12", "N/m", rec.point.stress[1]}};
+                               {"gamma_f", "rad", g >= 0 ? s.state[g] : 0.0}};
+    for (int i = 0; i < mat.n_state; i++)
+        if (i != g)
+            out.push_back({c->state_names[i], c->state_units[i], s.state[i]});
+    out.insert(out.end(), {{"P11", "N/m", rec.point.stress[0]},
+                           {"P22", "N/m", rec.point.stress[3]},
+                           {"P12", "N/m", rec.point.stress[1]}});
     if (c->n_amplitudes > 0)
         out.insert(out.end(), {{"R1", "N/m^2", rec.point.residual[0]},
                                {"R2", "N/m^2", rec.point.residual[1]},
@@ -140,18 +178,15 @@ long ffPathSegment(const M &material, KN<double> *const &Fa, KN<double> *const &
     take_F(fn, "Fa", Fa, F_a);
     take_F(fn, "Fb", Fb, F_b);
     wff_ff_require_finite(fn, "duration", duration, -1);
-    wff_point_state s = take_state(fn, state);
     wff_material scratch;
     const wff_material *mat = wff_ff_material_arg(fn, material, &scratch);
+    wff_point_state s = take_state(fn, state, *mat);
     wff_path_mode mode = {dynamic_amplitudes != 0, shear_flow != 0, WFF_PATH_STEP_SAFETY,
                           WFF_PATH_FLOW_SUBSTEPS};
     wff_error err;
     if (wff_point_path_segment(mat, F_a, F_b, duration, &mode, &s, &err))
         wff_ff_fail(fn, err);
-    const double back[kStateSize] = {s.dA[0], s.dA[1], s.velocity[0], s.velocity[1],
-                                     s.gamma_f, s.previous_step};
-    for (long i = 0; i < kStateSize; i++)
-        (*state)[i] = back[i];
+    give_state(s, *mat, state);
     return s.substeps;
 }
 
@@ -186,13 +221,13 @@ long ffExploreRow(const M &material, KN<double> *const &Fv, KN<double> *const &s
     const char *fn = "wovenffExploreRow";
     double F[6];
     take_F(fn, "F", Fv, F);
-    wff_point_state s = take_state(fn, state);
+    wff_material scratch;
+    const wff_material &mat = *wff_ff_material_arg(fn, material, &scratch);
+    wff_point_state s = take_state(fn, state, mat);
     require_finite(fn, "dAstatic", dA_static, 2, "dA1 dA2");
     const double dAst[2] = {(*dA_static)[0], (*dA_static)[1]};
     if (!out)
         wff_ff_fail(fn, "no output array");
-    wff_material scratch;
-    const wff_material &mat = *wff_ff_material_arg(fn, material, &scratch);
     wff_point_record rec;
     wff_error err;
     if (wff_point_path_record(&mat, F, &s, &rec, &err))

@@ -137,6 +137,19 @@ void put_state(KN<double> *out, const wff_biaxial_state &s, bool resultants)
     wff_ff_fail(fn, msg);
 }
 
+// A point's internal state from the binding's scalar gammaf: the cell's state
+// named "gamma_f" (King, basket) takes it, every other state 0 (its start; a
+// cell without such a state ignores gammaf). Returns that state's index or -1.
+int state_from_gamma_f(const wff_material &mat, double gamma_f, double state[WFF_STATE_MAX])
+{
+    for (int i = 0; i < WFF_STATE_MAX; i++)
+        state[i] = 0;
+    int g = wff_material_state_index(&mat, "gamma_f");
+    if (g >= 0)
+        state[g] = gamma_f;
+    return g;
+}
+
 // Evaluate one point (dt > 0 advances gamma_f by the cell's flow rule) and fill
 // out with P, R, W and the diagnostics; extra entries are left for the caller.
 template <class M>
@@ -156,7 +169,9 @@ void point(const char *fn, const M &material, KN<double> *Fv, KN<double> *dAv, d
     wff_material scratch;
     const wff_material *mat = material_for(fn, material, out, &scratch);
     require_amplitudes_in_model(fn, *mat, dA);
-    if (wff_material_evaluate(mat, F, dA, gamma_f, dt, r) != WFF_POINT_OK)
+    double state[WFF_STATE_MAX];
+    state_from_gamma_f(*mat, gamma_f, state);
+    if (wff_material_evaluate(mat, F, dA, state, dt, r) != WFF_POINT_OK)
         fail_degenerate(fn, "", F, *mat);
     const int n_diag = mat->cell->n_diag;
     out->resize(kOutFixed + n_diag + extra);
@@ -185,7 +200,11 @@ double ffPointStep(const M &material, KN<double> *const &Fv, KN<double> *const &
 {
     wff_point_result r;
     point("wovenffPointStep", material, Fv, dAv, gamma_f, dt, out, 1, &r);
-    (*out)[out->N() - 1] = r.gamma_f;
+    wff_material scratch;
+    double state[WFF_STATE_MAX];
+    int g = state_from_gamma_f(*wff_ff_material_arg("wovenffPointStep", material, &scratch),
+                               gamma_f, state);
+    (*out)[out->N() - 1] = g >= 0 ? r.state[g] : gamma_f; /* (no flow: held) */
     return 0;
 }
 
@@ -247,7 +266,9 @@ double ffPoints(const M &material, KN<double> *const &Fv, KN<double> *const &dAv
         snprintf(where, sizeof where, "point %ld: ", p);
         require_amplitudes_in_model(fn, *mat, dA, where);
         wff_point_result r;
-        if (wff_material_evaluate(mat, F, dA, gamma_f, 0, &r) != WFF_POINT_OK)
+        double state[WFF_STATE_MAX];
+        state_from_gamma_f(*mat, gamma_f, state);
+        if (wff_material_evaluate(mat, F, dA, state, 0, &r) != WFF_POINT_OK)
             fail_degenerate(fn, where, F, *mat);
         double *row = &(*out)[p * cols];
         for (int i = 0; i < 6; i++)
@@ -287,7 +308,9 @@ double ffEnergySplit(const M &material, KN<double> *const &Fv, KN<double> *const
     require_amplitudes_in_model(fn, mat, dA);
     const wff_cell_type *c = split_cell(fn, mat);
     double mech[WFF_MECH_MAX];
-    c->energy_split(mat.params, F, dA, gamma_f, mech);
+    double state[WFF_STATE_MAX];
+    state_from_gamma_f(mat, gamma_f, state);
+    c->energy_split(mat.params, F, dA, state, mech);
     for (int i = 0; i < c->n_mech; i++)
         if (!std::isfinite(mech[i]))
             fail_degenerate(fn, "", F, mat);
@@ -321,7 +344,9 @@ double balance(const char *fn, const M &material, KN<double> *Fv, KN<double> *dA
     const wff_material *mat = wff_ff_material_arg(fn, material, &scratch);
     require_amplitudes_in_model(fn, *mat, dA);   // the guess
     wff_error err;
-    if (wff_balance_amplitudes(mat, F, gamma_f, dA, &err))
+    double state[WFF_STATE_MAX];
+    state_from_gamma_f(*mat, gamma_f, state);
+    if (wff_balance_amplitudes(mat, F, state, dA, &err))
         wff_ff_fail(fn, err);
     (*dAv)[0] = dA[0];
     (*dAv)[1] = dA[1];

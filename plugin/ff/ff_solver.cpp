@@ -82,7 +82,8 @@ const StateQuantity kState[] = {
     {"energy_error", true},       {"element_steps", false},
     {"elements", false},          {"nodes", false},
     {"dt_worst_element", false},  {"transfer_energy", true},
-    {"projectile_impulse", false}};
+    {"projectile_impulse", false}, {"dissipated_failure", true},
+    {"eroded_energy", true},      {"eroded_elements", false}};
 const int kStateSize = sizeof kState / sizeof kState[0];
 
 std::string state_names()
@@ -108,7 +109,8 @@ void state_values(const wff_model *m, bool with_energies, double values[kStateSi
                         e.dissipated_friction, e.external_work, e.error, (double)m->element_steps,
                         (double)(m->el.n_tris + m->el.n_quads), (double)m->n_nodes,
                         (double)(wff_model_user_element(m, m->dt_worst_element) + 1), e.transfer,
-                        s * m->projectile.impulse_total};
+                        s * m->projectile.impulse_total, e.dissipated_failure, e.eroded,
+                        (double)m->n_eroded};
     static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
     for (int i = 0; i < kStateSize; i++)
         values[i] = v[i];

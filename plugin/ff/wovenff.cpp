@@ -94,6 +94,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_zones,
     wff_ff_register_threads,
     wff_ff_register_kernel,
+    wff_ff_register_limit,
 };
 
 static void init()

@@ -97,7 +97,12 @@ static void compare_models(check_state *st, const wff_model *a, const wff_model 
     CHECK(st, same_doubles(a->u, b->u, (size_t)a->n_dofs), "%s: u differs", what);
     CHECK(st, same_doubles(a->v, b->v, (size_t)a->n_dofs), "%s: v differs", what);
     CHECK(st, same_doubles(a->f, b->f, (size_t)a->n_dofs), "%s: f differs", what);
-    CHECK(st, same_doubles(a->gamma_f, b->gamma_f, nq), "%s: gamma_f differs", what);
+    CHECK(st, a->n_state == b->n_state &&
+                  same_doubles(a->state, b->state, nq * (size_t)a->n_state),
+          "%s: the points' states differ", what);
+    CHECK(st, a->dissipated_failure == b->dissipated_failure &&
+                  a->eroded_energy == b->eroded_energy && a->n_eroded == b->n_eroded,
+          "%s: failure or eroded energy differs", what);
     CHECK(st, a->projectile.tip == b->projectile.tip &&
                   a->projectile.velocity == b->projectile.velocity &&
                   a->projectile.max_penetration == b->projectile.max_penetration,

@@ -462,10 +462,10 @@ static void mixed_patch(check_state *st)
     const double F[6] = {1.012, 0.015, 0.006, 1.009, 0.03, -0.02};
     double dA[2] = {-5e-6, -10e-6};
     wff_error err;
-    int rc = wff_balance_amplitudes(&m.mat, F, 0, dA, &err);
+    int rc = wff_balance_amplitudes(&m.mat, F, wff_rest_state, dA, &err);
     CHECK(st, rc == 0, "balance: %s", err.message);
     wff_point_result p;
-    wff_material_evaluate(&m.mat, F, dA, 0, 0, &p);
+    wff_material_evaluate(&m.mat, F, dA, wff_rest_state, 0, &p);
     double Pmax = 0;
     for (int i = 0; i < 6; i++)
         Pmax = fmax(Pmax, fabs(p.stress[i]));
@@ -486,7 +486,7 @@ static void mixed_patch(check_state *st)
         return;
     }
     wff_force_totals t;
-    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, 0, f, &t);
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.state, 0, f, &t);
     CHECK(st, t.bad_element < 0, "patch: element %d failed", t.bad_element);
     double h = 0.002; /* cell size */
     for (int e = 0; e < m.mesh.n_edges; e++) {
@@ -518,7 +518,7 @@ static void mixed_patch(check_state *st)
     /* amplitude force scale: the residual at dA = 0, times a nodal area */
     wff_point_result p0;
     const double zero[2] = {0, 0};
-    wff_material_evaluate(&m.mat, F, zero, 0, 0, &p0);
+    wff_material_evaluate(&m.mat, F, zero, wff_rest_state, 0, &p0);
     double amp_scale = fmax(fabs(p0.residual[0]), fabs(p0.residual[1])) * area / m.n_nodes;
     double force_scale = Pmax * h;
     printf("1c. mixed mesh patch test (40 jittered quads | 80 triangles, %d interior nodes), "
@@ -623,7 +623,7 @@ static double fd_energy(const wff_material *m, double F[6], double dA[2], double
     for (int i = 0; i < 4; i++) {
         wff_point_result out;
         *x = x0 + offs[i] * h;
-        wff_material_evaluate(m, F, dA, 0, 0, &out);
+        wff_material_evaluate(m, F, dA, wff_rest_state, 0, &out);
         w[i] = out.energy;
     }
     *x = x0;
@@ -647,7 +647,7 @@ static void fd_states(check_state *st, const wff_material *mat, double range, in
         double F[6] = {l1, l2 * sin(sh), 0, l2 * cos(sh), tx, ty};
         double dA[2] = {wff_rng_uniform(&r, -range, range / 3), wff_rng_uniform(&r, -range, range / 3)};
         wff_point_result out;
-        int rc = wff_material_evaluate(mat, F, dA, 0, 0, &out);
+        int rc = wff_material_evaluate(mat, F, dA, wff_rest_state, 0, &out);
         int ok = rc == WFF_POINT_OK && isfinite(out.energy);
         for (int i = 0; i < 6; i++)
             ok = ok && isfinite(out.stress[i]);
@@ -798,7 +798,7 @@ static void compress_run(check_state *st, const char *material, int mode, double
     double dA[2] = {0, 0};
     const double F[6] = {1 - strain, 0, 0, 1 - strain, 0, 0};
     if (!rc && (mode == COMPRESS_STATIC || mode == COMPRESS_IMPACT))
-        rc = wff_balance_amplitudes(&m.mat, F, 0, dA, &err);
+        rc = wff_balance_amplitudes(&m.mat, F, wff_rest_state, dA, &err);
     for (int g = 0; g < 4 && !rc; g++)
         for (int c = mode == COMPRESS_GRADUAL ? WFF_UZ : WFF_UX; c <= WFF_UZ && !rc; c++)
             rc = wff_model_fix_group(&m, ALL_EDGES[g], c, &err) < 0;
@@ -898,19 +898,19 @@ static void check_compression(check_state *st)
             double dA[2][2] = {{0, 0}, {0, 0}};
             for (int k = 0; k < 2; k++) {
                 if (bal) {
-                    int rc = wff_balance_amplitudes(&mat[k], Fs[f], 0, dA[k], &err);
+                    int rc = wff_balance_amplitudes(&mat[k], Fs[f], wff_rest_state, dA[k], &err);
                     if (rc) { /* GSL from dA = 0; again from the re-crimped warp */
                         printf("    %s, tension_only %d: balance from dA = 0: %s\n", Fname[f], k,
                                err.message);
                         CHECK(st, !isnan(dA[k][0]) && !isnan(dA[k][1]), "a failed balance "
                               "leaves a number");
                         dA[k][0] = recrimp, dA[k][1] = 0;
-                        rc = wff_balance_amplitudes(&mat[k], Fs[f], 0, dA[k], &err);
+                        rc = wff_balance_amplitudes(&mat[k], Fs[f], wff_rest_state, dA[k], &err);
                     }
                     CHECK(st, rc == 0, "%s, tension_only %d: balance from the re-crimped warp "
                           "(%g um): %s", Fname[f], k, 1e6 * recrimp, rc ? err.message : "");
                 }
-                int rc = wff_material_evaluate(&mat[k], Fs[f], dA[k], 0, 0, &out[k]);
+                int rc = wff_material_evaluate(&mat[k], Fs[f], dA[k], wff_rest_state, 0, &out[k]);
                 int ok = rc == WFF_POINT_OK && isfinite(out[k].energy);
                 for (int i = 0; i < 6; i++)
                     ok = ok && isfinite(out[k].stress[i]);

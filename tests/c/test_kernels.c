@@ -233,7 +233,7 @@ static int ballistic_run(const char *name, long steps, run_result *out, wff_erro
         memcpy(out->u, m.u, out->nd * sizeof(double));
         memcpy(out->v, m.v, out->nd * sizeof(double));
         memcpy(out->f, m.f, out->nd * sizeof(double));
-        memcpy(out->gamma_f, m.gamma_f, out->nq * sizeof(double));
+        memcpy(out->gamma_f, m.state, out->nq * sizeof(double));
         wff_model_energies(&m, &out->e);
         out->tip = m.projectile.tip;
         out->velocity = m.projectile.velocity;
@@ -287,7 +287,7 @@ static int static_pass(const char *kernel, int plain, double *f, size_t nd, doub
         m.em.reference_path = plain;
         wff_force_totals t;
         memset(f, 0, nd * sizeof(double));
-        wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, 1e-6, f, &t);
+        wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.state, 1e-6, f, &t);
         *energy = t.internal_energy;
         if (t.bad_element >= 0)
             rc = wff_fail(err, "element %d failed (status %d)", t.bad_element, t.bad_status);

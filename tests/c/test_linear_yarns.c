@@ -58,7 +58,7 @@ static void check_kevlar_file(check_state *st)
     /* S_1 = k_1 p0_1 / (2 p0_2) of kevlar_s706.txt: 1 % warp stretch */
     double F[6] = {1.01, 0, 0, 1, 0, 0}, dA[2] = {0, 0};
     wff_point_result r;
-    wff_material_evaluate(&m, F, dA, 0, 0, &r);
+    wff_material_evaluate(&m, F, dA, wff_rest_state, 0, &r);
     CHECK_CLOSE(st, r.stress[0], 1.03e7 * 0.3735e-3 / (2 * 0.3735e-3) * 0.01, 1e-9, 0,
                 "P11 at 1 % = k p0/(2 p0) x 0.01");
 }
@@ -73,7 +73,7 @@ static void check_uniaxial(check_state *st)
         F[k == 0 ? 0 : 3] = lambda;
         double S = k == 0 ? S1 : S2, spacing = k == 0 ? SPACING1 : SPACING2;
         wff_point_result r;
-        int rc = wff_material_evaluate(&m, F, dA, 0, 0, &r);
+        int rc = wff_material_evaluate(&m, F, dA, wff_rest_state, 0, &r);
         CHECK(st, rc == WFF_POINT_OK, "uniaxial %d evaluates", k);
         CHECK_CLOSE(st, r.stress[k == 0 ? 0 : 3], S * (lambda - 1), 1e-12, 0, "P_kk = S_k (l - 1)");
         CHECK(st, r.stress[k == 0 ? 3 : 0] == 0, "P across = 0 (no Poisson effect): %g",
@@ -100,7 +100,7 @@ static void check_symmetric_shear(check_state *st)
         double g = gammas[i], c = cos(g / 2), s = sin(g / 2);
         double F[6] = {c, s, s, c, 0, 0};
         wff_point_result r;
-        wff_material_evaluate(&m, F, dA, 0, 0, &r);
+        wff_material_evaluate(&m, F, dA, wff_rest_state, 0, &r);
         double scale = G * fabs(g);
         CHECK_CLOSE(st, r.stress[1], G * g * c, 1e-10, scale, "P12 = G g cos(g/2)");
         CHECK_CLOSE(st, r.stress[2], G * g * c, 1e-10, scale, "P21 = G g cos(g/2)");
@@ -120,7 +120,7 @@ static void check_stretch_and_shear(check_state *st)
     const double l1 = 1.03, l2 = 0.99, g = 0.25, dA[2] = {0, 0};
     double F[6] = {l1, l2 * sin(g), 0, l2 * cos(g), 0, 0};
     wff_point_result r;
-    wff_material_evaluate(&m, F, dA, 0, 0, &r);
+    wff_material_evaluate(&m, F, dA, wff_rest_state, 0, &r);
     CHECK_CLOSE(st, r.stress[0], S1 * (l1 - 1), 1e-12, 0, "P11 = N_1");
     CHECK_CLOSE(st, r.stress[2], G * g / l1, 1e-10, 0, "P21 = G g / l1");
     double along2 = r.stress[1] * sin(g) + r.stress[3] * cos(g);
@@ -131,7 +131,7 @@ static void check_stretch_and_shear(check_state *st)
                 0.5 * S1 * (l1 - 1) * (l1 - 1) + 0.5 * S2 * (l2 - 1) * (l2 - 1) + 0.5 * G * g * g,
                 1e-12, 0, "W");
     double mech[WFF_MECH_MAX];
-    m.cell->energy_split(m.params, F, dA, 0, mech);
+    m.cell->energy_split(m.params, F, dA, wff_rest_state, mech);
     CHECK_CLOSE(st, mech[1], 0.5 * G * g * g, 1e-10, 0, "split: shear");
     CHECK_CLOSE(st, mech[0] + mech[1], r.energy, 1e-14, 0, "split adds up");
 }
@@ -147,8 +147,8 @@ static void check_tension_only(check_state *st)
     const double dA[2] = {0, 0};
     double F[6] = {0.98, 0, 0, 1.01, 0, 0};
     wff_point_result rc, rp;
-    wff_material_evaluate(&clipped, F, dA, 0, 0, &rc);
-    wff_material_evaluate(&plain, F, dA, 0, 0, &rp);
+    wff_material_evaluate(&clipped, F, dA, wff_rest_state, 0, &rc);
+    wff_material_evaluate(&plain, F, dA, wff_rest_state, 0, &rp);
     CHECK_CLOSE(st, rp.stress[0], S1 * -0.02, 1e-12, 0, "literal: compression P11 = S_1 (l - 1)");
     CHECK(st, rc.stress[0] == 0 && rc.diag[T1] == 0, "tension_only: compressed warp carries "
           "nothing: P11 %g, T1 %g", rc.stress[0], rc.diag[T1]);
@@ -158,33 +158,36 @@ static void check_tension_only(check_state *st)
     /* P = dW/dF still holds with one yarn slack: central difference on F11 and F22 */
     double Fs[6] = {0.99, 0.1, 0.05, 1.02, 0.02, -0.03}, h = 1e-6;
     wff_point_result r0, rm, rpl;
-    wff_material_evaluate(&clipped, Fs, dA, 0, 0, &r0);
+    wff_material_evaluate(&clipped, Fs, dA, wff_rest_state, 0, &r0);
     for (int i = 0; i < 6; i++) {
         double x = Fs[i];
         Fs[i] = x + h;
-        wff_material_evaluate(&clipped, Fs, dA, 0, 0, &rpl);
+        wff_material_evaluate(&clipped, Fs, dA, wff_rest_state, 0, &rpl);
         Fs[i] = x - h;
-        wff_material_evaluate(&clipped, Fs, dA, 0, 0, &rm);
+        wff_material_evaluate(&clipped, Fs, dA, wff_rest_state, 0, &rm);
         Fs[i] = x;
         CHECK_CLOSE(st, (rpl.energy - rm.energy) / (2 * h), r0.stress[i], 1e-6,
                     1e-3 * fabs(r0.stress[3]), "tension_only: P = dW/dF");
     }
 }
 
-/* ΔA and γᶠ are not used: R = 0, gamma_f returned as given, nothing dissipated,
- * W the same, for any dt. */
+/* ΔA is not used and there is no internal state (n_state 0): R = 0, nothing
+ * dissipated, W the same, for any dt. */
 static void check_ignored_state(check_state *st)
 {
     wff_material m = parse(st, text_unequal, "unequal");
     double F[6] = {1.01, 0.2, 0.0, 0.99, 0.1, 0}, zero[2] = {0, 0}, dA[2] = {-3e-5, 1e-5};
     wff_point_result a, b;
-    wff_material_evaluate(&m, F, zero, 0, 0, &a);
-    wff_material_evaluate(&m, F, dA, 0.3, 1e-3, &b);
-    CHECK(st, b.gamma_f == 0.3 && b.dissipated == 0, "no shear flow: gamma_f %g, dissipated %g",
-          b.gamma_f, b.dissipated);
+    wff_material_evaluate(&m, F, zero, wff_rest_state, 0, &a);
+    const double junk[WFF_STATE_MAX] = {0.3, 0.3, 0.3, 0.3, 0.3, 0.3}; /* not read */
+    wff_material_evaluate(&m, F, dA, junk, 1e-3, &b);
+    CHECK(st, m.n_state == 0 && m.cell->n_state_max == 0, "no internal state: %d",
+          m.n_state);
+    CHECK(st, b.dissipated == 0 && b.failure_dissipated == 0, "no shear flow: dissipated %g",
+          b.dissipated);
     CHECK(st, b.residual[0] == 0 && b.residual[1] == 0, "no amplitude residual");
     CHECK(st, a.energy == b.energy && memcmp(a.stress, b.stress, sizeof a.stress) == 0,
-          "dA and gamma_f do not change W or P");
+          "dA and the (unread) state do not change W or P");
     double speed, omega;
     m.cell->wave_speeds(m.params, m.areal_density, F, dA, &speed, &omega);
     CHECK(st, omega == 0, "no amplitude frequency: %g", omega);

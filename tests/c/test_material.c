@@ -211,13 +211,13 @@ int main(void)
         CHECK(&st, wff_material_load(out, &mo, &e) == 0, "overridden file loads: %s", e.message);
         double g = 0.5, F[6] = {1, sin(g), 0, cos(g), 0, 0}, dA[2] = {-20e-6, -20e-6};
         wff_point_result a, b;
-        wff_material_evaluate(&m, F, dA, 0, 0, &a);
-        wff_material_evaluate(&mo, F, dA, 0, 0, &b);
+        wff_material_evaluate(&m, F, dA, wff_rest_state, 0, &a);
+        wff_material_evaluate(&mo, F, dA, wff_rest_state, 0, &b);
         CHECK(&st, a.diag[5] > 0 && b.diag[5] == 0 && b.diag[6] == 0,
               "K_d = 0 removes the spar forces (%g -> %g)", a.diag[5], b.diag[5]);
         double mech_a[WFF_MECH_MAX], mech_b[WFF_MECH_MAX];
-        m.cell->energy_split(m.params, F, dA, 0, mech_a);
-        mo.cell->energy_split(mo.params, F, dA, 0, mech_b);
+        m.cell->energy_split(m.params, F, dA, wff_rest_state, mech_a);
+        mo.cell->energy_split(mo.params, F, dA, wff_rest_state, mech_b);
         CHECK(&st, mech_a[1] > 0 && mech_b[1] == 0, "kb = 0 removes bending energy");
         CHECK(&st, mech_b[0] == mech_a[0] && mech_b[2] == mech_a[2] && mech_b[4] == mech_a[4],
               "other mechanisms unchanged");

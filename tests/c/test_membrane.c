@@ -59,10 +59,10 @@ static void patch_case(check_state *st, int type, const double *F_pre, const cha
         Fe[2 * i] = F[2 * i] * Fp[0] + F[2 * i + 1] * Fp[2];
         Fe[2 * i + 1] = F[2 * i] * Fp[1] + F[2 * i + 1] * Fp[3];
     }
-    rc = wff_balance_amplitudes(&m.mat, Fe, 0, dA, &err);
+    rc = wff_balance_amplitudes(&m.mat, Fe, wff_rest_state, dA, &err);
     CHECK(st, rc == 0, "%s: %s", what, err.message);
     wff_point_result pr;
-    rc = wff_material_evaluate(&m.mat, Fe, dA, 0, 0, &pr);
+    rc = wff_material_evaluate(&m.mat, Fe, dA, wff_rest_state, 0, &pr);
     CHECK(st, rc == WFF_POINT_OK, "%s: evaluate at F_eff", what);
     double Pm[6];
     for (int i = 0; i < 3; i++) {
@@ -80,7 +80,7 @@ static void patch_case(check_state *st, int type, const double *F_pre, const cha
     }
     memset(m.f, 0, sizeof(double) * (size_t)m.n_dofs);
     wff_force_totals t;
-    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, 0, m.f, &t);
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.state, 0, m.f, &t);
     CHECK(st, t.bad_element < 0, "%s: element %d failed", what, t.bad_element);
 
     /* exact boundary resultants */
@@ -273,14 +273,14 @@ static void split_and_fast_case(check_state *st, int type, const char *what)
         m.u[D * n + 4] += 5e-6 * sin(150 * x);
     }
     for (int q = 0; q < 3 * m.el.n_tris + 4 * m.el.n_quads; q++)
-        m.gamma_f[q] = 0.01 * (q % 5);
+        m.state[q] = 0.01 * (q % 5);
     double *f_ref = calloc((size_t)m.n_dofs, sizeof(double));
     double *f_fast = calloc((size_t)m.n_dofs, sizeof(double));
     double *gf_copy = malloc(sizeof(double) * (size_t)(3 * m.el.n_tris + 4 * m.el.n_quads));
-    memcpy(gf_copy, m.gamma_f, sizeof(double) * (size_t)(3 * m.el.n_tris + 4 * m.el.n_quads));
+    memcpy(gf_copy, m.state, sizeof(double) * (size_t)(3 * m.el.n_tris + 4 * m.el.n_quads));
     wff_force_totals t_ref, t_fast;
     m.em.reference_path = 1;
-    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, 0, f_ref, &t_ref);
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.state, 0, f_ref, &t_ref);
     m.em.reference_path = 0;
     wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, gf_copy, 0, f_fast, &t_fast);
     double scale = 0, diff = 0;
@@ -293,7 +293,7 @@ static void split_and_fast_case(check_state *st, int type, const char *what)
           scale);
     CHECK_CLOSE(st, t_fast.internal_energy, t_ref.internal_energy, 1e-12, 0, "fast path energy");
     double mech[WFF_MECH_MAX], sum = 0;
-    wff_elements_energy_split(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, mech);
+    wff_elements_energy_split(&m.el, &m.em, m.mesh.xy, m.u, m.state, mech);
     int active = 0;
     for (int k = 0; k < m.mat.cell->n_mech; k++) {
         sum += mech[k];
@@ -329,7 +329,7 @@ static void check_amplitude_knobs(check_state *st)
         return;
     const double F[6] = {1.012, 0.03, 0.0, 1.004, 0.0, 0.0};
     double dA[2] = {0, 0};
-    rc = wff_balance_amplitudes(&m.mat, F, 0, dA, &err);
+    rc = wff_balance_amplitudes(&m.mat, F, wff_rest_state, dA, &err);
     CHECK(st, rc == 0, "%s", err.message);
     for (int n = 0; n < m.n_nodes; n++) {
         double X = m.mesh.xy[2 * n], Y = m.mesh.xy[2 * n + 1];
@@ -341,13 +341,13 @@ static void check_amplitude_knobs(check_state *st)
     size_t nd = (size_t)m.n_dofs;
     double *f_dyn = calloc(nd, sizeof(double)), *f_sta = calloc(nd, sizeof(double));
     wff_force_totals t_dyn, t_sta;
-    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, 0, f_dyn, &t_dyn);
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.state, 0, f_dyn, &t_dyn);
     int worst_dyn;
     double dt_dyn = wff_elements_stable_step(&m.el, &m.em, m.mesh.xy, m.u, &worst_dyn);
     const double guess[2] = {0, 0};
     rc = wff_elements_static_amplitudes(&m.el, &m.em, guess, &err);
     CHECK(st, rc == 0, "%s", err.message);
-    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, 0, f_sta, &t_sta);
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.state, 0, f_sta, &t_sta);
     double scale = 0, diff = 0, amp = 0, point_err = 0;
     for (size_t i = 0; i < nd; i++) {
         scale = fmax(scale, fabs(f_dyn[i]));
@@ -370,12 +370,12 @@ static void check_amplitude_knobs(check_state *st)
     for (int n = 0; n < m.n_nodes; n++)
         m.u[D * n + 3] = m.u[D * n + 4] = 7e-6;
     double mech[WFF_MECH_MAX], split = 0;
-    wff_elements_energy_split(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, mech);
+    wff_elements_energy_split(&m.el, &m.em, m.mesh.xy, m.u, m.state, mech);
     for (int k = 0; k < m.mat.cell->n_mech; k++)
         split += mech[k];
     CHECK_CLOSE(st, split, t_sta.internal_energy, 1e-9, 0, "static: split = stored energy");
     wff_point_result centre;
-    wff_element_center_eval(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, 0, &centre);
+    wff_element_center_eval(&m.el, &m.em, m.mesh.xy, m.u, m.state, 0, &centre);
     CHECK(st, fabs(centre.residual[0]) < 1e-6 * fabs(centre.diag[4]) / 5.58e-7,
           "static: the element centre is balanced (R1 %g)", centre.residual[0]);
     for (int n = 0; n < m.n_nodes; n++) {

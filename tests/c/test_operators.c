@@ -46,8 +46,8 @@ static void no_side_effect(check_state *st, int static_amplitudes)
     double *R2 = calloc(nd, sizeof(double)), *g0 = calloc(nq, sizeof(double));
     double *dA0 = calloc(2 * nq, sizeof(double));
     state(&m, U);
-    for (size_t q = 0; q < nq; q++) m.gamma_f[q] = 1e-3 * (double)(q % 7); /* a flowed state */
-    memcpy(g0, m.gamma_f, nq * sizeof(double));
+    for (size_t q = 0; q < nq; q++) m.state[q] = 1e-3 * (double)(q % 7); /* a flowed state */
+    memcpy(g0, m.state, nq * sizeof(double));
     if (m.el.point_dA) memcpy(dA0, m.el.point_dA, 2 * nq * sizeof(double));
     double e1 = 0, e2 = 0, internal = m.internal_energy, shear = m.dissipated_shear;
     long steps = m.element_steps;
@@ -55,7 +55,7 @@ static void no_side_effect(check_state *st, int static_amplitudes)
     CHECK(st, wff_model_forces(&m, U, R2, 0, &e2, &err) == 0, "%s", err.message);
     CHECK(st, memcmp(R1, R2, nd * sizeof(double)) == 0 && e1 == e2 && e1 > 0,
           "static %d: the same R and energy twice (%g, %g J)", static_amplitudes, e1, e2);
-    CHECK(st, memcmp(g0, m.gamma_f, nq * sizeof(double)) == 0, "static %d: γᶠ held",
+    CHECK(st, memcmp(g0, m.state, nq * sizeof(double)) == 0, "static %d: γᶠ held",
           static_amplitudes);
     CHECK(st, !m.el.point_dA || memcmp(dA0, m.el.point_dA, 2 * nq * sizeof(double)) == 0,
           "static %d: the points' static amplitudes unchanged", static_amplitudes);
@@ -63,7 +63,7 @@ static void no_side_effect(check_state *st, int static_amplitudes)
               m.element_steps == steps, "static %d: accumulators unchanged", static_amplitudes);
     /* with dt: γᶠ flows, the dissipation and the count advance, R is the step's */
     CHECK(st, wff_model_forces(&m, U, R2, 1e-6, &e2, &err) == 0, "%s", err.message);
-    int moved = memcmp(g0, m.gamma_f, nq * sizeof(double)) != 0;
+    int moved = memcmp(g0, m.state, nq * sizeof(double)) != 0;
     CHECK(st, moved && m.dissipated_shear > shear, "static %d: γᶠ flowed (%d), dissipated %g J",
           static_amplitudes, moved, m.dissipated_shear - shear);
     CHECK(st, m.element_steps == steps + m.el.n_tris && m.internal_energy == e2,

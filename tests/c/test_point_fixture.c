@@ -97,7 +97,12 @@ int main(void)
         CHECK(&st, s[i].nout == 9 + m.cell->n_diag, "state %s: %d outputs, cell has %d",
               s[i].name, s[i].nout, 9 + m.cell->n_diag);
         wff_point_result r;
-        rc = wff_material_evaluate(&m, s[i].F, s[i].dA, s[i].gamma_f, 0, &r);
+        double state[WFF_STATE_MAX] = {0}; /* the fixture's gamma_f is the cell's state of
+                                              that name (as the binding's gammaf) */
+        int g = wff_material_state_index(&m, "gamma_f");
+        if (g >= 0)
+            state[g] = s[i].gamma_f;
+        rc = wff_material_evaluate(&m, s[i].F, s[i].dA, state, 0, &r);
         CHECK(&st, rc == WFF_POINT_OK, "state %s degenerate", s[i].name);
         double out[OUT_MAX];
         memcpy(out, r.stress, sizeof r.stress);

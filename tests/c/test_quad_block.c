@@ -35,7 +35,7 @@ static void random_state(wff_model *m, uint64_t seed)
         m->u[D * n + 4] = -24e-6 + 8e-6 * uniform(&seed);
     }
     for (int q = 0; q < 4 * m->el.n_quads; q++)
-        m->gamma_f[q] = 0.02 * uniform(&seed);
+        m->state[q] = 0.02 * uniform(&seed);
 }
 
 typedef struct pass {
@@ -50,7 +50,7 @@ static pass run_pass(wff_model *m, int reference, int threads, double dt)
     size_t nq = (size_t)(4 * m->el.n_quads);
     p.f = calloc((size_t)m->n_dofs, sizeof(double));
     p.gamma_f = malloc(nq * sizeof(double));
-    memcpy(p.gamma_f, m->gamma_f, nq * sizeof(double));
+    memcpy(p.gamma_f, m->state, nq * sizeof(double));
     m->em.reference_path = reference;
     wff_elements_set_threads(&m->el, threads, &err);
     m->el.team_min_tris = 0; /* a team on this small mesh too: the threaded pass is under test */
@@ -122,7 +122,7 @@ static void check_blocked_vs_plain(check_state *st)
             dissipated = fmax(dissipated, ref.t.dissipated);
         int moved = 0;
         for (int q = 0; q < 4 * m.el.n_quads; q++)
-            moved += ref.gamma_f[q] != m.gamma_f[q];
+            moved += ref.gamma_f[q] != m.state[q];
         CHECK(st, dt == 0 ? moved == 0 : moved > 0, "state %d: %d points' gamma_f moved", s,
               moved);
         pass_free(&ref);

@@ -71,7 +71,7 @@ static void same_mesh(check_state *st)
         u[i] = m.u[i];
         vn[i] = m.v[i] - (m.dof_kind[i] == WFF_DOF_FREE ? 0.5 * m.dt * m.f[i] / m.mass[i] : 0);
     }
-    memcpy(g, m.gamma_f, nq * sizeof(double));
+    memcpy(g, m.state, nq * sizeof(double));
     double t = m.time, dt = m.dt, dissipated = m.dissipated_friction + m.dissipated_shear;
     long step = m.step;
     wff_mesh same;
@@ -92,7 +92,7 @@ static void same_mesh(check_state *st)
             vmax = fmax(vmax, fabs(vn[i]));
         }
         for (size_t i = 0; i < nq; i++)
-            dg = fmax(dg, fabs(m.gamma_f[i] - g[i]));
+            dg = fmax(dg, fabs(m.state[i] - g[i]));
         printf("  same mesh (%d nodes, %ld steps, %.3g s per transfer): |du| %.1e m, |dv^n| "
                "%.1e of %.1e m/s, |dgamma_f| %.1e, energy %.9e -> %.9e J (change %.1e)\n",
                m.n_nodes, m.step, cost, du, dv, vmax, dg, before, after, after - before);
@@ -138,7 +138,7 @@ static double stored_energy(wff_model *m)
 {
     wff_force_totals t;
     memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
-    wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, 0, m->f, &t);
+    wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->state, 0, m->f, &t);
     return t.internal_energy;
 }
 

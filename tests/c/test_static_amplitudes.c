@@ -34,7 +34,7 @@ static int static_model(wff_model *m, const char *material, wff_error *err)
         wff_model_set_option(m, "static_amplitudes", 1, err))
         return -1;
     for (int q = 0; q < 3 * m->el.n_tris + 4 * m->el.n_quads; q++)
-        m->gamma_f[q] = 0.002 * (q % 5);
+        m->state[q] = 0.002 * (q % 5);
     return 0;
 }
 
@@ -82,15 +82,15 @@ static void check_block_vs_plain(check_state *st)
         wff_force_totals ta, tb;
         memset(fa, 0, sizeof(double) * nd);
         memset(fb, 0, sizeof(double) * nd);
-        wff_elements_forces(&a.el, &a.em, a.mesh.xy, a.u, a.gamma_f, 1e-6, fa, &ta);
-        wff_elements_forces(&b.el, &b.em, b.mesh.xy, b.u, b.gamma_f, 1e-6, fb, &tb);
+        wff_elements_forces(&a.el, &a.em, a.mesh.xy, a.u, a.state, 1e-6, fa, &ta);
+        wff_elements_forces(&b.el, &b.em, b.mesh.xy, b.u, b.state, 1e-6, fb, &tb);
         CHECK(st, ta.bad_element < 0 && tb.bad_element < 0,
               "pass %d: bad element %d / %d (status %d / %d)", pass, ta.bad_element,
               tb.bad_element, ta.bad_status, tb.bad_status);
         double s;
         worst_f = fmax(worst_f, max_abs_diff(fb, fa, nd, &s) / s);
         worst_dA = fmax(worst_dA, max_abs_diff(b.el.point_dA, a.el.point_dA, 2 * np, &s) / s);
-        worst_gf = fmax(worst_gf, max_abs_diff(b.gamma_f, a.gamma_f, np, &s) / s);
+        worst_gf = fmax(worst_gf, max_abs_diff(b.state, a.state, np, &s) / s);
         worst_W = fmax(worst_W, fabs(tb.internal_energy - ta.internal_energy) /
                                     fabs(ta.internal_energy));
         CHECK(st, ta.amplitude_iterations >= (long)np &&
@@ -115,7 +115,7 @@ static void check_block_vs_plain(check_state *st)
         wff_model *m = path ? &b : &a;
         wff_force_totals t;
         memset(fa, 0, sizeof(double) * nd);
-        wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->gamma_f, 0, fa, &t);
+        wff_elements_forces(&m->el, &m->em, m->mesh.xy, m->u, m->state, 0, fa, &t);
         CHECK(st, t.bad_element < 0 && t.amplitude_iterations == (long)np,
               "%s path: a repeated pass takes one tangent per point (%ld for %zu)",
               path ? "blocked" : "plain", t.amplitude_iterations, np);
@@ -134,7 +134,7 @@ static void check_block_vs_plain(check_state *st)
             Fe[2 * i + 1] = F[2 * i] * b.em.F_pre[1] + F[2 * i + 1] * b.em.F_pre[3];
         }
         for (int q = 0; q < 3; q++) {
-            wff_material_evaluate(&b.mat, Fe, b.el.point_dA + 6 * e + 2 * q, b.gamma_f[3 * e + q],
+            wff_material_evaluate(&b.mat, Fe, b.el.point_dA + 6 * e + 2 * q, b.state + (3 * e + q) * b.n_state,
                                   0, &r);
             worst_R = fmax(worst_R, fmax(fabs(r.residual[0]), fabs(r.residual[1])));
             /* F_I (diag 4) per cell area 4 p1⁰ p2⁰ */
@@ -168,8 +168,8 @@ static void check_default_tangent(check_state *st)
     wff_force_totals ta, tb;
     deform(&a, 0.02);
     deform(&b, 0.02);
-    wff_elements_forces(&a.el, &a.em, a.mesh.xy, a.u, a.gamma_f, 0, fa, &ta);
-    wff_elements_forces(&b.el, &b.em, b.mesh.xy, b.u, b.gamma_f, 0, fb, &tb);
+    wff_elements_forces(&a.el, &a.em, a.mesh.xy, a.u, a.state, 0, fa, &ta);
+    wff_elements_forces(&b.el, &b.em, b.mesh.xy, b.u, b.state, 0, fb, &tb);
     double sf, sa;
     double df = max_abs_diff(fb, fa, nd, &sf) / sf;
     double da = max_abs_diff(b.el.point_dA, a.el.point_dA, 2 * np, &sa);
@@ -188,7 +188,7 @@ static void check_default_tangent(check_state *st)
 
 /* Tangents that make Newton fail: singular (zero), and four times too stiff
  * (quarter steps: linear convergence, too slow for the bound). */
-static int zero_tangent(const void *params, const double F[6], const double dA[2], double gf,
+static int zero_tangent(const void *params, const double F[6], const double dA[2], const double *gf,
                         double residual[2], double tangent[4])
 {
     int rc = wff_cell_find("king_plain")->amplitude_tangent(params, F, dA, gf, residual, tangent);
@@ -197,7 +197,7 @@ static int zero_tangent(const void *params, const double F[6], const double dA[2
     return rc;
 }
 
-static int stiff_tangent(const void *params, const double F[6], const double dA[2], double gf,
+static int stiff_tangent(const void *params, const double F[6], const double dA[2], const double *gf,
                          double residual[2], double tangent[4])
 {
     int rc = wff_cell_find("king_plain")->amplitude_tangent(params, F, dA, gf, residual, tangent);
@@ -232,7 +232,7 @@ static void check_failure(check_state *st, const char *what, wff_cell_type *cell
     size_t nd = (size_t)m.n_dofs;
     double *f = calloc(nd, sizeof(double));
     wff_force_totals t;
-    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.gamma_f, 0, f, &t);
+    wff_elements_forces(&m.el, &m.em, m.mesh.xy, m.u, m.state, 0, f, &t);
     CHECK(st, t.bad_element >= 0 && t.bad_status == WFF_POINT_UNBALANCED,
           "%s tangent: element %d, status %d", what, t.bad_element, t.bad_status);
     CHECK(st, t.bad_iterations == expect_iterations && t.bad_residual > 0 &&

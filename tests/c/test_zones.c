@@ -121,9 +121,11 @@ static void same_material(check_state *st, int type, const char *what)
     double du = 0, scale = max_abs(a.u, nd), dg = 0;
     for (int i = 0; i < nd; i++)
         du = fmax(du, fabs(a.u[i] - b.u[i]));
-    int nq = 3 * a.el.n_tris + 4 * a.el.n_quads;
+    int nq = (3 * a.el.n_tris + 4 * a.el.n_quads) * a.n_state; /* every state of every point */
+    CHECK(st, a.n_state == b.n_state, "%s: %d and %d states per point", what, a.n_state,
+          b.n_state);
     for (int q = 0; q < nq; q++)
-        dg = fmax(dg, fabs(a.gamma_f[q] - b.gamma_f[q]));
+        dg = fmax(dg, fabs(a.state[q] - b.state[q]));
     wff_energies ea, eb;
     wff_model_energies(&a, &ea);
     wff_model_energies(&b, &eb);

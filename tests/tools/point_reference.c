@@ -66,7 +66,11 @@ int main(void)
             return 1;
         }
         wff_point_result r;
-        if (wff_material_evaluate(&mat, st->F, st->dA, st->gamma_f, 0, &r) != WFF_POINT_OK) {
+        double point_state[WFF_STATE_MAX] = {0}; /* gamma_f: the cell's state of that name */
+        int g = wff_material_state_index(&mat, "gamma_f");
+        if (g >= 0)
+            point_state[g] = st->gamma_f;
+        if (wff_material_evaluate(&mat, st->F, st->dA, point_state, 0, &r) != WFF_POINT_OK) {
             fprintf(stderr, "point_reference: state %s is degenerate\n", st->name);
             return 1;
         }

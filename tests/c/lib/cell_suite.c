@@ -45,8 +45,33 @@ static void rotate(const double Q[3][3], const double A[6], double out[6])
             out[2 * i + J] = Q[i][0] * A[J] + Q[i][1] * A[2 + J] + Q[i][2] * A[4 + J];
 }
 
-/* F = Q [U; 0]: in-plane stretches, shear and a rigid rotation out of plane. */
-static void random_state(rng *r, const cell_case *c, double F[6], double dA[2], double *gf)
+/* A random internal state of material m's points (its n_state values): a
+ * yarn damage (the cell's damage_state) in [0, 1), any other state (γᶠ) in
+ * ±0.05 (rad). Entries from n_state on are 0. */
+static void random_point_state(rng *r, const wff_material *m, double state[WFF_STATE_MAX])
+{
+    for (int i = 0; i < WFF_STATE_MAX; i++)
+        state[i] = 0;
+    for (int i = 0; i < m->n_state; i++) {
+        int damage = i == m->cell->damage_state[0] || i == m->cell->damage_state[1];
+        state[i] = damage ? rng_uniform(r, 0, 1) : rng_uniform(r, -0.05, 0.05);
+    }
+}
+
+/* The largest difference between two states (n_state values), relative to
+ * their size with a floor of 1e-3. */
+static double state_error(const wff_material *m, const double *a, const double *b)
+{
+    double e = 0;
+    for (int i = 0; i < m->n_state; i++)
+        e = fmax(e, fabs(a[i] - b[i]) / fmax(fabs(b[i]), 1e-3));
+    return e;
+}
+
+/* F = Q [U; 0]: in-plane stretches, shear and a rigid rotation out of plane;
+ * a random point state into gf (WFF_STATE_MAX values). */
+static void random_state(rng *r, const cell_case *c, const wff_material *m, double F[6],
+                         double dA[2], double *gf)
 {
     double l1 = rng_uniform(r, 0.985, 1.04), l2 = rng_uniform(r, 0.985, 1.04);
     double shear = rng_uniform(r, -0.6, 0.6); /* rad, up to ~35° */
@@ -56,10 +81,11 @@ static void random_state(rng *r, const cell_case *c, double F[6], double dA[2], 
     rotate(Q, U, F);
     dA[0] = rng_uniform(r, -c->amplitude_range, c->amplitude_range / 3);
     dA[1] = rng_uniform(r, -c->amplitude_range, c->amplitude_range / 3);
-    *gf = rng_uniform(r, -0.05, 0.05);
+    random_point_state(r, m, gf);
 }
 
-static double energy(const wff_material *m, const double F[6], const double dA[2], double gf)
+static double energy(const wff_material *m, const double F[6], const double dA[2],
+                     const double *gf)
 {
     wff_point_result out;
     wff_material_evaluate(m, F, dA, gf, 0, &out);
@@ -67,7 +93,7 @@ static double energy(const wff_material *m, const double F[6], const double dA[2
 }
 
 /* Fourth-order central difference of W along one input. */
-static double fd(const wff_material *m, double F[6], double dA[2], double gf, double *x,
+static double fd(const wff_material *m, double F[6], double dA[2], const double *gf, double *x,
                  double h)
 {
     double x0 = *x, w[4];
@@ -114,11 +140,20 @@ static void check_table(check_state *st, const wff_cell_type *cell)
               "%s: yarn_tension_diag[%d] = %d", cell->name, k, cell->yarn_tension_diag[k]);
     CHECK(st, cell->parse && cell->evaluate && cell->wave_speeds, "%s: a required op is NULL",
           cell->name);
+    CHECK(st, cell->n_state_max >= 0 && cell->n_state_max <= WFF_STATE_MAX,
+          "%s: n_state_max %d outside 0..%d", cell->name, cell->n_state_max, WFF_STATE_MAX);
+    for (int i = 0; i < cell->n_state_max && i < WFF_STATE_MAX; i++)
+        CHECK(st, cell->state_names && cell->state_names[i] && cell->state_units &&
+                      cell->state_units[i],
+              "%s: state %d has no name or unit", cell->name, i);
+    for (int k = 0; k < 2; k++)
+        CHECK(st, cell->damage_state[k] >= -1 && cell->damage_state[k] < cell->n_state_max,
+              "%s: damage_state[%d] = %d", cell->name, k, cell->damage_state[k]);
 }
 
 /* R_k at one state (dt = 0). */
-static void residual_at(const wff_material *m, const double F[6], const double dA[2], double gf,
-                        double R[2])
+static void residual_at(const wff_material *m, const double F[6], const double dA[2],
+                        const double *gf, double R[2])
 {
     wff_point_result out;
     wff_material_evaluate(m, F, dA, gf, 0, &out);
@@ -147,8 +182,8 @@ static void check_amplitude_tangent(check_state *st, const cell_case *c, const w
     wff_material bare_mat = *mat;
     bare_mat.cell = &bare;
     for (int s = 0; s < N_STATES; s++) {
-        double F[6], dA[2], gf, R[2], K[4], R_eval[2], K_fd[4], R_def[2], K_def[4];
-        random_state(r, c, F, dA, &gf);
+        double F[6], dA[2], gf[WFF_STATE_MAX], R[2], K[4], R_eval[2], K_fd[4], R_def[2], K_def[4];
+        random_state(r, c, mat, F, dA, gf);
         int rc = wff_amplitude_tangent(mat, F, dA, gf, R, K);
         CHECK(st, wff_amplitude_tangent(&bare_mat, F, dA, gf, R_def, K_def) == WFF_POINT_OK,
               "%s: default tangent at state %d", c->material, s);
@@ -181,13 +216,14 @@ static void check_amplitude_tangent(check_state *st, const cell_case *c, const w
         for (int s = 0; s < N_STATES / WFF_BLOCK; s++) {
             wff_tangent_block blk;
             for (int j = 0; j < WFF_BLOCK; j++) {
-                double F[6], dA[2], gf;
-                random_state(r, c, F, dA, &gf);
+                double F[6], dA[2], gf[WFF_STATE_MAX];
+                random_state(r, c, mat, F, dA, gf);
                 for (int i = 0; i < 6; i++)
                     blk.F[i][j] = F[i];
                 blk.dA[0][j] = dA[0];
                 blk.dA[1][j] = dA[1];
-                blk.gamma_f[j] = gf;
+                for (int i = 0; i < WFF_STATE_MAX; i++)
+                    blk.state[i][j] = gf[i];
             }
             int handled = cell->amplitude_tangent_block(mat->params, &blk) == 0;
             CHECK(st, s == 0 || handled == block_used,
@@ -196,10 +232,12 @@ static void check_amplitude_tangent(check_state *st, const cell_case *c, const w
             if (!handled)
                 continue;
             for (int j = 0; j < WFF_BLOCK; j++) {
-                double F[6], dA[2] = {blk.dA[0][j], blk.dA[1][j]}, R[2], K[4];
+                double F[6], dA[2] = {blk.dA[0][j], blk.dA[1][j]}, R[2], K[4], gf[WFF_STATE_MAX];
                 for (int i = 0; i < 6; i++)
                     F[i] = blk.F[i][j];
-                cell->amplitude_tangent(mat->params, F, dA, blk.gamma_f[j], R, K);
+                for (int i = 0; i < WFF_STATE_MAX; i++)
+                    gf[i] = blk.state[i][j];
+                cell->amplitude_tangent(mat->params, F, dA, gf, R, K);
                 CHECK(st, !blk.degenerate[j], "tangent block lane %d flagged degenerate", j);
                 double e = 0, sR = fmax(max_abs(R, 2), 1e-6 * residual_scale), sK = max_abs(K, 4);
                 for (int k = 0; k < 2; k++)
@@ -236,6 +274,11 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
     int rc;
     const wff_cell_type *cell = mat.cell;
     check_table(st, cell);
+    CHECK(st, mat.n_state >= 0 && mat.n_state <= cell->n_state_max,
+          "%s: the material carries %d states (cell's most: %d)", c->material, mat.n_state,
+          cell->n_state_max);
+    if (mat.n_state < 0 || mat.n_state > WFF_STATE_MAX)
+        return;
     if (cell->n_diag > WFF_DIAG_MAX || cell->n_mech > WFF_MECH_MAX)
         return; /* the checks below would overrun their arrays */
     rng r = {0x9E3779B97F4A7C15ULL};
@@ -244,15 +287,15 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
     /* scales: a 1 % uniaxial warp stretch */
     const double F_ref[6] = {1, 0, 0, 1, 0, 0}, zero[2] = {0, 0};
     double F_1pc[6] = {1.01, 0, 0, 1, 0, 0};
-    wff_material_evaluate(&mat, F_1pc, zero, 0, 0, &out);
+    wff_material_evaluate(&mat, F_1pc, zero, wff_rest_state, 0, &out);
     double stress_scale = max_abs(out.stress, 6);
     double dA_probe[2] = {-c->amplitude_range, -c->amplitude_range};
-    wff_material_evaluate(&mat, F_ref, dA_probe, 0, 0, &out);
+    wff_material_evaluate(&mat, F_ref, dA_probe, wff_rest_state, 0, &out);
     double residual_scale = fmax(max_abs(out.residual, 2), 1e-300);
     CHECK(st, stress_scale > 0, "%s: 1%% stretch gives stress", c->material);
 
     /* 2. reference state */
-    rc = wff_material_evaluate(&mat, F_ref, zero, 0, 0, &out);
+    rc = wff_material_evaluate(&mat, F_ref, zero, wff_rest_state, 0, &out);
     CHECK(st, rc == WFF_POINT_OK, "reference state evaluates");
     CHECK(st, max_abs(out.stress, 6) <= 1e-9 * stress_scale,
           "%s: reference stress %g (scale %g)", c->material, max_abs(out.stress, 6),
@@ -270,13 +313,16 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
     int have_swap = c->swap_material && wff_material_load(c->swap_material, &swap_mat, &err) == 0;
     CHECK(st, !c->swap_material || have_swap, "%s: %s", c->swap_material, err.message);
     for (int s = 0; s < N_STATES; s++) {
-        double F[6], dA[2], gf;
-        random_state(&r, c, F, dA, &gf);
+        double F[6], dA[2], gf[WFF_STATE_MAX];
+        random_state(&r, c, &mat, F, dA, gf);
         rc = wff_material_evaluate(&mat, F, dA, gf, 0, &out);
         CHECK(st, rc == WFF_POINT_OK, "state %d evaluates", s);
         if (rc)
             continue;
-        CHECK(st, out.gamma_f == gf && out.dissipated == 0, "dt = 0 holds gamma_f");
+        int held = out.dissipated == 0 && out.failure_dissipated == 0;
+        for (int i = 0; i < mat.n_state; i++)
+            held = held && out.state[i] == gf[i];
+        CHECK(st, held, "%s: dt = 0 holds every state (and dissipates nothing)", c->material);
         if (c->energy_exact) {
             double Pfd[6], Rfd[2] = {0, 0}, err_P = 0, err_R = 0;
             for (int i = 0; i < 6; i++) {
@@ -351,27 +397,36 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
     double worst_fast = 0;
     if (cell->evaluate_shared) {
         for (int s = 0; s < N_STATES; s++) {
-            double F[6], dA[6], gf[3], gf_fast[3], w[3] = {0.2, 0.3, 0.5};
-            random_state(&r, c, F, dA, &gf[0]);
-            for (int q = 1; q < 3; q++)
-                random_state(&r, c, (double[6]){0}, dA + 2 * q, &gf[q]);
+            /* point q's state at gf + n_state q (the op's layout), each drawn whole */
+            const int ns = mat.n_state;
+            double F[6], dA[6], gf[3 * WFF_STATE_MAX] = {0}, gf_fast[3 * WFF_STATE_MAX];
+            double w[3] = {0.2, 0.3, 0.5}, drawn[WFF_STATE_MAX];
+            random_state(&r, c, &mat, F, dA, drawn);
+            memcpy(gf, drawn, sizeof(double) * (size_t)ns);
+            for (int q = 1; q < 3; q++) {
+                random_state(&r, c, &mat, (double[6]){0}, dA + 2 * q, drawn);
+                memcpy(gf + ns * q, drawn, sizeof(double) * (size_t)ns);
+            }
             memcpy(gf_fast, gf, sizeof gf);
             double dt = s % 2 ? 2e-7 : 0;
-            double P_ref[6] = {0}, W_ref = 0, D_ref = 0, P_fast[6] = {0}, R_fast[6];
-            double W_fast = 0, D_fast = 0, R_ref[6];
+            double P_ref[6] = {0}, W_ref = 0, D_ref = 0, X_ref = 0, P_fast[6] = {0}, R_fast[6];
+            double W_fast = 0, D_fast = 0, X_fast = 0, R_ref[6];
             for (int q = 0; q < 3; q++) {
-                wff_material_evaluate(&mat, F, dA + 2 * q, gf[q], dt, &out);
+                double point_state[WFF_STATE_MAX] = {0};
+                memcpy(point_state, gf + ns * q, sizeof(double) * (size_t)ns);
+                wff_material_evaluate(&mat, F, dA + 2 * q, point_state, dt, &out);
                 for (int i = 0; i < 6; i++)
                     P_ref[i] += w[q] * out.stress[i];
                 R_ref[2 * q] = out.residual[0];
                 R_ref[2 * q + 1] = out.residual[1];
                 W_ref += w[q] * out.energy;
                 D_ref += w[q] * out.dissipated;
-                gf[q] = out.gamma_f;
+                X_ref += w[q] * out.failure_dissipated;
+                memcpy(gf + ns * q, out.state, sizeof(double) * (size_t)ns);
             }
             int bad = -1;
             rc = cell->evaluate_shared(mat.params, F, 3, dA, w, gf_fast, dt, P_fast, R_fast,
-                                       &W_fast, &D_fast, &bad);
+                                       &W_fast, &D_fast, &X_fast, &bad);
             CHECK(st, rc == WFF_POINT_OK, "fast path state %d: status %d at point %d", s, rc, bad);
             double e = 0, sP = fmax(max_abs(P_ref, 6), 1e-6 * stress_scale);
             for (int i = 0; i < 6; i++)
@@ -382,8 +437,9 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
                                     fmax(max_abs(R_ref, 6), 1e-6 * residual_scale));
             e = fmax(e, fabs(W_fast - W_ref) / fmax(fabs(W_ref), 1e-300));
             e = fmax(e, fabs(D_fast - D_ref) / fmax(fabs(W_ref), 1e-300));
+            e = fmax(e, fabs(X_fast - X_ref) / fmax(fabs(W_ref), 1e-300));
             for (int q = 0; q < 3; q++)
-                e = fmax(e, fabs(gf_fast[q] - gf[q]) / fmax(fabs(gf[q]), 1e-3));
+                e = fmax(e, state_error(&mat, gf_fast + ns * q, gf + ns * q));
             worst_fast = fmax(worst_fast, e);
         }
         CHECK(st, worst_fast <= 1e-11, "%s: fast path differs from evaluate by %.3g",
@@ -395,18 +451,19 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
     if (cell->evaluate_tri_block) {
         for (int s = 0; s < N_STATES / WFF_BLOCK; s++) {
             wff_tri_block blk;
-            double gf0[3][WFF_BLOCK], dt = s % 2 ? 2e-7 : 0;
+            double gf0[3][WFF_BLOCK][WFF_STATE_MAX], dt = s % 2 ? 2e-7 : 0;
             blk.n = WFF_BLOCK;
             for (int j = 0; j < WFF_BLOCK; j++) {
-                double F[6], dA[2], gf;
-                random_state(&r, c, F, dA, &gf);
+                double F[6], dA[2], gf[WFF_STATE_MAX];
+                random_state(&r, c, &mat, F, dA, gf);
                 for (int i = 0; i < 6; i++)
                     blk.F[i][j] = F[i];
                 for (int q = 0; q < 3; q++) {
-                    random_state(&r, c, (double[6]){0}, dA, &gf);
+                    random_state(&r, c, &mat, (double[6]){0}, dA, gf);
                     blk.dA[q][0][j] = dA[0];
                     blk.dA[q][1][j] = dA[1];
-                    blk.gamma_f[q][j] = gf0[q][j] = gf;
+                    for (int i = 0; i < WFF_STATE_MAX; i++)
+                        blk.state[q][i][j] = gf0[q][j][i] = gf[i];
                 }
             }
             /* declining depends on the parameters only, never on the state */
@@ -417,27 +474,31 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
             if (!handled)
                 continue;
             for (int j = 0; j < WFF_BLOCK; j++) {
-                double F[6], P[6] = {0}, W = 0, Dis = 0, e = 0;
+                double F[6], P[6] = {0}, W = 0, Dis = 0, Fail = 0, e = 0;
                 for (int i = 0; i < 6; i++)
                     F[i] = blk.F[i][j];
                 CHECK(st, !blk.degenerate[j], "block lane %d flagged degenerate", j);
                 for (int q = 0; q < 3; q++) {
-                    double dA[2] = {blk.dA[q][0][j], blk.dA[q][1][j]};
+                    double dA[2] = {blk.dA[q][0][j], blk.dA[q][1][j]}, lane[WFF_STATE_MAX];
                     wff_material_evaluate(&mat, F, dA, gf0[q][j], dt, &out);
                     for (int i = 0; i < 6; i++)
                         P[i] += out.stress[i] / 3;
                     W += out.energy / 3;
                     Dis += out.dissipated / 3;
+                    Fail += out.failure_dissipated / 3;
+                    for (int i = 0; i < WFF_STATE_MAX; i++)
+                        lane[i] = blk.state[q][i][j];
                     for (int k = 0; k < cell->n_amplitudes; k++)
                         e = fmax(e, fabs(blk.residual[q][k][j] - out.residual[k]) /
                                         fmax(fabs(out.residual[k]), 1e-6 * residual_scale));
-                    e = fmax(e, fabs(blk.gamma_f[q][j] - out.gamma_f) / fmax(fabs(out.gamma_f), 1e-3));
+                    e = fmax(e, state_error(&mat, lane, out.state));
                 }
                 double sP = fmax(max_abs(P, 6), 1e-6 * stress_scale);
                 for (int i = 0; i < 6; i++)
                     e = fmax(e, fabs(blk.stress[i][j] - P[i]) / sP);
                 e = fmax(e, fabs(blk.energy[j] - W) / fmax(fabs(W), 1e-300));
                 e = fmax(e, fabs(blk.dissipated[j] - Dis) / fmax(fabs(W), 1e-300));
+                e = fmax(e, fabs(blk.failure_dissipated[j] - Fail) / fmax(fabs(W), 1e-300));
                 worst_block = fmax(worst_block, e);
             }
         }
@@ -451,8 +512,8 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
         for (int s = 0; s < N_STATES / WFF_BLOCK; s++) {
             wff_wave_block wb;
             for (int j = 0; j < WFF_BLOCK; j++) {
-                double F[6], dA[2], gf;
-                random_state(&r, c, F, dA, &gf);
+                double F[6], dA[2], gf[WFF_STATE_MAX];
+                random_state(&r, c, &mat, F, dA, gf);
                 for (int i = 0; i < 6; i++)
                     wb.F[i][j] = F[i];
                 wb.dA[0][j] = dA[0];
@@ -480,22 +541,23 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
         CHECK(st, worst_waves <= 1e-12, "%s: blocked wave speeds differ from wave_speeds by %.3g",
               c->material, worst_waves);
     }
-    /* the optional point block too, lane by lane, γᶠ update included (or it declines) */
+    /* the optional point block too, lane by lane, state update included (or it declines) */
     double worst_points = 0;
     int points_used = 0;
     if (cell->evaluate_point_block) {
         for (int s = 0; s < N_STATES / WFF_BLOCK; s++) {
             wff_point_block blk;
-            double gf0[WFF_BLOCK], dt = s % 2 ? 2e-7 : 0;
+            double gf0[WFF_BLOCK][WFF_STATE_MAX], dt = s % 2 ? 2e-7 : 0;
             blk.n = WFF_BLOCK;
             for (int j = 0; j < WFF_BLOCK; j++) {
                 double F[6], dA[2];
-                random_state(&r, c, F, dA, &gf0[j]);
+                random_state(&r, c, &mat, F, dA, gf0[j]);
                 for (int i = 0; i < 6; i++)
                     blk.F[i][j] = F[i];
                 blk.dA[0][j] = dA[0];
                 blk.dA[1][j] = dA[1];
-                blk.gamma_f[j] = gf0[j];
+                for (int i = 0; i < WFF_STATE_MAX; i++)
+                    blk.state[i][j] = gf0[j][i];
             }
             int handled = cell->evaluate_point_block(mat.params, dt, &blk) == 0;
             CHECK(st, s == 0 || handled == points_used,
@@ -504,9 +566,11 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
             if (!handled)
                 continue;
             for (int j = 0; j < WFF_BLOCK; j++) {
-                double F[6], dA[2] = {blk.dA[0][j], blk.dA[1][j]}, e = 0;
+                double F[6], dA[2] = {blk.dA[0][j], blk.dA[1][j]}, e = 0, lane[WFF_STATE_MAX];
                 for (int i = 0; i < 6; i++)
                     F[i] = blk.F[i][j];
+                for (int i = 0; i < WFF_STATE_MAX; i++)
+                    lane[i] = blk.state[i][j];
                 CHECK(st, !blk.degenerate[j], "point block lane %d flagged degenerate", j);
                 wff_material_evaluate(&mat, F, dA, gf0[j], dt, &out);
                 double sP = fmax(max_abs(out.stress, 6), 1e-6 * stress_scale);
@@ -515,9 +579,11 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
                 for (int k = 0; k < cell->n_amplitudes; k++)
                     e = fmax(e, fabs(blk.residual[k][j] - out.residual[k]) /
                                     fmax(fabs(out.residual[k]), 1e-6 * residual_scale));
-                e = fmax(e, fabs(blk.gamma_f[j] - out.gamma_f) / fmax(fabs(out.gamma_f), 1e-3));
+                e = fmax(e, state_error(&mat, lane, out.state));
                 e = fmax(e, fabs(blk.energy[j] - out.energy) / fmax(fabs(out.energy), 1e-300));
                 e = fmax(e, fabs(blk.dissipated[j] - out.dissipated) / fmax(fabs(out.energy), 1e-300));
+                e = fmax(e, fabs(blk.failure_dissipated[j] - out.failure_dissipated) /
+                                fmax(fabs(out.energy), 1e-300));
                 worst_points = fmax(worst_points, e);
             }
         }
@@ -546,7 +612,7 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
     check_amplitude_tangent(st, c, &mat, &r, residual_scale);
     /* degenerate: parallel yarn directions */
     const double F_bad[6] = {1, 1, 0, 0, 0, 0};
-    rc = wff_material_evaluate(&mat, F_bad, zero, 0, 0, &out);
+    rc = wff_material_evaluate(&mat, F_bad, zero, wff_rest_state, 0, &out);
     CHECK(st, rc == WFF_POINT_DEGENERATE && isnan(out.stress[0]),
           "%s: parallel yarns flagged degenerate", c->material);
     cell_suite_stable_step(st, &mat, c->material);
@@ -605,13 +671,13 @@ static double step_growth(const wff_material *mat, const step_patch *patch, doub
     wff_element_material em = {mat, {1, 0, 0, 1}, 1, 0, patch->mass_factor, 0};
     double *u = calloc((size_t)n, sizeof(double)), *v = calloc((size_t)n, sizeof(double));
     double *f = calloc((size_t)n, sizeof(double)), *mass = calloc((size_t)n, sizeof(double));
-    double *gamma_f = calloc((size_t)3 * mesh.n_tris, sizeof(double));
+    double *gamma_f = calloc((size_t)3 * mesh.n_tris * (size_t)mat->n_state + 1, sizeof(double));
     unsigned char *held = calloc((size_t)n, 1);
     double growth = -1;
     if (!u || !v || !f || !mass || !gamma_f || !held)
         goto done;
     double F[6] = {STEP_PRESTRETCH, 0, 0, STEP_PRESTRETCH, 0, 0}, dA[2] = {0, 0};
-    if (mat->cell->n_amplitudes && wff_balance_amplitudes(mat, F, 0, dA, &err))
+    if (mat->cell->n_amplitudes && wff_balance_amplitudes(mat, F, wff_rest_state, dA, &err))
         goto done;
     rng g = {0x2545F4914F6CDD1DULL};
     for (int a = 0; a < nn; a++) {

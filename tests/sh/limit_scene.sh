@@ -1,0 +1,87 @@
+#!/bin/sh
+# The ballistic-limit sweep (freefem_scripts/ballistic_limit.edp) driven against a
+# stand-in scene that answers a known Lambert-Jonas law (tests/edp/scenes/
+# lambert_jonas_standin.edp: no physics, a summary.json as the ballistic scene's
+# with -failure on), so the driver is tested in seconds:
+#  - law V_bl 120 m/s, a 0.9, p 2.5 with -vmin 150 -vmax 300 (both perforate): the
+#    sweep expands downwards until a run stops, runs 2 at once, writes limit.csv (a
+#    row per run, each perforated residual the law's), limit.json and limit.png; the
+#    fit recovers V_bl, a, p to 1e-4 and the bracket's V50 +- half-gap holds 120;
+#  - a run that fails (-failspeeds) is reported with its log's path, listed as
+#    failed and skipped; the fit still recovers the law;
+#  - a scene that never perforates: exit 5, the error names -vmax;
+#  - every run of a round failing: exit 4; bad options: exit 2.
+set -u
+tmp="${WFF_TEST_TMP:-/tmp}/limit_scene"
+rm -rf "$tmp"; mkdir -p "$tmp"
+fail=0
+standin=tests/edp/scenes/lambert_jonas_standin.edp
+sweep() { # out, options...
+    out=$1; shift
+    sh tools/ff.sh freefem_scripts/ballistic_limit.edp -scene $standin -out "$tmp/$out" "$@" > "$tmp/$out.log" 2>&1
+}
+field() { # file, key (a number of "key": {"value": X ...} or "key": X)
+    sed -n "s/^  \"$2\": {\"value\": \([^,]*\),.*/\1/p; s/^  \"$2\": \([0-9.e+-]*\),$/\1/p" "$1"
+}
+close() { # what, got, want, relative tolerance
+    awk -v g="$2" -v w="$3" -v t="$4" 'BEGIN { d = g - w; if (d < 0) d = -d; exit !(g != "" && d <= t * w) }' \
+        || { echo "$1: got '$2', want $3 (tol $4)"; fail=1; }
+}
+
+# 1. bracketing downwards, 2 jobs, the files, the fit
+sweep law -base "-law 120,0.9,2.5" -vmin 150 -vmax 300 -jobs 2 -runs 10
+rc=$?
+tail -4 "$tmp/law.log"
+[ $rc -eq 0 ] || { echo "sweep exited $rc"; cat "$tmp/law.log"; exit 1; }
+d="$tmp/law"
+for f in limit.csv limit.json limit.png; do [ -s "$d/$f" ] || { echo "missing or empty: $f"; fail=1; }; done
+grep -q 'every run perforated: slower' "$tmp/law.log" || { echo "no downward expansion round"; fail=1; }
+grep -q '\[2/2\]' "$tmp/law.log" || { echo "no progress line [2/2]"; fail=1; }
+[ "$(field "$d/limit.json" runs_total)" = 10 ] || { echo "runs_total not 10"; fail=1; }
+[ "$(($(wc -l < "$d/limit.csv") - 1))" -eq 10 ] || { echo "limit.csv: not 10 rows"; fail=1; }
+close "V_bl" "$(field "$d/limit.json" v_bl)" 120 1e-4
+close "a" "$(field "$d/limit.json" a)" 0.9 1e-4
+close "p" "$(field "$d/limit.json" p)" 2.5 1e-4
+exp=$(field "$d/limit.json" expansions)
+[ "${exp:-0}" -ge 1 ] || { echo "expansions '$exp', want >= 1"; fail=1; }
+# each perforated row's residual is the law's; V50 of the bracket holds 120
+awk -F, 'NR > 1 && $3 == 1 { w = 0.9 * ($1^2.5 - 120^2.5)^(1/2.5); d = $2 - w; if (d < 0) d = -d;
+         if (d > 1e-6 * w) { print "row " NR ": residual " $2 ", law " w; bad = 1 } }
+         NR > 1 && $3 == 0 && $1 > 120 { print "row " NR ": stopped above V_bl"; bad = 1 }
+         END { exit bad }' "$d/limit.csv" || fail=1
+v50=$(sed -n 's/.*"v50_bracket": {"value": \([^,]*\), "half_gap": \([^,]*\),.*/\1 \2/p' "$d/limit.json")
+awk -v s="$v50" 'BEGIN { split(s, x, " "); d = x[1] - 120; if (d < 0) d = -d; exit !(s != "" && d <= x[2]) }' \
+    || { echo "V50 bracket '$v50' does not hold 120"; fail=1; }
+[ -s "$d/v300/summary.json" ] && [ -s "$d/v300/run.log" ] || { echo "run folder v300 incomplete"; fail=1; }
+
+# 2. a failing run: reported, skipped
+sweep failing -base "-failspeeds 249:251" -jobs 2 -runs 12
+rc=$?
+[ $rc -eq 0 ] || { echo "sweep with a failing run exited $rc"; tail -5 "$tmp/failing.log"; fail=1; }
+grep -q 'v250: FAILED, skipped: .*a failing run at 250 m/s.*(log: .*v250/run.log)' "$tmp/failing.log" \
+    || { echo "the failed run is not reported with its log"; grep v250 "$tmp/failing.log"; fail=1; }
+grep -q '^250,,,failed,' "$tmp/failing/limit.csv" || { echo "limit.csv: v250 not listed as failed"; fail=1; }
+[ "$(field "$tmp/failing/limit.json" runs_failed)" = 1 ] || { echo "runs_failed not 1"; fail=1; }
+close "V_bl (a run failed)" "$(field "$tmp/failing/limit.json" v_bl)" 150 1e-4
+
+# 3. never perforates: the bracket error names -vmax
+sweep never -base "-never 1" -jobs 2 -expansions 3
+rc=$?
+grep '^error' "$tmp/never.log"
+[ $rc -eq 5 ] || { echo "never-perforating sweep exited $rc, want 5"; fail=1; }
+grep -q '^error: ballistic_limit: no bracket of the limit after 3 expansions.*every run stopped.*raise -vmax' \
+    "$tmp/never.log" || { echo "no bracket error naming -vmax"; fail=1; }
+
+# 4. every run of a round fails: exit 4; bad options: exit 2
+sweep allfail -base "-failspeeds 0:1e9" -jobs 2
+rc=$?
+[ $rc -eq 4 ] || { echo "all-failing sweep exited $rc, want 4"; fail=1; }
+grep -q '^error: ballistic_limit: every run of round 1 failed' "$tmp/allfail.log" || { echo "no all-failed error"; fail=1; }
+for bad in "-vmin 300 -vmax 100" "-runs 3" "-growth 1" "-base -law" "-base '-velocity 3'" "-scene nowhere.edp"; do
+    eval sweep bad $bad
+    rc=$?
+    [ $rc -eq 2 ] || { echo "'$bad' exited $rc, want 2"; fail=1; }
+    grep -q '^error: ' "$tmp/bad.log" || { echo "'$bad': no error line"; fail=1; }
+    rm -rf "$tmp/bad"
+done
+exit $fail
