@@ -135,11 +135,17 @@ static int strip_run(double velocity, int nx, smith_run *out, FILE *profile, wff
         wff_model_free(&m);
         return -1;
     }
-    /* c from the material file: S_1 and ρ_A through the cell's own wave speed
-     * at rest would include the shear and geometric terms of the stable-step
-     * bound; read them from the material instead (linear_yarns: params[0] = S_1). */
-    const double S1 = ((const double *)m.mat.params)[0];
-    out->c = sqrt(S1 / m.mat.areal_density);
+    /* c = sqrt(S_1 / ρ_A), S_1 from the cell itself: the yarn law is linear,
+     * so P11 / δ at the uniaxial stretch F = diag(1 + δ, 1) is S_1 exactly
+     * (the stable-step bound would add the shear and geometric terms). */
+    const double stretch = 1e-3, F[6] = {1 + stretch, 0, 0, 1, 0, 0}, dA[2] = {0, 0};
+    const double state[WFF_STATE_MAX] = {0}; /* intact, held (dt = 0) */
+    wff_point_result pr;
+    if (wff_material_evaluate(&m.mat, F, dA, state, 0, &pr) != WFF_POINT_OK) {
+        wff_model_free(&m);
+        return wff_fail(err, "%s: no stress at a uniaxial stretch", LINEAR);
+    }
+    out->c = sqrt(pr.stress[0] / stretch / m.mat.areal_density);
     const double t_end = RUN_FRACTION * STRIP_LENGTH / out->c;
     if (wff_model_advance(&m, t_end, 100000000L, err)) {
         wff_model_free(&m);
