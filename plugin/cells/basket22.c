@@ -57,10 +57,22 @@
  * with N_m = 4 (F_Lm s_m/d_m + F_Pm s_m/e_m), the spars' pull on s_m. The
  * compaction exponential is continued past exp(30) by a cubic in the exponent,
  * as in king_plain.
+ *
+ * Yarn failure (docs/model.md §20, optional: failure = 1): T_k and the yarn
+ * energy (EA_k/ℓ_k⁰)(ℓ_k − ℓ_k⁰)² times 1 − d_k where the yarn is stretched,
+ * d_k growing with the largest engineering yarn strain reached, here that of
+ * the half-repeat path (the float and the transition),
+ *
+ *   ε_k = (ℓ_k − ℓ_k⁰)/ℓ_k⁰      (T_k = EA_k ε_k),
+ *
+ * (yarn_failure.h). States: γᶠ, then d_1, d_2, then ε_1, ε_2 of the last update
+ * with the rate law (n_state 1, 3 or 5); the wave speeds stay the undamaged
+ * bounds.
  */
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
 #include "cell_laws.h"
+#include "yarn_failure.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -97,6 +109,8 @@ typedef struct basket_params {
     double spar_length0[FAMILIES];       /* d_k⁰, m */
     double pair_spar_length0[FAMILIES];  /* e_k⁰, m */
     double cell_area;                    /* 16 p1⁰ p2⁰, m² */
+    wff_yarn_failure failure;            /* yarn failure (docs/model.md §20); off: enabled 0 */
+    int n_state;                         /* states per point: γᶠ [, d_1, d_2 [, ε_1, ε_2]] */
 } basket_params;
 
 _Static_assert(sizeof(basket_params) <= sizeof(((wff_material *)0)->params),
@@ -107,7 +121,8 @@ typedef struct basket_family {
     double amplitude;      /* A_k, m */
     double length;         /* L_k, half the transition, m */
     double sin_b, cos_b;   /* sinβ_k, cosβ_k */
-    double tension;        /* T_k, N */
+    double tension;        /* T_k, N (times 1 − d_k once basket_point_fail has run) */
+    double tension_factor; /* 1, or 1 − d_k for a damaged stretched yarn */
     double bend;           /* β_k − β_k⁰, rad */
     double moment;         /* M_bk, N·m */
     double spar;           /* s_k = J/p_k, m */
@@ -123,6 +138,8 @@ typedef struct basket_point {
     wff_yarn_frame fr;             /* g_k, p_k, θ, J, γ */
     wff_compaction compaction;     /* F_I at I = −ΔA_1 − ΔA_2, one crossover */
     basket_family yarn[FAMILIES];
+    double failure_state[4];       /* d_1, d_2, ε_1, ε_2 after the update (with failure) */
+    double failure_released;       /* Σ_k Δd_k W_k⁺, J per cell */
 } basket_point;
 
 static const char *const basket_diag_names[] = {"T1",   "T2",   "beta1", "beta2", "F_I",
@@ -135,10 +152,15 @@ _Static_assert(DIAG_COUNT <= WFF_DIAG_MAX, "basket_2x2 reports too many diagnost
 static const char *const basket_mech_names[] = {"yarn_stretch", "yarn_bending", "compaction",
                                                 "locking", "shear"};
 enum { MECH_YARN, MECH_BENDING, MECH_COMPACTION, MECH_LOCKING, MECH_SHEAR, MECH_COUNT };
-/* The internal state of a point: γᶠ, the dissipative shear angle. */
-static const char *const basket_state_names[] = {"gamma_f"};
-static const char *const basket_state_units[] = {"rad"};
-enum { STATE_GAMMA_F, STATE_COUNT };
+/* The internal state of a point: γᶠ, the dissipative shear angle; with yarn
+ * failure the damages d_1, d_2; with its rate law the yarn strains of the last
+ * update. */
+static const char *const basket_state_names[] = {"gamma_f", "damage1", "damage2",
+                                                 "yarn_strain1", "yarn_strain2"};
+static const char *const basket_state_units[] = {"rad", "-", "-", "-", "-"};
+enum { STATE_GAMMA_F, STATE_DAMAGE1, STATE_DAMAGE2, STATE_STRAIN1, STATE_STRAIN2,
+       STATE_COUNT };
+_Static_assert(STATE_COUNT <= WFF_STATE_MAX, "basket_2x2 carries too many states");
 
 /* Kinematics, laws and energies (all but shear, which needs the flow update):
  * the yarn path, T_k, M_bk and both spars of each family, as in the header. */
@@ -161,6 +183,7 @@ static int basket_point_eval(const basket_params *k, const double F[6], const do
         if (k->tension_only != 0 && stretch < 0)
             stretch = 0;
         y->tension = k->yarn_stiffness[f] * stretch;
+        y->tension_factor = 1.0;
         y->energy_yarn = YARNS_PER_FAMILY * 0.5 * k->yarn_stiffness[f] * stretch * stretch;
         y->bend = atan((A * p0 - A0 * p) / (p * p0 + A * A0)); /* β_k − β_k⁰ */
         y->moment = k->bending_stiffness[f] * y->bend;
@@ -177,6 +200,31 @@ static int basket_point_eval(const basket_params *k, const double F[6], const do
         y->energy_locking = CROSSOVERS * (y->lock.energy + y->pair.energy);
     }
     return WFF_POINT_OK;
+}
+
+/* docs/model.md §20: yarn failure on both families of a point evaluated by
+ * basket_point_eval, at the half-repeat strain ε_k = (ℓ_k − ℓ_k⁰)/ℓ_k⁰, from
+ * the point's state (d_1 on) over dt; nothing without failure. */
+static void basket_point_fail(const basket_params *k, const double *state, double dt,
+                              basket_point *pt)
+{
+    pt->failure_released = 0;
+    if (k->failure.enabled == 0)
+        return;
+    const double *fs = state + STATE_DAMAGE1;
+    const int rate_law = k->failure.rate_C > 0; /* then ε_k of the last update is kept */
+    for (int f = 0; f < FAMILIES; f++) {
+        basket_family *y = &pt->yarn[f];
+        double strain = (2 * pt->fr.p[f] + 2 * y->length - k->path0[f]) / k->path0[f];
+        wff_yarn_damage d = wff_yarn_damage_step(&k->failure, f, strain, y->energy_yarn, fs[f],
+                                                 rate_law ? fs[2 + f] : 0, dt);
+        y->tension *= d.factor;
+        y->energy_yarn *= d.factor;
+        y->tension_factor = d.factor;
+        pt->failure_state[f] = d.damage;
+        pt->failure_state[2 + f] = d.strain_prev;
+        pt->failure_released += d.released;
+    }
 }
 
 /* The basket's W_cell terms but shear, J per cell. */
@@ -201,6 +249,7 @@ static int basket_evaluate(const void *params, const double F[6], const double d
         wff_point_result_nan(out, DIAG_COUNT);
         return WFF_POINT_DEGENERATE;
     }
+    basket_point_fail(k, state, dt, &pt);
     const wff_shear_flow flow = wff_shear_flow_step(k->shear_stiffness, k->flow_moment,
                                                     k->flow_rate, dt);
     double gamma_f_new = wff_shear_flow_update(&flow, k->flow_exponent, pt.fr.gamma, gamma_f);
@@ -239,7 +288,9 @@ static int basket_evaluate(const void *params, const double F[6], const double d
     out->energy = (basket_energy_but_shear(&pt) + energy_shear) / k->cell_area;
     out->state[STATE_GAMMA_F] = gamma_f_new;
     out->dissipated = CROSSOVERS * shear_moment * (gamma_f_new - gamma_f) / k->cell_area;
-    out->failure_dissipated = 0;
+    out->failure_dissipated = pt.failure_released / k->cell_area;
+    for (int i = STATE_DAMAGE1; k->failure.enabled != 0 && i < k->n_state; i++)
+        out->state[i] = pt.failure_state[i - STATE_DAMAGE1];
     out->diag[DIAG_T1] = pt.yarn[0].tension;
     out->diag[DIAG_T2] = pt.yarn[1].tension;
     out->diag[DIAG_BETA1] = k->crimp_angle0[0] + pt.yarn[0].bend;
@@ -263,6 +314,7 @@ static void basket_energy_split(const void *params, const double F[6], const dou
             mech[i] = NAN;
         return;
     }
+    basket_point_fail(k, state, 0, &pt);
     double shear_elastic = pt.fr.gamma - state[STATE_GAMMA_F];
     mech[MECH_YARN] = (pt.yarn[0].energy_yarn + pt.yarn[1].energy_yarn) / k->cell_area;
     mech[MECH_BENDING] = (pt.yarn[0].energy_bending + pt.yarn[1].energy_bending) / k->cell_area;
@@ -282,6 +334,7 @@ static void basket_wave_speeds(const void *params, double areal_density, const d
                                const double dA[2], double *membrane_speed,
                                double *amplitude_omega)
 {
+    /* undamaged (§20): damage only lowers the yarn terms, so these stay upper bounds */
     const basket_params *k = params;
     basket_point pt;
     if (basket_point_eval(k, F, dA, &pt) != WFF_POINT_OK) {
@@ -333,7 +386,7 @@ static int basket_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         &k->locking_exponent, &k->shear_stiffness, &k->flow_moment, &k->flow_rate,
         &k->flow_exponent, &k->tension_only,
     };
-    if (wff_weave_parse(kv, &shared, err))
+    if (wff_weave_parse(kv, &shared, err) || wff_yarn_failure_parse(kv, &k->failure, err))
         return -1;
     for (int f = 0; f < FAMILIES; f++)
         if (!(k->amplitude0[f] < k->pitch0[f]))
@@ -354,23 +407,23 @@ static int basket_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         mat->yarn_spacing[f] = 2 * k->pitch0[l];
     }
     k->cell_area = 16 * k->pitch0[0] * k->pitch0[1];
-    mat->n_state = STATE_COUNT;
+    mat->n_state = k->n_state = 1 + wff_yarn_failure_states(&k->failure);
     return 0;
 }
 
 /* The amplitude residual (as basket_evaluate computes it) and its exact tangent,
- * γᶠ held (it does not enter R). With F held, per crossover:
+ * the state held (γᶠ does not enter R, the damages do). With F held, per crossover:
  *   ∂F_k^N/∂A_m = δ_km [∂T_k sinβ_k + T_k cos²β_k/L_k + (k_bk cos²β_k − 2 M_bk sinβ_k cosβ_k)/L_k²
  *                       + (−∂F_Lk/∂d) sin²α_k − F_Lk s_k²/d_k³]
  *                 − ∂[(F_P1/e_1 + F_P2/e_2)(A_1 + A_2)]/∂A_m
- * with ∂T_k/∂A_k = 2 (EA_k/ℓ_k⁰) sinβ_k (0 where a tension-only yarn is slack),
+ * with ∂T_k/∂A_k = 2 (EA_k/ℓ_k⁰) sinβ_k (0 where a tension-only yarn is slack;
+ * × (1 − d_k) where a damaged yarn is stretched, §20),
  * sinα_k = A_k/d_k, ∂e_m/∂A_n = (A_1 + A_2)/e_m, so the pair term's slope is
  *   Σ_m F_Pm/e_m − (A_1 + A_2)² Σ_m [(−∂F_Pm/∂e_m)/e_m² + F_Pm/e_m³],
  * and ∂F_I/∂A_m = −∂F_I/∂I:  ∂R_k/∂ΔA_m = 4 (−∂F_I/∂I − ∂F_k^N/∂A_m)/(16 p1⁰ p2⁰). */
 static int basket_amplitude_tangent(const void *params, const double F[6], const double dA[2],
                                     const double *state, double residual[2], double tangent[4])
 {
-    (void)state;
     const basket_params *k = params;
     basket_point pt;
     if (basket_point_eval(k, F, dA, &pt) != WFF_POINT_OK) {
@@ -379,6 +432,7 @@ static int basket_amplitude_tangent(const void *params, const double F[6], const
             tangent[i] = NAN;
         return WFF_POINT_DEGENERATE;
     }
+    basket_point_fail(k, state, 0, &pt);
     double stack = pt.yarn[0].amplitude + pt.yarn[1].amplitude;
     double pair_normal = 0, pair_curvature = 0;
     for (int m = 0; m < FAMILIES; m++) {
@@ -397,7 +451,8 @@ static int basket_amplitude_tangent(const void *params, const double F[6], const
         int slack = k->tension_only != 0 && stretch < 0;
         double sb = y->sin_b, cb = y->cos_b, inv_L = 1 / y->length;
         double inv_d = 1 / y->spar_length, sa = y->amplitude * inv_d, ca = y->spar * inv_d;
-        double own = (slack ? 0.0 : 2 * k->yarn_stiffness[f] * sb) * sb +
+        double tension_slope = slack ? 0.0 : 2 * k->yarn_stiffness[f] * y->tension_factor * sb;
+        double own = tension_slope * sb +
                      y->tension * cb * cb * inv_L +
                      (k->bending_stiffness[f] * cb * cb - 2 * y->moment * sb * cb) * inv_L * inv_L +
                      y->lock.stiffness * sa * sa - y->lock.force * ca * ca * inv_d;
@@ -428,7 +483,7 @@ static const wff_cell_type basket_2x2 = {
     .n_state_max = STATE_COUNT,
     .state_names = basket_state_names,
     .state_units = basket_state_units,
-    .damage_state = {-1, -1},
+    .damage_state = {STATE_DAMAGE1, STATE_DAMAGE2},
     .parse = basket_parse,
     .evaluate = basket_evaluate,
     .wave_speeds = basket_wave_speeds,

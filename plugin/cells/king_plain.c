@@ -38,6 +38,18 @@
  * past exp(30) by a cubic in the exponent (same value, slope and curvature)
  * so that the energy stays finite and consistent when compaction is extreme.
  *
+ * Yarn failure (docs/model.md §20, optional: material key failure = 1): the
+ * truss tension T_k and its energy k_k (L_k − L_k⁰)² are multiplied by 1 − d_k
+ * where the truss is stretched, d_k growing with the largest engineering yarn
+ * strain reached, here the truss's own length along the crimped path,
+ *
+ *   ε_k = (L_k − L_k⁰)/L_k⁰     (k_k = EA/L_k⁰, so T_k = EA ε_k),
+ *
+ * (yarn_failure.h). Bending, compaction, locking and shear are not damaged.
+ * States: γᶠ, then d_1, d_2 with failure, then ε_1, ε_2 of the last update
+ * with the rate law (n_state 1, 3 or 5). The blocked kernels decline a
+ * material with failure on; the wave speeds stay the undamaged bounds.
+ *
  * The model is written once: king_family_at (one yarn family at a point),
  * king_point_at (a point: compaction, both families, shear flow, residuals,
  * Q_k coefficients, W_cell) on the frame of wff_yarn_kinematics (cell_laws.h).
@@ -47,6 +59,7 @@
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
 #include "cell_laws.h"
+#include "yarn_failure.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -74,7 +87,9 @@ typedef struct king_params {
     double crimp_angle0[FAMILIES];       /* β_k⁰, rad */
     double spar_length0[FAMILIES];       /* d_k⁰, m */
     double cell_area;                    /* 4 p1⁰ p2⁰, m² */
-    int n_state;                         /* states per point (mat->n_state): γᶠ */
+    wff_yarn_failure failure;            /* yarn failure (docs/model.md §20); off: enabled 0 */
+    int n_state;                         /* states per point (mat->n_state): γᶠ [, d_1, d_2
+                                            [, ε_1, ε_2]] */
 } king_params;
 
 _Static_assert(sizeof(king_params) <= sizeof(((wff_material *)0)->params),
@@ -89,10 +104,14 @@ _Static_assert(DIAG_COUNT <= WFF_DIAG_MAX, "king_plain reports too many diagnost
 static const char *const king_mech_names[] = {"yarn_stretch", "yarn_bending", "compaction",
                                               "locking", "shear"};
 enum { MECH_YARN, MECH_BENDING, MECH_COMPACTION, MECH_LOCKING, MECH_SHEAR, MECH_COUNT };
-/* The internal state of a point: γᶠ, the dissipative shear angle. */
-static const char *const king_state_names[] = {"gamma_f"};
-static const char *const king_state_units[] = {"rad"};
-enum { STATE_GAMMA_F, STATE_COUNT };
+/* The internal state of a point: γᶠ, the dissipative shear angle; with yarn
+ * failure the damages d_1, d_2; with its rate law the yarn strains of the last
+ * update (for the strain rate). */
+static const char *const king_state_names[] = {"gamma_f", "damage1", "damage2",
+                                               "yarn_strain1", "yarn_strain2"};
+static const char *const king_state_units[] = {"rad", "-", "-", "-", "-"};
+enum { STATE_GAMMA_F, STATE_DAMAGE1, STATE_DAMAGE2, STATE_STRAIN1, STATE_STRAIN2,
+       STATE_COUNT };
 _Static_assert(STATE_COUNT <= WFF_STATE_MAX, "king_plain carries too many states");
 
 /* One yarn family k at one point: king_family_at fills the laws,
@@ -102,7 +121,8 @@ typedef struct king_family {
     double length;         /* L_k, m */
     double inv_length;     /* 1/L_k */
     double sin_b, cos_b;   /* sinβ_k, cosβ_k */
-    double tension;        /* T_k, N */
+    double tension;        /* T_k, N (times 1 − d_k once king_family_fail has run) */
+    double tension_factor; /* ∂T_k/∂(k_k ΔL_k): 1, or 1 − d_k for a damaged stretched truss */
     double bend;           /* β_k − β_k⁰, rad */
     double moment;         /* M_bk, N·m */
     double spar_length;    /* d_k, m */
@@ -137,6 +157,7 @@ WFF_INLINE king_family king_family_at(const king_params *k, const wff_yarn_frame
     double stretch = y.length - k->length0[f];
     stretch = stretch > stretch_floor ? stretch : stretch_floor; /* (fmax would not vectorise) */
     y.tension = k->yarn_stiffness[f] * stretch;
+    y.tension_factor = 1.0;
     y.bend = atan((A * p0 - A0 * p) / (p * p0 + A * A0));
     y.moment = k->bending_stiffness[f] * y.bend;
     double spar = fr->J * fr->inv_p[f]; /* s_k */
@@ -150,6 +171,22 @@ WFF_INLINE king_family king_family_at(const king_params *k, const wff_yarn_frame
     y.energy_bending = k->bending_stiffness[f] * y.bend * y.bend;
     y.energy_locking = 2 * y.lock.energy;
     return y;
+}
+
+/* docs/model.md §20, yarn failure on family f's truss at engineering strain
+ * ε_k = (L_k − L_k⁰)/L_k⁰ (the crimped path's own length): the damage update of
+ * yarn_failure.h from state d_k (and ε_k of the last update for the rate law),
+ * then T_k and k_k (L_k − L_k⁰)² times 1 − d_k where stretched. */
+WFF_INLINE wff_yarn_damage king_family_fail(const king_params *k, int f, king_family *y,
+                                            double damage, double strain_prev, double dt)
+{
+    double strain = (y->length - k->length0[f]) / k->length0[f];
+    wff_yarn_damage d = wff_yarn_damage_step(&k->failure, f, strain, y->energy_yarn, damage,
+                                             strain_prev, dt);
+    y->tension *= d.factor;
+    y->energy_yarn *= d.factor;
+    y->tension_factor = d.factor;
+    return d;
 }
 
 /* docs/model.md §5–6, what family k's laws push with, l the other family:
@@ -175,6 +212,8 @@ typedef struct king_point {
     double residual[FAMILIES]; /* R_k, N/m² */
     double q[FAMILIES][FAMILIES]; /* Q_k along ĝ_m, N */
     double energy;             /* W_cell, J per cell */
+    double failure_state[4];   /* d_1, d_2, ε_1, ε_2 after the step (with failure) */
+    double failure_released;   /* Σ_k Δd_k W_k⁺, J per cell */
 } king_point;
 
 /* docs/model.md §3, §5–7 at one point of the frame fr, amplitudes dA, state γᶠ:
@@ -185,16 +224,30 @@ typedef struct king_point {
  *   W_cell = Σ_k [k_k (L_k − L_k⁰)² + k_bk (β_k − β_k⁰)² + 2 K_d (d_k⁰ − d_k)₊^(c+1)/(c+1)]
  *          + (K_I/a)(exp(a I) − 1) − K_I I + ½ K_s (γ − γᶠ)²
  * locking_exponent and flow_exponent are c and n (constants 2 and 1 in the
- * blocked kernel, which leaves it branch-free). */
+ * blocked kernel, which leaves it branch-free). failure_state: NULL without
+ * yarn failure (the blocked kernels), else d_1, d_2 [, ε_1, ε_2] of the point,
+ * advanced over dt (§20). */
 WFF_INLINE void king_point_at(const king_params *k, const wff_yarn_frame *fr, const double dA[2],
-                              double gamma_f, const wff_shear_flow *flow,
-                              double locking_exponent, double flow_exponent, king_point *pt)
+                              double gamma_f, const double *failure_state, double dt,
+                              const wff_shear_flow *flow, double locking_exponent,
+                              double flow_exponent, king_point *pt)
 {
     const double inv_cell = 1 / k->cell_area;
     pt->compaction = wff_compaction_law(k->compaction_force, k->compaction_rate, dA);
 #pragma GCC unroll 2
     for (int f = 0; f < FAMILIES; f++)
         pt->yarn[f] = king_family_at(k, fr, f, dA[f], locking_exponent);
+    pt->failure_released = 0;
+    if (failure_state) {
+        const int rate_law = k->failure.rate_C > 0; /* then ε_k of the last update is kept */
+        for (int f = 0; f < FAMILIES; f++) {
+            wff_yarn_damage d = king_family_fail(k, f, &pt->yarn[f], failure_state[f],
+                                                 rate_law ? failure_state[2 + f] : 0, dt);
+            pt->failure_state[f] = d.damage;
+            pt->failure_state[2 + f] = d.strain_prev;
+            pt->failure_released += d.released;
+        }
+    }
     /* both families' laws first, then their forces: fewer values live across
      * the vector atan calls (the blocked kernel runs 2-3 % faster so) */
 #pragma GCC unroll 2
@@ -222,7 +275,8 @@ WFF_INLINE void king_point_at(const king_params *k, const wff_yarn_frame *fr, co
 /* docs/model.md §5, ∂F_k^N/∂ΔA_k at fixed F (F_k^N depends on its own amplitude
  * only), from family f's laws y, with p, s_k = J/p_k and θ held:
  *   ∂L/∂A = sinβ,  ∂sinβ/∂A = cos²β/L,  ∂β/∂A = cosβ/L,  ∂(cosβ/L)/∂A = −2 sinβ cosβ/L²
- *   ∂T/∂A = k sinβ (0 where a tension-only yarn is slack),  ∂M_b/∂A = k_b cosβ/L
+ *   ∂T/∂A = k sinβ (0 where a tension-only yarn is slack; × (1 − d) where a damaged
+ *           yarn is stretched, §20),  ∂M_b/∂A = k_b cosβ/L
  *   ∂d/∂A = sinα,  ∂F_L/∂A = −(−∂F_L/∂d) sinα,  ∂sinα/∂A = cos²α/d
  *   ∂F^N/∂A = 2 (∂T sinβ + T cos²β/L)
  *           − 2 (∂F_L sinα Λ + F_L cos²α/d Λ + F_L sinα ∂Λ)       Λ = 1 + λ p_l|cosθ|cosβ/L
@@ -233,7 +287,8 @@ WFF_INLINE double king_normal_slope(const king_params *k, const wff_yarn_frame *
     const double sb = y->sin_b, cb = y->cos_b, inv_L = y->inv_length;
     const double stretch_floor = k->tension_only != 0 ? 0.0 : -INFINITY;
     double stretch = y->length - k->length0[f];
-    double tension_slope = (stretch > stretch_floor ? k->yarn_stiffness[f] : 0.0) * sb;
+    double tension_slope =
+        (stretch > stretch_floor ? k->yarn_stiffness[f] : 0.0) * y->tension_factor * sb;
     double arm = k->lever * fr->p[1 - f] * fabs(fr->cos_t); /* λ p_l |cosθ| */
     double lever = 1 + arm * cb * inv_L;
     double lever_slope = -2 * arm * sb * cb * inv_L * inv_L;
@@ -248,10 +303,12 @@ WFF_INLINE double king_normal_slope(const king_params *k, const wff_yarn_frame *
 
 /* docs/model.md §5: R_k = (F_I − F_k^N)/(4 p1⁰ p2⁰) (as king_point_at computes it) and
  *   ∂R_k/∂ΔA_m = (−∂F_I/∂I − δ_km ∂F_k^N/∂ΔA_k)/(4 p1⁰ p2⁰)   (I = −ΔA_1 − ΔA_2)
- * into tangent[2k + m]. locking_exponent is c (the blocked kernel passes 2). */
+ * into tangent[2k + m]. locking_exponent is c (the blocked kernel passes 2).
+ * damage: NULL without failure, else d_1, d_2, held (§20). */
 WFF_INLINE void king_residual_tangent_at(const king_params *k, const wff_yarn_frame *fr,
                                          const double dA[2], double locking_exponent,
-                                         double residual[2], double tangent[4])
+                                         const double *damage, double residual[2],
+                                         double tangent[4])
 {
     const double inv_cell = 1 / k->cell_area;
     const wff_compaction c = wff_compaction_law(k->compaction_force, k->compaction_rate, dA);
@@ -259,6 +316,9 @@ WFF_INLINE void king_residual_tangent_at(const king_params *k, const wff_yarn_fr
 #pragma GCC unroll 2
     for (int f = 0; f < FAMILIES; f++)
         y[f] = king_family_at(k, fr, f, dA[f], locking_exponent);
+    if (damage)
+        for (int f = 0; f < FAMILIES; f++)
+            (void)king_family_fail(k, f, &y[f], damage[f], 0, 0);
 #pragma GCC unroll 2
     for (int f = 0; f < FAMILIES; f++) {
         king_family_forces(k, fr, f, &y[f]);
@@ -274,8 +334,14 @@ static wff_shear_flow king_flow(const king_params *k, double dt)
     return wff_shear_flow_step(k->shear_stiffness, k->flow_moment, k->flow_rate, dt);
 }
 
-/* docs/model.md §1–7: one material point. P = (1/(4 p1⁰ p2⁰)) Σ_k Q_k ⊗ G_k,
- * R_k, W = W_cell/(4 p1⁰ p2⁰); dt > 0 advances γᶠ. */
+/* A point's failure states (d_1 on), or NULL when the material has no yarn failure. */
+static inline const double *king_failure_state(const king_params *k, const double *state)
+{
+    return k->failure.enabled != 0 ? state + STATE_DAMAGE1 : NULL;
+}
+
+/* docs/model.md §1–7, §20: one material point. P = (1/(4 p1⁰ p2⁰)) Σ_k Q_k ⊗ G_k,
+ * R_k, W = W_cell/(4 p1⁰ p2⁰); dt > 0 advances γᶠ and the damages. */
 static int king_evaluate(const void *params, const double F[6], const double dA[2],
                          const double *state, double dt, wff_point_result *out)
 {
@@ -287,8 +353,9 @@ static int king_evaluate(const void *params, const double F[6], const double dA[
     }
     const wff_shear_flow flow = king_flow(k, dt);
     king_point pt;
-    king_point_at(k, &fr, dA, state[STATE_GAMMA_F], &flow, k->locking_exponent,
-                  k->flow_exponent, &pt);
+    const double *failure_state = king_failure_state(k, state);
+    king_point_at(k, &fr, dA, state[STATE_GAMMA_F], failure_state, dt, &flow,
+                  k->locking_exponent, k->flow_exponent, &pt);
     const double inv_cell = 1 / k->cell_area;
     const double scale[FAMILIES] = {k->pitch0[0] * inv_cell, k->pitch0[1] * inv_cell};
     wff_stress_from_q(&fr, pt.q, scale, out->stress);
@@ -297,7 +364,9 @@ static int king_evaluate(const void *params, const double F[6], const double dA[
     out->energy = pt.energy * inv_cell;
     out->state[STATE_GAMMA_F] = pt.gamma_f;
     out->dissipated = pt.dissipated * inv_cell;
-    out->failure_dissipated = 0;
+    out->failure_dissipated = pt.failure_released * inv_cell;
+    for (int i = STATE_DAMAGE1; failure_state && i < k->n_state; i++)
+        out->state[i] = pt.failure_state[i - STATE_DAMAGE1];
     out->diag[DIAG_T1] = pt.yarn[0].tension;
     out->diag[DIAG_T2] = pt.yarn[1].tension;
     out->diag[DIAG_BETA1] = k->crimp_angle0[0] + pt.yarn[0].bend;
@@ -322,8 +391,8 @@ static void king_energy_split(const void *params, const double F[6], const doubl
     }
     const wff_shear_flow held = king_flow(k, 0);
     king_point pt;
-    king_point_at(k, &fr, dA, state[STATE_GAMMA_F], &held, k->locking_exponent,
-                  k->flow_exponent, &pt);
+    king_point_at(k, &fr, dA, state[STATE_GAMMA_F], king_failure_state(k, state), 0, &held,
+                  k->locking_exponent, k->flow_exponent, &pt);
     const double inv_cell = 1 / k->cell_area;
     mech[MECH_YARN] = (pt.yarn[0].energy_yarn + pt.yarn[1].energy_yarn) * inv_cell;
     mech[MECH_BENDING] = (pt.yarn[0].energy_bending + pt.yarn[1].energy_bending) * inv_cell;
@@ -346,7 +415,8 @@ WFF_INLINE void king_wave_speeds_at(const king_params *k, double areal_density,
     const int degenerate = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
     const wff_shear_flow held = king_flow(k, 0);
     king_point pt;
-    king_point_at(k, &fr, dA, 0, &held, locking_exponent, flow_exponent, &pt);
+    /* undamaged (§20): damage only lowers the yarn terms, so these stay upper bounds */
+    king_point_at(k, &fr, dA, 0, NULL, 0, &held, locking_exponent, flow_exponent, &pt);
     const double compaction_stiffness = pt.compaction.stiffness; /* ∂F_I/∂I */
     /* maxima as comparisons (fmax would not vectorise; the same value here: the
      * first operand is never NaN) */
@@ -405,7 +475,8 @@ WFF_INLINE void king_wave_lane(const king_params *k, double areal_density, wff_w
 }
 
 /* The stable-step scan's blocked path: king_wave_speeds on WFF_BLOCK states in
- * one vectorised loop; declines as king_evaluate_tri_block does. */
+ * one vectorised loop; declines on c and n as king_evaluate_tri_block does
+ * (yarn failure does not change the bounds). */
 static int king_wave_speeds_block(const void *params, double areal_density, wff_wave_block *blk)
 {
     const king_params local = *(const king_params *)params, *k = &local;
@@ -434,11 +505,12 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
         return WFF_POINT_DEGENERATE;
     const wff_shear_flow flow = king_flow(k, dt);
     double q[FAMILIES][FAMILIES] = {{0, 0}, {0, 0}};
-    double energy_sum = 0, dissipated_sum = 0;
+    double energy_sum = 0, dissipated_sum = 0, released_sum = 0;
     for (int i = 0; i < n_points; i++) {
         king_point pt;
         double *point_state = state + i * k->n_state;
-        king_point_at(k, &fr, dA + 2 * i, point_state[STATE_GAMMA_F], &flow,
+        const double *failure_state = king_failure_state(k, point_state);
+        king_point_at(k, &fr, dA + 2 * i, point_state[STATE_GAMMA_F], failure_state, dt, &flow,
                       k->locking_exponent, k->flow_exponent, &pt);
         const double w = weight[i];
         for (int f = 0; f < FAMILIES; f++) {
@@ -448,7 +520,10 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
         }
         energy_sum += w * pt.energy;
         dissipated_sum += w * pt.dissipated;
+        released_sum += w * pt.failure_released;
         point_state[STATE_GAMMA_F] = pt.gamma_f;
+        for (int j = STATE_DAMAGE1; failure_state && j < k->n_state; j++)
+            point_state[j] = pt.failure_state[j - STATE_DAMAGE1];
     }
     const double inv_cell = 1 / k->cell_area;
     const double scale[FAMILIES] = {k->pitch0[0] * inv_cell, k->pitch0[1] * inv_cell};
@@ -458,7 +533,7 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
         stress_sum[i] += stress[i];
     *energy += energy_sum * inv_cell;
     *dissipated += dissipated_sum * inv_cell;
-    (void)failure_dissipated; /* no yarn failure: nothing released */
+    *failure_dissipated += released_sum * inv_cell;
     return WFF_POINT_OK;
 }
 
@@ -481,7 +556,8 @@ WFF_INLINE void king_tri_lane(const king_params *k, const wff_shear_flow *flow,
     for (int p = 0; p < 3; p++) {
         const double dA[2] = {blk->dA[p][0][b], blk->dA[p][1][b]};
         king_point pt;
-        king_point_at(k, &fr, dA, blk->state[p][STATE_GAMMA_F][b], flow, 2.0, 1.0, &pt);
+        king_point_at(k, &fr, dA, blk->state[p][STATE_GAMMA_F][b], NULL, 0, flow, 2.0, 1.0,
+                      &pt);
         blk->residual[p][0][b] = pt.residual[0];
         blk->residual[p][1][b] = pt.residual[1];
         blk->state[p][STATE_GAMMA_F][b] = pt.gamma_f;
@@ -515,7 +591,7 @@ static int king_evaluate_tri_block(const void *params, double dt, wff_tri_block 
     /* a local copy: stores into the block cannot alias it, so the parameters
      * stay in registers across the lanes */
     const king_params local = *(const king_params *)params, *k = &local;
-    if (k->locking_exponent != 2 || k->flow_exponent != 1)
+    if (k->locking_exponent != 2 || k->flow_exponent != 1 || k->failure.enabled != 0)
         return -1;
     const wff_shear_flow flow = king_flow(k, dt);
     const double inv_cell = 1 / k->cell_area, third = 1.0 / 3.0;
@@ -541,7 +617,7 @@ WFF_INLINE void king_point_lane(const king_params *k, const wff_shear_flow *flow
     blk->degenerate[b] = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
     const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
     king_point pt;
-    king_point_at(k, &fr, dA, blk->state[STATE_GAMMA_F][b], flow, 2.0, 1.0, &pt);
+    king_point_at(k, &fr, dA, blk->state[STATE_GAMMA_F][b], NULL, 0, flow, 2.0, 1.0, &pt);
     blk->residual[0][b] = pt.residual[0];
     blk->residual[1][b] = pt.residual[1];
     blk->state[STATE_GAMMA_F][b] = pt.gamma_f;
@@ -563,7 +639,7 @@ WFF_INLINE void king_point_lane(const king_params *k, const wff_shear_flow *flow
 static int king_evaluate_point_block(const void *params, double dt, wff_point_block *blk)
 {
     const king_params local = *(const king_params *)params, *k = &local;
-    if (k->locking_exponent != 2 || k->flow_exponent != 1)
+    if (k->locking_exponent != 2 || k->flow_exponent != 1 || k->failure.enabled != 0)
         return -1;
     const wff_shear_flow flow = king_flow(k, dt);
     const double inv_cell = 1 / k->cell_area;
@@ -575,11 +651,10 @@ static int king_evaluate_point_block(const void *params, double dt, wff_point_bl
 }
 
 /* The amplitude residual and its exact tangent at one point (king_residual_tangent_at);
- * the state (γᶠ) does not enter R. */
+ * γᶠ does not enter R, the damages (held) do. */
 static int king_amplitude_tangent(const void *params, const double F[6], const double dA[2],
                                   const double *state, double residual[2], double tangent[4])
 {
-    (void)state;
     const king_params *k = params;
     wff_yarn_frame fr;
     if (wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK) {
@@ -588,7 +663,8 @@ static int king_amplitude_tangent(const void *params, const double F[6], const d
             tangent[i] = NAN;
         return WFF_POINT_DEGENERATE;
     }
-    king_residual_tangent_at(k, &fr, dA, k->locking_exponent, residual, tangent);
+    king_residual_tangent_at(k, &fr, dA, k->locking_exponent, king_failure_state(k, state),
+                             residual, tangent);
     return WFF_POINT_OK;
 }
 
@@ -601,7 +677,7 @@ WFF_INLINE void king_tangent_lane(const king_params *k, wff_tangent_block *blk, 
     wff_yarn_frame fr;
     blk->degenerate[b] = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
     double residual[2], tangent[4];
-    king_residual_tangent_at(k, &fr, dA, 2.0, residual, tangent);
+    king_residual_tangent_at(k, &fr, dA, 2.0, NULL, residual, tangent);
     blk->residual[0][b] = residual[0];
     blk->residual[1][b] = residual[1];
 #pragma GCC unroll 4
@@ -610,11 +686,12 @@ WFF_INLINE void king_tangent_lane(const king_params *k, wff_tangent_block *blk, 
 }
 
 /* Blocked tangent: WFF_BLOCK points in one vectorised lane loop, c = 2 as a
- * constant (king_evaluate_tri_block's rule); other parameters decline. */
+ * constant (king_evaluate_tri_block's rule); other parameters, and yarn
+ * failure, decline. */
 static int king_amplitude_tangent_block(const void *params, wff_tangent_block *blk)
 {
     const king_params local = *(const king_params *)params, *k = &local;
-    if (k->locking_exponent != 2)
+    if (k->locking_exponent != 2 || k->failure.enabled != 0)
         return -1;
 #pragma omp simd
     for (int b = 0; b < WFF_BLOCK; b++)
@@ -623,7 +700,8 @@ static int king_amplitude_tangent_block(const void *params, wff_tangent_block *b
 }
 
 /* docs/model.md §9: the material file's keys, checked; derived reference
- * quantities L_k⁰, β_k⁰, d_k⁰ (at θ⁰ = 90°) and the cell area. */
+ * quantities L_k⁰, β_k⁰, d_k⁰ (at θ⁰ = 90°) and the cell area; the yarn
+ * failure keys (§20, yarn_failure.h) and the states they add. */
 static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
 {
     king_params *k = (king_params *)mat->params;
@@ -635,7 +713,8 @@ static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         &k->flow_exponent, &k->tension_only,
     };
     if (wff_weave_parse(kv, &shared, err) ||
-        wff_kv_number_or(kv, "lever", 0.0, &k->lever, err))
+        wff_kv_number_or(kv, "lever", 0.0, &k->lever, err) ||
+        wff_yarn_failure_parse(kv, &k->failure, err))
         return -1;
     if (k->lever != 0 && k->lever != 1)
         return wff_kv_reject(kv, "lever", err, "must be 0 (energy-consistent) or 1 "
@@ -655,7 +734,7 @@ static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         mat->yarn_spacing[f] = 2 * k->pitch0[l];
     }
     k->cell_area = 4 * k->pitch0[0] * k->pitch0[1];
-    mat->n_state = k->n_state = STATE_COUNT;
+    mat->n_state = k->n_state = 1 + wff_yarn_failure_states(&k->failure);
     return 0;
 }
 
@@ -679,7 +758,7 @@ static const wff_cell_type king_plain = {
     .n_state_max = STATE_COUNT,
     .state_names = king_state_names,
     .state_units = king_state_units,
-    .damage_state = {-1, -1},
+    .damage_state = {STATE_DAMAGE1, STATE_DAMAGE2},
     .parse = king_parse,
     .evaluate = king_evaluate,
     .wave_speeds = king_wave_speeds,

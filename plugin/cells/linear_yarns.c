@@ -31,12 +31,23 @@
  * One yarn carries T_k = N_k × yarn_spacing_k (N), reported as T1, T2.
  *
  * No crimp, so no amplitudes (n_amplitudes = 0): R = 0 and the solver holds
- * ΔA fixed. No shear flow either (W uses γ) and no internal state (n_state 0):
- * dissipated = 0 for any dt.
+ * ΔA fixed. No shear flow either (W uses γ): dissipated = 0 for any dt.
+ *
+ * Yarn failure (docs/model.md §20, optional: failure = 1): N_k and ½ S_k ε_k²
+ * times 1 − d_k where the yarn is stretched, d_k growing with the largest
+ * engineering yarn strain reached, here the straight yarn's
+ *
+ *   ε_k = λ_k − 1
+ *
+ * (yarn_failure.h). The only internal state is failure's: d_1, d_2, then ε_1,
+ * ε_2 of the last update with the rate law (n_state 0 without failure, 2 or
+ * 4 with it). The blocked kernel declines a material with failure on; the
+ * wave speeds stay the undamaged bounds.
  */
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
 #include "cell_laws.h"
+#include "yarn_failure.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -54,6 +65,8 @@ typedef struct linear_params {
     double tension_only;           /* 1: yarns carry no compression */
     double yarn_spacing[FAMILIES]; /* m, a copy of mat->yarn_spacing: evaluate()
                                       sees only params and reports T_k = N_k × spacing */
+    wff_yarn_failure failure;      /* yarn failure (docs/model.md §20); off: enabled 0 */
+    int n_state;                   /* states per point: 0, or d_1, d_2 [, ε_1, ε_2] */
 } linear_params;
 
 _Static_assert(sizeof(linear_params) <= sizeof(((wff_material *)0)->params),
@@ -62,8 +75,12 @@ _Static_assert(sizeof(linear_params) <= sizeof(((wff_material *)0)->params),
 /* What one evaluation computes, shared by evaluate, energy_split, wave_speeds. */
 typedef struct linear_point {
     wff_yarn_frame fr;          /* ĝ_k, λ_k (as p_k with p_k⁰ = 1), θ, γ */
-    double force[FAMILIES];     /* N_k = S_k (λ_k − 1), clipped when tension_only, N/m */
+    double force[FAMILIES];     /* N_k = S_k (λ_k − 1), clipped when tension_only, N/m
+                                   (times 1 − d_k once linear_point_fail has run) */
+    double energy_family[FAMILIES]; /* ½ S_k (λ_k − 1)² (damaged likewise), J/m² */
     double energy_yarn, energy_shear;
+    double failure_state[4];    /* d_1, d_2, ε_1, ε_2 after the update (with failure) */
+    double failure_released;    /* Σ_k Δd_k W_k⁺, J/m² */
 } linear_point;
 
 static const char *const linear_diag_names[] = {"T1", "T2", "lambda1", "lambda2"};
@@ -71,6 +88,13 @@ static const char *const linear_diag_units[] = {"N", "N", "-", "-"};
 enum { DIAG_T1, DIAG_T2, DIAG_LAMBDA1, DIAG_LAMBDA2, DIAG_COUNT };
 static const char *const linear_mech_names[] = {"yarn_stretch", "shear"};
 enum { MECH_YARN, MECH_SHEAR, MECH_COUNT };
+/* The internal state, only with yarn failure: the damages d_1, d_2, and with
+ * its rate law the yarn strains of the last update. */
+static const char *const linear_state_names[] = {"damage1", "damage2", "yarn_strain1",
+                                                 "yarn_strain2"};
+static const char *const linear_state_units[] = {"-", "-", "-", "-"};
+enum { STATE_DAMAGE1, STATE_DAMAGE2, STATE_STRAIN1, STATE_STRAIN2, STATE_COUNT };
+_Static_assert(STATE_COUNT <= WFF_STATE_MAX, "linear_yarns carries too many states");
 
 /* The kinematics with G_k = E_k (docs/model.md §1, p_k⁰ = 1), N_k and W. */
 static int linear_point_eval(const linear_params *c, const double F[6], linear_point *pt)
@@ -84,10 +108,34 @@ static int linear_point_eval(const linear_params *c, const double F[6], linear_p
         if (c->tension_only != 0 && strain < 0)
             strain = 0;
         pt->force[f] = c->stiffness[f] * strain;
-        pt->energy_yarn += 0.5 * c->stiffness[f] * strain * strain;
+        pt->energy_family[f] = 0.5 * c->stiffness[f] * strain * strain;
+        pt->energy_yarn += pt->energy_family[f];
     }
+    pt->failure_released = 0;
     pt->energy_shear = 0.5 * c->shear_stiffness * pt->fr.gamma * pt->fr.gamma;
     return WFF_POINT_OK;
+}
+
+/* docs/model.md §20: yarn failure at ε_k = λ_k − 1 from the point's state over
+ * dt: N_k and its energy times 1 − d_k where stretched; nothing without failure. */
+static void linear_point_fail(const linear_params *c, const double *state, double dt,
+                              linear_point *pt)
+{
+    if (c->failure.enabled == 0)
+        return;
+    const int rate_law = c->failure.rate_C > 0; /* then ε_k of the last update is kept */
+    pt->energy_yarn = 0;
+    for (int f = 0; f < FAMILIES; f++) {
+        wff_yarn_damage d = wff_yarn_damage_step(
+            &c->failure, f, pt->fr.p[f] - 1, pt->energy_family[f], state[STATE_DAMAGE1 + f],
+            rate_law ? state[STATE_STRAIN1 + f] : 0, dt);
+        pt->force[f] *= d.factor;
+        pt->energy_family[f] *= d.factor;
+        pt->energy_yarn += pt->energy_family[f];
+        pt->failure_state[f] = d.damage;
+        pt->failure_state[2 + f] = d.strain_prev;
+        pt->failure_released += d.released;
+    }
 }
 
 /* P = Σ_k Q_k ⊗ E_k, Q_k = N_k ĝ_k + G γ/(λ_k sinθ) (ĝ_l − cosθ ĝ_k): the
@@ -95,15 +143,14 @@ static int linear_point_eval(const linear_params *c, const double F[6], linear_p
 static int linear_evaluate(const void *params, const double F[6], const double dA[2],
                            const double *state, double dt, wff_point_result *out)
 {
-    (void)dA;    /* no amplitudes */
-    (void)state; /* no internal state */
-    (void)dt; /* no flow: nothing advances in time */
+    (void)dA; /* no amplitudes */
     const linear_params *c = params;
     linear_point pt;
     if (linear_point_eval(c, F, &pt) != WFF_POINT_OK) {
         wff_point_result_nan(out, DIAG_COUNT);
         return WFF_POINT_DEGENERATE;
     }
+    linear_point_fail(c, state, dt, &pt); /* (no flow: only failure's states advance) */
     static const double no_spars[FAMILIES] = {0, 0}, unit_scale[FAMILIES] = {1, 1};
     double q[FAMILIES][FAMILIES]; /* Q_f along ĝ_m */
     double shear = c->shear_stiffness * pt.fr.gamma; /* G γ, N/m */
@@ -113,7 +160,9 @@ static int linear_evaluate(const void *params, const double F[6], const double d
     out->residual[0] = out->residual[1] = 0;
     out->energy = pt.energy_yarn + pt.energy_shear;
     out->dissipated = 0;
-    out->failure_dissipated = 0;
+    out->failure_dissipated = pt.failure_released;
+    for (int i = 0; i < c->n_state; i++)
+        out->state[i] = pt.failure_state[i];
     out->diag[DIAG_T1] = pt.force[0] * c->yarn_spacing[0];
     out->diag[DIAG_T2] = pt.force[1] * c->yarn_spacing[1];
     out->diag[DIAG_LAMBDA1] = pt.fr.p[0];
@@ -121,8 +170,9 @@ static int linear_evaluate(const void *params, const double F[6], const double d
     return WFF_POINT_OK;
 }
 
-/* Fast path for n_points sharing one F (linear triangles): the result does
- * not depend on ΔA (and there is no state), so one evaluation serves every point. */
+/* Fast path for n_points sharing one F (linear triangles): without failure the
+ * result does not depend on ΔA (and there is no state), so one evaluation
+ * serves every point; with it each point has its damage, and is evaluated. */
 static int linear_evaluate_shared(const void *params, const double F[6], int n_points,
                                   const double *dA, const double *weight, double *state,
                                   double dt, double stress_sum[6], double *residual,
@@ -130,10 +180,27 @@ static int linear_evaluate_shared(const void *params, const double F[6], int n_p
                                   double *failure_dissipated, int *bad_point)
 {
     (void)dA;
-    (void)dissipated;         /* += 0 */
-    (void)failure_dissipated; /* += 0 */
+    (void)dissipated; /* += 0 */
     wff_point_result r;
     *bad_point = 0;
+    const linear_params *c = params;
+    if (c->failure.enabled != 0) {
+        for (int q = 0; q < n_points; q++) {
+            double *point_state = state + q * c->n_state;
+            if (linear_evaluate(params, F, NULL, point_state, dt, &r) != WFF_POINT_OK) {
+                *bad_point = q;
+                return WFF_POINT_DEGENERATE;
+            }
+            for (int i = 0; i < 6; i++)
+                stress_sum[i] += weight[q] * r.stress[i];
+            residual[2 * q] = residual[2 * q + 1] = 0;
+            *energy += weight[q] * r.energy;
+            *failure_dissipated += weight[q] * r.failure_dissipated;
+            for (int i = 0; i < c->n_state; i++)
+                point_state[i] = r.state[i];
+        }
+        return WFF_POINT_OK;
+    }
     if (linear_evaluate(params, F, NULL, state, dt, &r) != WFF_POINT_OK)
         return WFF_POINT_DEGENERATE;
     double weight_sum = 0;
@@ -179,11 +246,13 @@ WFF_INLINE void linear_tri_lane(const linear_params *c, double slack, wff_tri_bl
 /* Fast path for blocks of linear triangles (the far field of a zonal model):
  * one loop over the lanes, vectorised by gcc (libmvec's atan, sqrt and
  * divisions in vector registers); no state, residuals and dissipation 0.
- * Always handles the block. */
+ * Declines a material with yarn failure. */
 static int linear_evaluate_tri_block(const void *params, double dt, wff_tri_block *blk)
 {
     (void)dt; /* no flow */
     const linear_params local = *(const linear_params *)params; /* stays in registers */
+    if (local.failure.enabled != 0)
+        return -1;
     const double slack = local.tension_only;
     memset(blk->residual, 0, sizeof blk->residual); /* (outside the lanes' loop: a store
                                                      gcc makes a memset stops it vectorising) */
@@ -199,13 +268,13 @@ static void linear_energy_split(const void *params, const double F[6], const dou
                                 const double *state, double *mech)
 {
     (void)dA;
-    (void)state;
     const linear_params *c = params;
     linear_point pt;
     if (linear_point_eval(c, F, &pt) != WFF_POINT_OK) {
         mech[MECH_YARN] = mech[MECH_SHEAR] = NAN;
         return;
     }
+    linear_point_fail(c, state, 0, &pt);
     mech[MECH_YARN] = pt.energy_yarn;
     mech[MECH_SHEAR] = pt.energy_shear;
 }
@@ -223,6 +292,7 @@ static void linear_wave_speeds(const void *params, double areal_density, const d
                                const double dA[2], double *membrane_speed,
                                double *amplitude_omega)
 {
+    /* undamaged (§20): damage only lowers the yarn terms, so this stays an upper bound */
     (void)dA;
     const linear_params *c = params;
     linear_point pt;
@@ -254,7 +324,8 @@ static int linear_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         wff_kv_number(kv, "G", &c->shear_stiffness, err) ||
         wff_kv_number(kv, "yarn_spacing_1", &mat->yarn_spacing[0], err) ||
         wff_kv_number(kv, "yarn_spacing_2", &mat->yarn_spacing[1], err) ||
-        wff_kv_number_or(kv, "tension_only", 0.0, &c->tension_only, err))
+        wff_kv_number_or(kv, "tension_only", 0.0, &c->tension_only, err) ||
+        wff_yarn_failure_parse(kv, &c->failure, err))
         return -1;
     if (!(c->stiffness[0] > 0))
         return wff_kv_reject(kv, "S_1", err, "yarn stiffness per width must be > 0 N/m");
@@ -270,7 +341,7 @@ static int linear_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         return wff_kv_reject(kv, "tension_only", err, "must be 0 or 1");
     c->yarn_spacing[0] = mat->yarn_spacing[0];
     c->yarn_spacing[1] = mat->yarn_spacing[1];
-    mat->n_state = 0; /* no internal state */
+    mat->n_state = c->n_state = wff_yarn_failure_states(&c->failure); /* failure's only */
     return 0;
 }
 
@@ -285,10 +356,10 @@ static const wff_cell_type linear_yarns = {
     .yarn_tension_diag = {DIAG_T1, DIAG_T2},
     .n_mech = MECH_COUNT,
     .mech_names = linear_mech_names,
-    .n_state_max = 0,
-    .state_names = NULL,
-    .state_units = NULL,
-    .damage_state = {-1, -1},
+    .n_state_max = STATE_COUNT,
+    .state_names = linear_state_names,
+    .state_units = linear_state_units,
+    .damage_state = {STATE_DAMAGE1, STATE_DAMAGE2},
     .parse = linear_parse,
     .evaluate = linear_evaluate,
     .wave_speeds = linear_wave_speeds,

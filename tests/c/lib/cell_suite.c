@@ -1,4 +1,5 @@
 #include "cell_suite.h"
+#include "cell_suite_failure.h"
 #include "rng.h"
 #include "test_meshes.h"
 #include "wovenff/balance.h"
@@ -116,6 +117,7 @@ void cell_suite_run(check_state *st, const cell_case *c)
         return;
     CHECK(st, wff_cell_find(mat.cell->name) == mat.cell, "registry finds %s", mat.cell->name);
     cell_suite_check(st, c, &mat);
+    cell_suite_failure(st, c); /* cells with yarn failure: the failure path (§20) */
 }
 
 /* The ops table's sizes and names (cell.h's contract). */

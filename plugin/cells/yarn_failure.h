@@ -1,0 +1,212 @@
+/* wovenff — yarn failure, the one law every cell with yarns shares
+ * (docs/model.md §20; issue 13).
+ *
+ * Per yarn family k a damage d_k, 0 intact .. 1 ruptured, grows linearly with
+ * the largest engineering yarn strain ε_k reached, between the failure strain
+ * ε_f,k (damage starts) and the rupture strain ε_r,k (the yarn carries
+ * nothing), and never decreases:
+ *
+ *   d_k ← max(d_k, clamp((ε_k − ε_f,k φ)/((ε_r,k − ε_f,k) φ), 0, 1))
+ *
+ * φ scales both strains with the yarn strain rate (Cowper–Symonds, optional):
+ *
+ *   φ = 1 + (|ε̇_k|/C)^(1/p),   ε̇_k = (ε_k − ε_k^prev)/Δt
+ *
+ * (φ = 1 without the rate keys.) ε_k^prev is the strain of the previous
+ * update, kept as a state of the point; a state starting at 0 under a
+ * preloaded yarn gives one large apparent rate at the first step, which only
+ * raises φ, so it can delay damage, never cause it. Δt = 0 holds everything
+ * (d_k, ε_k^prev): the stress is then the exact derivative of the damaged
+ * energy. Without the rate law the update is d_k = g(max ε_k) exactly (g
+ * nondecreasing), "damage on the largest strain reached".
+ *
+ * Damage acts on tension only. With T_k the undamaged yarn tension and W_k
+ * the yarn-stretch energy it derives from (T_k > 0 exactly where ε_k > 0):
+ *
+ *   T_k^d = (1 − d_k) T_k        if ε_k > 0, else T_k
+ *   W_k^d = (1 − d_k) W_k^+ + W_k^−
+ *
+ * so at fixed d_k, T_k^d = ∂W_k^d/∂(stretch) still. An update that raises d_k
+ * releases stored energy −∂W/∂d Δd = Δd_k W_k^+ (at the end-of-update strain):
+ * failure_dissipated, so that work = ΔW + shear flow + failure dissipation.
+ *
+ * The engineering yarn strain is each cell's own: king_plain the truss along
+ * the crimped path, (L_k − L_k⁰)/L_k⁰ (k_k = EA/L_k⁰, so T_k = EA ε_k);
+ * basket_2x2 the half-repeat path (ℓ_k − ℓ_k⁰)/ℓ_k⁰; linear_yarns λ_k − 1.
+ *
+ * Material keys (parsed here, once for every cell): failure (0 off, the
+ * default; 1 on), fail_strain_1, fail_strain_2, rupture_strain_1,
+ * rupture_strain_2 (−), failure_rate_C (1/s) and failure_rate_p (−), the rate
+ * pair optional. The strains come as a set of four; present with failure = 0
+ * they are checked and kept but unused (a scene switches failure on through
+ * the material override, which replaces values of keys already in the file).
+ *
+ * Pure functions, no allocation, no state: included by cells, which are
+ * compiled once per kernel variant. */
+#ifndef WOVENFF_YARN_FAILURE_H
+#define WOVENFF_YARN_FAILURE_H
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cell_laws.h"
+#include "wovenff/material.h"
+
+/* The failure law's parameters, kept inside a cell's parameter struct
+ * (doubles only, so that it copies with the rest). */
+typedef struct wff_yarn_failure {
+    double enabled;              /* 1: yarns fail (failure = 1); 0: off, the keys unused */
+    double fail_strain[2];       /* ε_f,k, engineering yarn strain where damage starts, − */
+    double rupture_strain[2];    /* ε_r,k, where the yarn carries nothing, − */
+    double rate_C;               /* C, 1/s; 0: no rate scaling (φ = 1) */
+    double rate_p;               /* p, −; 0 without rate scaling */
+} wff_yarn_failure;
+
+/* The per-point states the law adds to a cell's: d_1, d_2, and ε_1^prev,
+ * ε_2^prev with the rate law; 0 when failure is off. */
+static inline int wff_yarn_failure_states(const wff_yarn_failure *f)
+{
+    if (f->enabled == 0)
+        return 0;
+    return f->rate_C > 0 ? 4 : 2;
+}
+
+/* Read and check the keys (see the header comment). Errors name the file,
+ * the line and the key:
+ *   failure other than 0 or 1; failure = 1 without the strains;
+ *   some strain keys but not all four (e.g. one family only);
+ *   a strain ≤ 0; rupture_strain_k ≤ fail_strain_k;
+ *   one rate constant without the other, a rate constant ≤ 0, or the rate
+ *   constants without the strains.
+ * Returns 0 or -1. */
+static inline int wff_yarn_failure_parse(wff_kv *kv, wff_yarn_failure *f, wff_error *err)
+{
+    static const char *const strain_key[4] = {"fail_strain_1", "fail_strain_2",
+                                              "rupture_strain_1", "rupture_strain_2"};
+    double failure, strain[4], rate_C, rate_p;
+    f->enabled = f->rate_C = f->rate_p = 0;
+    f->fail_strain[0] = f->fail_strain[1] = f->rupture_strain[0] = f->rupture_strain[1] = 0;
+    if (wff_kv_number_or(kv, "failure", 0.0, &failure, err))
+        return -1;
+    /* NaN marks an absent key: a file's numbers are finite (wff_kv_number_or) */
+    for (int i = 0; i < 4; i++)
+        if (wff_kv_number_or(kv, strain_key[i], NAN, &strain[i], err))
+            return -1;
+    if (wff_kv_number_or(kv, "failure_rate_C", NAN, &rate_C, err) ||
+        wff_kv_number_or(kv, "failure_rate_p", NAN, &rate_p, err))
+        return -1;
+    if (failure != 0 && failure != 1)
+        return wff_kv_reject(kv, "failure", err, "must be 0 (no yarn failure) or 1 (yarns fail "
+                             "between fail_strain_k and rupture_strain_k)");
+
+    int present = 0, first_present = -1;
+    char missing[128] = "";
+    for (int i = 0; i < 4; i++) {
+        if (!isnan(strain[i])) {
+            present++;
+            if (first_present < 0)
+                first_present = i;
+        } else {
+            size_t used = strlen(missing);
+            snprintf(missing + used, sizeof missing - used, "%s%s", used ? ", " : "",
+                     strain_key[i]);
+        }
+    }
+    if (present > 0 && present < 4)
+        return wff_kv_reject(kv, strain_key[first_present], err,
+                             "yarn failure takes fail_strain_k and rupture_strain_k for both "
+                             "families (k = 1, 2); missing: %s", missing);
+    if (present == 0 && failure == 1)
+        return wff_kv_reject(kv, "failure", err, "failure = 1 needs the yarn strains "
+                             "fail_strain_1, fail_strain_2, rupture_strain_1, rupture_strain_2");
+    for (int i = 0; i < present; i++)
+        if (!(strain[i] > 0))
+            return wff_kv_reject(kv, strain_key[i], err,
+                                 "must be > 0 (an engineering yarn strain in tension)");
+    for (int k = 0; k < 2 && present; k++)
+        if (!(strain[2 + k] > strain[k]))
+            return wff_kv_reject(kv, strain_key[2 + k], err,
+                                 "rupture strain must be larger than %s = %g (damage grows "
+                                 "between the two)", strain_key[k], strain[k]);
+
+    int has_C = !isnan(rate_C), has_p = !isnan(rate_p);
+    if (has_C != has_p)
+        return wff_kv_reject(kv, has_C ? "failure_rate_C" : "failure_rate_p", err,
+                             "the Cowper-Symonds rate scaling takes both failure_rate_C "
+                             "(1/s) and failure_rate_p (-); %s is missing",
+                             has_C ? "failure_rate_p" : "failure_rate_C");
+    if (has_C && !(rate_C > 0))
+        return wff_kv_reject(kv, "failure_rate_C", err, "must be > 0 1/s");
+    if (has_p && !(rate_p > 0))
+        return wff_kv_reject(kv, "failure_rate_p", err, "must be > 0");
+    if (has_C && present == 0)
+        return wff_kv_reject(kv, "failure_rate_C", err, "rate scaling of the failure strains "
+                             "given without the strains (fail_strain_k, rupture_strain_k)");
+
+    f->enabled = failure;
+    if (present) {
+        f->fail_strain[0] = strain[0];
+        f->fail_strain[1] = strain[1];
+        f->rupture_strain[0] = strain[2];
+        f->rupture_strain[1] = strain[3];
+    }
+    if (has_C) {
+        f->rate_C = rate_C;
+        f->rate_p = rate_p;
+    }
+    return 0;
+}
+
+/* φ = 1 + (|ε̇|/C)^(1/p), or 1 without rate scaling. */
+WFF_INLINE double wff_yarn_failure_rate_factor(const wff_yarn_failure *f, double strain_rate)
+{
+    if (!(f->rate_C > 0))
+        return 1.0;
+    return 1.0 + pow(fabs(strain_rate) / f->rate_C, 1.0 / f->rate_p);
+}
+
+/* The damage a strain ε alone would give family k at rate factor φ:
+ * clamp((ε − ε_f φ)/((ε_r − ε_f) φ), 0, 1). */
+WFF_INLINE double wff_yarn_damage_of_strain(const wff_yarn_failure *f, int k, double strain,
+                                            double rate_factor)
+{
+    double onset = f->fail_strain[k] * rate_factor;
+    double span = (f->rupture_strain[k] - f->fail_strain[k]) * rate_factor;
+    double d = (strain - onset) / span;
+    d = d > 0 ? d : 0.0;
+    return d < 1 ? d : 1.0;
+}
+
+/* What the law does to one yarn family at one update. */
+typedef struct wff_yarn_damage {
+    double damage;        /* d_k after the update */
+    double strain_prev;   /* ε_k^prev to keep (the strain now when Δt > 0, else held) */
+    double factor;        /* multiplies T_k and W_k: 1 − d_k in tension, 1 in compression */
+    double released;      /* (d_k − d_k,old) W_k^+, J per the cell's energy unit, ≥ 0 */
+} wff_yarn_damage;
+
+/* Family k at engineering strain `strain` with undamaged yarn-stretch energy
+ * `energy` (W_k: its W^+ when strain > 0), state damage (d_k) and strain_prev
+ * (ε_k^prev, unused without the rate law), step dt: the update of the header
+ * comment. Failure off: nothing changes, factor 1. */
+WFF_INLINE wff_yarn_damage wff_yarn_damage_step(const wff_yarn_failure *f, int k, double strain,
+                                                double energy, double damage,
+                                                double strain_prev, double dt)
+{
+    wff_yarn_damage y;
+    y.damage = damage;
+    y.strain_prev = strain_prev;
+    if (f->enabled != 0 && dt > 0) {
+        double rate_factor = wff_yarn_failure_rate_factor(f, (strain - strain_prev) / dt);
+        double d = wff_yarn_damage_of_strain(f, k, strain, rate_factor);
+        y.damage = d > damage ? d : damage;
+        y.strain_prev = strain;
+    }
+    int tension = strain > 0;
+    y.factor = tension ? 1 - y.damage : 1.0;
+    y.released = tension ? (y.damage - damage) * energy : 0.0;
+    return y;
+}
+
+#endif
