@@ -33,7 +33,7 @@ typedef struct checkpoint_header {
     uint32_t version, header_size;
     uint64_t byte_order;
     int32_t n_nodes, n_tris, n_quads, n_points, n_candidates, projectile_active, clamp_nodes,
-        dt_interval, reference_path, n_state;
+        dt_interval, reference_path, n_state, erosion;
     char state_names[STATE_LAYOUT_MAX]; /* the points' states, space-separated ("gamma_f") */
     uint64_t mesh_hash, material_hash, mass_hash, bc_hash, settings_hash;
     double dt_factor, symmetry_factor, projectile_radius, projectile_mass, projectile_mu;
@@ -57,6 +57,7 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     h->dt_interval = m->dt_interval;
     h->reference_path = m->em.reference_path;
     h->n_state = m->n_state;
+    h->erosion = m->el.eroded ? m->el.erosion : 0;
     for (int i = 0; i < m->n_state; i++) {
         size_t used = strlen(h->state_names);
         snprintf(h->state_names + used, sizeof h->state_names - used, "%s%s", i ? " " : "",
@@ -147,6 +148,8 @@ static int state_fields(wff_model *m, int n_candidates, state_field *f)
     FIELD(m->state, n_points(m) * (size_t)m->n_state); /* every point's every state */
     if (m->em.static_amplitudes) /* the points' own amplitudes */
         FIELD(m->el.point_dA, 2 * n_points(m));
+    if (m->el.eroded) /* erosion on: every element's flag */
+        FIELD(m->el.eroded, m->el.n_tris + m->el.n_quads);
 #undef FIELD
     return k;
 }
@@ -247,6 +250,12 @@ int wff_model_load_state(wff_model *m, const char *path, wff_error *err)
                  "points carry %d (%s): another cell or failure setting", path, h.n_state,
                  h.n_state ? h.state_names : "none", want.n_state,
                  want.n_state ? want.state_names : "none");
+        goto done;
+    }
+    if (h.erosion != want.erosion) {
+        wff_fail(err, "checkpoint %s was written with erosion %d; this model has erosion %d "
+                 "(0 off, 1 both yarn families, 2 either: set it as the run was)", path,
+                 h.erosion, want.erosion);
         goto done;
     }
     const char *why = hash_mismatch(&h, &want);

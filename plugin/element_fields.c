@@ -7,6 +7,7 @@
  * through their names tables and evaluate (via the elements); nothing of the
  * integrator, contact or FreeFEM. */
 #include "solver_internal.h"
+#include "erosion.h"
 #include "zones.h"
 #include "wovenff/state.h"
 
@@ -14,8 +15,8 @@
 #include <stdio.h>
 #include <string.h>
 
-enum { EF_P = 0, EF_LAMBDA = 6, EF_SHEAR = 8, EF_W, EF_TENSION, EF_STATE = 16,
-       EF_DIAG = EF_STATE + WFF_STATE_MAX };
+enum { EF_P = 0, EF_LAMBDA = 6, EF_SHEAR = 8, EF_W, EF_TENSION, EF_DAMAGE = 12, EF_ERODED = 14,
+       EF_STATE = 16, EF_DIAG = EF_STATE + WFF_STATE_MAX };
 
 static const char *const fixed_names[] = {"P11", "P12", "P21", "P22", "P31", "P32",
                                           "lambda1", "lambda2", "shear_angle", "W"};
@@ -28,6 +29,13 @@ static int field_code(const wff_model *m, const char *name)
     for (int i = 0; i < N_FIXED; i++)
         if (strcmp(name, fixed_names[i]) == 0)
             return i;
+    /* yarn damage by family (the cell's damage_state; 0 where a material has none)
+     * and the erosion flag: every model has them */
+    for (int k = 0; k < 2; k++)
+        if (strcmp(name, k ? "damage2" : "damage1") == 0)
+            return EF_DAMAGE + k;
+    if (strcmp(name, "eroded") == 0)
+        return EF_ERODED;
     for (int j = 0; j < m->n_state; j++)
         if (strcmp(name, wff_model_state_name(m, j)) == 0)
             return EF_STATE + j;
@@ -48,7 +56,10 @@ static int unknown(const wff_model *m, const char *name, wff_error *err)
         size_t used = strlen(known);
         snprintf(known + used, sizeof known - used, "%s%s", i ? " " : "", fixed_names[i]);
     }
+    snprintf(known + strlen(known), sizeof known - strlen(known), " damage1 damage2 eroded");
     for (int j = 0; j < m->n_state; j++) {
+        if (field_code(m, wff_model_state_name(m, j)) != EF_STATE + j)
+            continue; /* (named like one above: damage1, damage2) */
         size_t used = strlen(known);
         snprintf(known + used, sizeof known - used, " %s", wff_model_state_name(m, j));
     }
@@ -83,7 +94,13 @@ int wff_model_element_values_model(const wff_model *m, const char *name, double 
     const double *Fp = m->em.F_pre;
     for (int e = 0; e < n_el; e++) {
         double value;
-        if (code >= EF_STATE && code < EF_DIAG) { /* the mean of the element's points */
+        if (code == EF_DAMAGE || code == EF_DAMAGE + 1) {
+            value = wff_element_damage(m, e, code - EF_DAMAGE);
+        } else if (code == EF_ERODED) {
+            value = wff_element_eroded(&m->el, e);
+        } else if (wff_element_eroded(&m->el, e) && wff_element_field_evaluated(m, name)) {
+            value = 0; /* an eroded element carries nothing (and may be inverted) */
+        } else if (code >= EF_STATE && code < EF_DIAG) { /* the mean of the element's points */
             int n = e < m->el.n_tris ? 3 : 4, ns = m->n_state;
             const double *g = m->state + (size_t)ns * (e < m->el.n_tris
                                                            ? 3 * (size_t)e
@@ -133,6 +150,14 @@ int wff_model_element_values_model(const wff_model *m, const char *name, double 
         out[e] = value;
     }
     return 0;
+}
+
+int wff_element_field_evaluated(const wff_model *m, const char *name)
+{
+    int code = field_code(m, name);
+    return code >= 0 && (code < EF_LAMBDA || code == EF_W || (code >= EF_TENSION &&
+                                                              code < EF_DAMAGE) ||
+                         code >= EF_DIAG);
 }
 
 int wff_model_element_field(const wff_model *m, const char *name, double *out,

@@ -40,6 +40,11 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
     for (int k = 0; k < 2; k++)
         if (strcmp(name, k ? "yarn_tension2" : "yarn_tension1") == 0)
             diag = cell->yarn_tension_diag[k];
+    /* damage and erosion: the element values (erosion.c), whatever a cell's
+     * diagnostics are called */
+    if (strcmp(name, "damage1") == 0 || strcmp(name, "damage2") == 0 ||
+        strcmp(name, "eroded") == 0)
+        diag = -1;
     int shear = strcmp(name, "gamma") == 0, energy = strcmp(name, "W") == 0;
     double *element = NULL; /* another element field (state.h), averaged the same way */
     if (diag < 0 && !shear && !energy) {
@@ -64,8 +69,14 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
     }
     memset(out, 0, sizeof(double) * (size_t)m->n_nodes);
     int n_el = m->el.n_tris + m->el.n_quads;
+    /* an eroded element carries nothing: left out of the averages of what the cell
+     * evaluates (a node with no live element reads 0 there) */
+    const int live_only = m->el.eroded && (diag >= 0 || energy ||
+                                           (element && wff_element_field_evaluated(m, name)));
     for (int e = 0; e < n_el; e++) {
         double value;
+        if (live_only && m->el.eroded[e])
+            continue;
         if (element) {
             value = element[e];
         } else if (shear) {

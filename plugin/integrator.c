@@ -6,6 +6,7 @@
  * step and contact.c once a step; knows nothing of cells by name, of output
  * fields, of checkpoints or of FreeFEM. */
 #include "solver_internal.h"
+#include "erosion.h"
 #include "zones.h"
 
 #include <math.h>
@@ -95,6 +96,10 @@ static int force_pass_added(wff_model *m, const double *u, double *f, double *st
         return wff_fail(err, "t = %.6g s (step %ld): %s, quadrature point %d: %s%s", m->time,
                         m->step, name, t.bad_point + 1, quantity, hint);
     }
+    /* erosion (erosion.c): after a pass that advanced the states, elements whose yarns
+     * have ruptured go; their stored energy moves to the eroded energy */
+    if (accumulate && dt_flow > 0 && m->el.eroded)
+        t.internal_energy -= wff_erosion_scan(m, u, state);
     if (energy)
         *energy = t.internal_energy;
     if (accumulate) {
@@ -179,6 +184,11 @@ static int update_time_step(wff_model *m, wff_error *err)
 {
     int worst;
     double dt = wff_zones_stable_step(m, m->u, &worst);
+    if (dt == INFINITY && worst < 0 && m->n_eroded > 0 && m->dt_stable > 0) {
+        /* every element eroded: free masses, no element sets a step; keep the last */
+        m->dt = m->dt_factor * m->dt_stable;
+        return 0;
+    }
     if (!(dt > 0) || !isfinite(dt)) {
         char name[96];
         element_name(m, worst, name, sizeof name);

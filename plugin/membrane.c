@@ -120,7 +120,9 @@ void wff_elements_free(wff_elements *el)
     free(el->size);
     free(el->thread_f);
     free(el->point_dA);
+    free(el->eroded);
     el->point_dA = NULL;
+    el->eroded = NULL;
     el->tri_grad = el->tri_area = el->quad_grad = el->quad_weight = el->size = NULL;
     el->thread_f = NULL;
 }
@@ -353,8 +355,11 @@ tri_block_forces_n(const wff_elements *el, const wff_element_material *em, const
         ok[j] = finite[j] & !blk.degenerate[j] & (sum - sum == 0);
     }
     const int amplitudes = mat->cell->n_amplitudes;
+    const unsigned char *eroded = el->eroded;
     for (int j = 0; j < n; j++) {
         int e = e0 + j;
+        if (eroded && eroded[e]) /* no force, its states kept (a lane like any other above) */
+            continue;
         if (!ok[j]) {
             note_bad_sums(sums, e, 0, !finite[j] || !blk.degenerate[j] ? WFF_POINT_NONFINITE
                                                                      : WFF_POINT_DEGENERATE);
@@ -527,8 +532,11 @@ tri_block_static_forces_n(const wff_elements *el, const wff_element_material *em
     if (mat->cell->evaluate_tri_block(mat->params, dt, &blk) != 0)
         return -1;
     const double zero[6] = {0, 0, 0, 0, 0, 0};
+    const unsigned char *eroded = el->eroded;
     for (int j = 0; j < n; j++) {
         int e = e0 + j;
+        if (eroded && eroded[e]) /* no force; its states and amplitudes kept */
+            continue;
         if (!finite[j]) {
             note_bad_sums(sums, e, 0, WFF_POINT_NONFINITE);
             continue;
@@ -642,13 +650,15 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
                     blocked = 0;
                 if (!blocked)
                     for (int e = e0; e < e0 + n; e++)
-                        tri_forces_static(el, em, X, u, state, dt, ft, e, &sums);
+                        if (!wff_element_eroded(el, e))
+                            tri_forces_static(el, em, X, u, state, dt, ft, e, &sums);
             } else {
                 if (blocked && tri_block_forces(el, em, X, u, state, dt, ft, e0, n, &sums) != 0)
                     blocked = 0;
                 if (!blocked)
                     for (int e = e0; e < e0 + n; e++)
-                        tri_forces(el, em, X, u, state, dt, ft, e, &sums);
+                        if (!wff_element_eroded(el, e))
+                            tri_forces(el, em, X, u, state, dt, ft, e, &sums);
             }
         }
         part_energy[t] = sums.energy;
@@ -682,6 +692,8 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
     for (int e = 0; !quads_blocked && e < el->n_quads; e++) {
         const int *node = el->quad + 4 * e;
         int id = el->n_tris + e;
+        if (wff_element_eroded(el, id))
+            continue;
         for (int q = 0; q < WFF_QUAD_POINTS; q++) {
             const double *grad = el->quad_grad + 32 * e + 8 * q;
             double xi = gauss_1d * quad_gauss[q][0], eta = gauss_1d * quad_gauss[q][1];
@@ -749,6 +761,8 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
     double point[WFF_MECH_MAX];
     for (int e = 0; e < el->n_tris; e++) {
         const int *node = el->tri + 3 * e;
+        if (wff_element_eroded(el, e)) /* no stored energy */
+            continue;
         double F[6], Fe[6];
         deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
         preload_apply(em, F, Fe);
@@ -764,6 +778,8 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
     }
     for (int e = 0; e < el->n_quads; e++) {
         const int *node = el->quad + 4 * e;
+        if (wff_element_eroded(el, el->n_tris + e))
+            continue;
         for (int q = 0; q < WFF_QUAD_POINTS; q++) {
             const double *grad = el->quad_grad + 32 * e + 8 * q;
             double xi = gauss_1d * quad_gauss[q][0], eta = gauss_1d * quad_gauss[q][1];

@@ -139,7 +139,10 @@ static int tri_block_stable_step(const wff_elements *el, const wff_element_mater
     }
     if (mat->cell->wave_speeds_block(mat->params, mat->areal_density, &blk) != 0)
         return -1;
+    const unsigned char *eroded = el->eroded;
     for (int j = 0; j < n; j++) {
+        if (eroded && eroded[e0 + j]) /* sets no step */
+            continue;
         double dt = element_stable_dt(el->size[e0 + j], blk.membrane_speed[j],
                                       blk.amplitude_omega[j], amplitude_factor, 0);
         if (!(dt >= *mine)) { /* also catches NaN */
@@ -180,6 +183,8 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
         }
 #pragma omp for schedule(static)
         for (int e = first_scalar; e < n; e++) {
+            if (wff_element_eroded(el, e)) /* sets no step */
+                continue;
             double F[6], Fe[6], dA[2], speed, omega;
             wff_element_center_state(el, X, u, e, F, dA);
             if (em->static_amplitudes)

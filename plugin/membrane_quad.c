@@ -201,8 +201,11 @@ quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_
             for (int j = 0; j < WFF_BLOCK; j++)
                 state_new[q][i][j] = blk.state[i][j];
     }
+    const unsigned char *eroded = el->eroded ? el->eroded + el->n_tris : NULL;
     for (int j = 0; j < n; j++) {
         int e = e0 + j;
+        if (eroded && eroded[e]) /* no force, no energy; its states kept */
+            continue;
         const int *node = quad + 4 * e;
         for (int b = 0; b < 4; b++) {
             double *fb = f + D * node[b];

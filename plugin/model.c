@@ -5,6 +5,7 @@
  * nothing of how a step is taken (integrator.c), of contact (contact.c),
  * of output fields or checkpoints, of cells by name or of FreeFEM. */
 #include "solver_internal.h"
+#include "erosion.h"
 #include "zones.h"
 #include "wovenff/material.h"
 #include "wovenff/kernel.h"
@@ -154,6 +155,10 @@ int wff_model_create_ordered(wff_model *m, wff_mesh *mesh, const char *material_
     m->dt_factor = 0.8;
     m->dt_interval = 20;
     m->symmetry_factor = 1;
+    if (wff_erosion_default(m, err)) { /* erosion on (both families) when the points carry damage */
+        wff_model_free(m);
+        return -1;
+    }
     stored_energy_now(m);
     return 0;
 }
@@ -517,6 +522,8 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
             share_clamp_force(m, &ignored);
             return -1;
         }
+    } else if (strcmp(key, "erosion") == 0) {
+        return wff_erosion_set(m, value, err);
     } else if (strcmp(key, "clamp_edge_reaction") == 0) {
         if (m->clamp.n == 0)
             return wff_fail(err, "clamp_edge_reaction: no friction clamp yet (set the clamp "
@@ -528,7 +535,8 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
     } else {
         return wff_fail(err, "unknown solver setting '%s' (known: dtfactor, dtinterval, "
                         "symmetry, reference_path, threads, amplitude_mass_factor, "
-                        "static_amplitudes, contact_search, clamp_radius, clamp_edge_reaction)",
+                        "static_amplitudes, contact_search, erosion, clamp_radius, "
+                        "clamp_edge_reaction)",
                         key);
     }
     return 0;

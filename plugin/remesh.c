@@ -13,6 +13,7 @@
  * per-node or per-point array added to wff_model must be added here. */
 #include "solver_internal.h"
 #include "zones.h"
+#include "erosion.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -497,6 +498,16 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
                      wff_error *err)
 {
     wff_remesh_report rep = {0, 0, 0, 0, 0};
+    /* erosion is not transferred: refused once elements have eroded, or with erosion on
+     * and yarn damage anywhere (erosion off, the damage states transfer as any state) */
+    if (m->n_eroded > 0 || (m->el.eroded && wff_model_damaged(m))) { /* (m unchanged) */
+        int eroded = m->n_eroded;
+        wff_mesh_free(new_mesh);
+        return wff_fail(err, "wff_model_remesh: the model has %s (%d elements eroded): a "
+                        "mesh transfer does not carry yarn damage or erosion: run without "
+                        "-adapt or without failure", eroded ? "eroded elements" : "yarn damage",
+                        eroded);
+    }
     if (m->zones) { /* (m unchanged: the new mesh is freed, as on any failure) */
         wff_mesh_free(new_mesh);
         return wff_fail(err, "wff_model_remesh: the model has zonal materials (%d zones); "
@@ -535,6 +546,14 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     }
     if (m->el.n_threads > 1 && wff_elements_set_threads(&nm.el, m->el.n_threads, err))
         goto fail_prefixed;
+    if (m->el.eroded) { /* erosion stays on (nothing has eroded: checked above) */
+        nm.el.eroded = calloc((size_t)(nm.mesh.n_tris + nm.mesh.n_quads), 1);
+        if (!nm.el.eroded) {
+            wff_fail(err, "out of memory for the erosion flags");
+            goto fail_prefixed;
+        }
+        nm.el.erosion = m->el.erosion;
+    }
     nm.n_nodes = nm.mesh.n_nodes;
     nm.n_dofs = D * nm.n_nodes;
     if (allocate(&nm, err) || carry_groups(m, &nm.mesh, err))

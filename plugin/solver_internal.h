@@ -69,5 +69,9 @@ void wff_model_order_free(wff_model *m);
  * gives them in the user's). */
 int wff_model_element_values_model(const wff_model *m, const char *name, double *out,
                                    wff_error *err);
+/* element_fields.c: 1 if element field `name` is evaluated by the cell at the
+ * element's centre (stress, W, tensions, diagnostics: 0 on an eroded element,
+ * which nodal averages leave out), 0 for the kinematic and state fields. */
+int wff_element_field_evaluated(const wff_model *m, const char *name);
 
 #endif

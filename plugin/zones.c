@@ -213,7 +213,39 @@ static int build(wff_model *m, wff_error *err)
             return -1;
         }
     }
+    return wff_zones_erosion_changed(m, err);
+}
+
+int wff_zones_erosion_changed(wff_model *m, wff_error *err)
+{
+    struct wff_zones *Z = m->zones;
+    for (int k = 0; Z && k < Z->n; k++) {
+        wff_zone *z = &Z->zone[k];
+        z->el.erosion = m->el.erosion;
+        if (!m->el.eroded) {
+            free(z->el.eroded);
+            z->el.eroded = NULL;
+        } else if (z->n_elements > 0 && !z->el.eroded) {
+            z->el.eroded = calloc((size_t)z->n_elements, 1);
+            if (!z->el.eroded)
+                return wff_fail(err, "zones: out of memory for zone %d's erosion flags", k);
+        }
+    }
     return 0;
+}
+
+/* The model's erosion flags into the zones' (element by element: a byte each). */
+static void zones_eroded_copy(const wff_model *m)
+{
+    const struct wff_zones *Z = m->zones;
+    if (!Z || !m->el.eroded)
+        return;
+    for (int k = 0; k < Z->n; k++) {
+        wff_zone *z = (wff_zone *)&Z->zone[k]; /* its flags only */
+        if (z->el.eroded)
+            for (int i = 0; i < z->n_elements; i++)
+                z->el.eroded[i] = m->el.eroded[z->element[i]];
+    }
 }
 
 /* Membrane forces per mesh width σ11 = P11 / λ2, σ22 = P22 / λ1 (σ = P F_preᵀ /
@@ -461,6 +493,7 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
         wff_elements_forces(&m->el, &m->em, m->mesh.xy, u, state, dt, f, totals);
         return;
     }
+    zones_eroded_copy(m);
     totals->internal_energy = totals->dissipated = totals->failure_dissipated = 0;
     totals->bad_element = -1;
     totals->bad_point = 0;
@@ -518,6 +551,7 @@ double wff_zones_stable_step(const wff_model *m, const double *u, int *worst)
     const struct wff_zones *Z = m->zones;
     if (!Z)
         return wff_elements_stable_step(&m->el, &m->em, m->mesh.xy, u, worst);
+    zones_eroded_copy(m);
     double dt = INFINITY;
     *worst = -1;
     for (int k = 0; k < Z->n; k++) {
@@ -544,6 +578,7 @@ void wff_zones_energy_split(const wff_model *m, const double *u, const double *s
         wff_elements_energy_split(&m->el, &m->em, m->mesh.xy, u, state, mech);
         return;
     }
+    zones_eroded_copy(m);
     const wff_cell_type *base = m->mat.cell;
     for (int j = 0; j < base->n_mech && j < WFF_MECH_MAX; j++)
         mech[j] = 0;

@@ -18,6 +18,10 @@ void wff_zones_free(wff_model *m);
  * element numbered in the model. */
 void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, double *f,
                       wff_force_totals *totals);
+/* The model's erosion was switched on or off (m->el.eroded): the zones' own
+ * flags allocated or freed (they follow the model's at every pass); -1 (err
+ * set) if out of memory. */
+int wff_zones_erosion_changed(wff_model *m, wff_error *err);
 /* Lumped masses of every zone into m->mass (zeroed first). */
 void wff_zones_masses(wff_model *m);
 /* The smallest stable step over the zones; *worst the model's element. */

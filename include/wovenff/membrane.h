@@ -48,7 +48,22 @@ typedef struct wff_elements {
     double *thread_f;     /* (max_threads − 1) × n_dofs force buffers, one per extra thread */
     double *point_dA;     /* static amplitudes: 2 per quadrature point (6 per triangle,
                              then 8 per quad), or NULL while amplitudes are dynamic */
+    unsigned char *eroded; /* per element (tris, then quads): 1 once eroded (no force, no
+                             stable-step limit, no stored energy), or NULL while erosion is
+                             off (every pass then runs as before erosion existed); owned,
+                             freed by wff_elements_free (plugin/erosion.c) */
+    int erosion;          /* erosion rule: WFF_EROSION_OFF, _BOTH (every point of the element
+                             has both yarn families ruptured), _EITHER (one family ruptured
+                             at every point) */
 } wff_elements;
+
+enum { WFF_EROSION_OFF = 0, WFF_EROSION_BOTH = 1, WFF_EROSION_EITHER = 2 };
+
+/* 1 if element e (tris first, then quads) has been eroded. */
+static inline int wff_element_eroded(const wff_elements *el, int e)
+{
+    return el->eroded && el->eroded[e];
+}
 
 /* Most threads a force pass uses. */
 #define WFF_MAX_THREADS 64
@@ -110,7 +125,8 @@ void wff_elements_free(wff_elements *el);
  * a fixed order) and agree to round-off between counts. */
 int wff_elements_set_threads(wff_elements *el, int n_threads, wff_error *err);
 
-/* Add internal forces of every element at displacement u (5 per node) into f,
+/* Add internal forces of every element at displacement u (5 per node) into f
+ * (eroded elements, el->eroded, give none and their points' states are kept),
  * update the points' internal state (em->mat->n_state per quadrature point,
  * 3 points per tri then 4 per quad: point p's state i at state[n_state p + i])
  * with step dt (0: hold it). */
@@ -142,7 +158,8 @@ void wff_elements_masses(const wff_elements *el, const wff_element_material *em,
 /* Stable explicit step over all elements at the current state: per element
  * 1/sqrt(1/dt_m² + 1/dt_A²) with dt_m = size/c (membrane waves) and
  * dt_A = 2/ω (amplitude oscillator), the bound for the two coupled.
- * *worst gets the element that sets it. */
+ * *worst gets the element that sets it. Eroded elements set none (every
+ * element eroded: INFINITY, *worst −1). */
 double wff_elements_stable_step(const wff_elements *el, const wff_element_material *em,
                                 const double *X, const double *u, int *worst);
 

@@ -274,7 +274,13 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
  * contact search, stable step; 0: wff_default_threads()), amplitude_mass_factor
  * (>= 1: heavier amplitudes, longer steps), static_amplitudes (1: balanced at
  * every point instead of dynamic DOFs), contact_search (1: only nodes the
- * projectile can reach; 0: every node); for a friction clamp (set first):
+ * projectile can reach; 0: every node), erosion (0 off; 1 an element is
+ * eroded once both yarn families have ruptured, damage 1, at every point of
+ * it, the default when the material has failure; 2 either family: one family
+ * ruptured at every point; refused for a cell without yarn failure or a
+ * material with failure = 0, and 0 once elements have eroded; plugin/erosion.h:
+ * an eroded element gives no force, no stable step, no stored energy, and its
+ * stored energy then goes to the eroded energy); for a friction clamp (set first):
  * clamp_radius (m, >= 0: the clamping force is shared only over the clamp's
  * nodes within this distance of (0, 0), e.g. a ring at the opening's edge;
  * the others stay flat without friction; 0: all of them, the default) and
@@ -338,9 +344,10 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 3 /* 2: the projectile's impulse_total added; 3: the points'
+#define WFF_CHECKPOINT_VERSION 4 /* 2: the projectile's impulse_total added; 3: the points'
                                     generic state (n_state and names in the header, every
-                                    state saved), failure and eroded energies */
+                                    state saved), failure and eroded energies; 4: the
+                                    erosion rule (header) and the eroded flags */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 

@@ -45,6 +45,12 @@
  *                             material carries fewer states reads 0 for the rest)
  *   T1 T2                     yarn tensions, N (the cell's yarn-tension
  *                             diagnostics)
+ *   damage1 damage2           yarn damage of family 1, 2 (0 intact .. 1 ruptured):
+ *                             the mean of the element's points (the cell's
+ *                             damage_state), 0 for a material without damage
+ *   eroded                    1 on an eroded element, else 0 (plugin/erosion.h);
+ *                             an eroded element's stresses, W, tensions and
+ *                             diagnostics read 0
  *   every cell diagnostic by its name (a diagnostic named like one of the
  *   above is that one: linear_yarns' lambda1 lambda2 are the same stretches).
  * Nodal values (wff_model_nodal_field) of these names are the area-weighted

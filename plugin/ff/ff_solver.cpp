@@ -83,7 +83,8 @@ const StateQuantity kState[] = {
     {"elements", false},          {"nodes", false},
     {"dt_worst_element", false},  {"transfer_energy", true},
     {"projectile_impulse", false}, {"dissipated_failure", true},
-    {"eroded_energy", true},      {"eroded_elements", false}};
+    {"eroded_energy", true},      {"eroded_elements", false},
+    {"failure_energy", true}};
 const int kStateSize = sizeof kState / sizeof kState[0];
 
 std::string state_names()
@@ -110,7 +111,7 @@ void state_values(const wff_model *m, bool with_energies, double values[kStateSi
                         (double)(m->el.n_tris + m->el.n_quads), (double)m->n_nodes,
                         (double)(wff_model_user_element(m, m->dt_worst_element) + 1), e.transfer,
                         s * m->projectile.impulse_total, e.dissipated_failure, e.eroded,
-                        (double)m->n_eroded};
+                        (double)m->n_eroded, e.dissipated_failure};
     static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
     for (int i = 0; i < kStateSize; i++)
         values[i] = v[i];
