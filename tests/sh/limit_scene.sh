@@ -9,6 +9,8 @@
 #    fit recovers V_bl, a, p to 1e-4 and the bracket's V50 +- half-gap holds 120;
 #  - a run that fails (-failspeeds) is reported with its log's path, listed as
 #    failed and skipped; the fit still recovers the law;
+#  - a run that ends at -tend undecided (not perforated, the projectile still
+#    moving in) is not counted as stopped: listed as failed, naming -tend;
 #  - a scene that never perforates: exit 5, the error names -vmax;
 #  - every run of a round failing: exit 4; bad options: exit 2.
 set -u
@@ -63,6 +65,18 @@ grep -q 'v250: FAILED, skipped: .*a failing run at 250 m/s.*(log: .*v250/run.log
 grep -q '^250,,,failed,' "$tmp/failing/limit.csv" || { echo "limit.csv: v250 not listed as failed"; fail=1; }
 [ "$(field "$tmp/failing/limit.json" runs_failed)" = 1 ] || { echo "runs_failed not 1"; fail=1; }
 close "V_bl (a run failed)" "$(field "$tmp/failing/limit.json" v_bl)" 150 1e-4
+
+# 2b. a run undecided at -tend (above V_bl: it would perforate given the time) is
+# not a stopped run: counted so, it would put a stop above the limit
+sweep undecided -base "-law 120,0.9,2.5 -undecided 149:151" -vmin 150 -vmax 300 -jobs 2 -runs 10
+rc=$?
+[ $rc -eq 0 ] || { echo "sweep with an undecided run exited $rc"; tail -5 "$tmp/undecided.log"; fail=1; }
+grep -q '^150,,,failed,' "$tmp/undecided/limit.csv" \
+    || { echo "limit.csv: v150 (undecided at -tend) not listed as failed"; grep '^150,' "$tmp/undecided/limit.csv"; fail=1; }
+grep -q 'v150: FAILED, skipped: .*-tend' "$tmp/undecided.log" \
+    || { echo "the undecided run is not reported naming -tend"; grep v150 "$tmp/undecided.log"; fail=1; }
+awk -F, 'NR > 1 && $3 == 0 && $1 > 120 { print "undecided: row " NR ": stopped above V_bl"; bad = 1 } END { exit bad }' \
+    "$tmp/undecided/limit.csv" || fail=1
 
 # 3. never perforates: the bracket error names -vmax
 sweep never -base "-never 1" -jobs 2 -expansions 3
