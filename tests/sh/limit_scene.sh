@@ -91,11 +91,12 @@ sweep allfail -base "-failspeeds 0:1e9" -jobs 2
 rc=$?
 [ $rc -eq 4 ] || { echo "all-failing sweep exited $rc, want 4"; fail=1; }
 grep -q '^error: ballistic_limit: every run of round 1 failed' "$tmp/allfail.log" || { echo "no all-failed error"; fail=1; }
-for bad in "-vmin 300 -vmax 100" "-runs 3" "-growth 1" "-base -law" "-base '-velocity 3'" "-scene nowhere.edp"; do
+for bad in "-vmin 300 -vmax 100" "-runs 3" "-runs 513 -base '-never 1'" "-growth 1" "-base -law" "-base '-velocity 3'" "-scene nowhere.edp"; do
     eval sweep bad $bad
     rc=$?
     [ $rc -eq 2 ] || { echo "'$bad' exited $rc, want 2"; fail=1; }
     grep -q '^error: ' "$tmp/bad.log" || { echo "'$bad': no error line"; fail=1; }
+    case "$bad" in -runs*) grep -q '^error: .*-runs' "$tmp/bad.log" || { echo "'$bad': the error does not name -runs"; fail=1; };; esac
     rm -rf "$tmp/bad"
 done
 exit $fail
