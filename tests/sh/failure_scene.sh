@@ -8,7 +8,9 @@
 # projectile is not perforated; fast, the projectile perforates: perforated
 # true, a residual speed > 0 and below the impact speed, eroded elements,
 # failure energy > 0, the energy balance within 1 % of the impact energy, the
-# history's failure columns, damage.png, the damage fields in the VTK frames.
+# history's failure columns, damage.png, the damage fields in the VTK frames;
+# a run stopped after elements eroded and restarted from its checkpoint ends as the
+# uninterrupted one.
 # (-failure off, the paper's scene unchanged: sh/ballistic_scene.sh, make run.)
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/failure_scene"
@@ -107,5 +109,27 @@ else
     # the run ended at perforation, before -tend
     awk -F, 'NR > 1 { t = $1 } END { exit !(t < 0.99e-3) }' "$out/history.csv" \
         || { echo "fast: the run went on to -tend after perforating"; fail=1; }
+fi
+# a -failure on run checkpointed after elements have eroded, stopped (as a crash
+# would) and restarted ends as the uninterrupted run: the same history rows
+# (damage, erosion, failure and eroded energies carried), the same perforation keys
+whole="$tmp/whole"; part="$tmp/part"
+args="-mesh coarse -plots 0 -velocity 300 -failure on -threads 1 -vtkdt 1"
+sh tools/ff.sh "$scene" $args -out "$whole" > "$whole.log" 2>&1
+rc1=$?
+sh tools/ff.sh "$scene" $args -out "$part" -checkpoint 1 -stopafter 5 > "$part.log" 2>&1
+rc2=$?
+sh tools/ff.sh "$scene" $args -restart "$part" > "$part.restart.log" 2>&1
+rc3=$?
+if [ $rc1 -ne 0 ] || [ $rc2 -ne 9 ] || [ $rc3 -ne 0 ]; then
+    echo "restart: exits $rc1 (whole), $rc2 (stopped, want 9), $rc3 (restarted)"; tail -3 "$part.restart.log"; fail=1
+else
+    eroded5=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "eroded_energy") c = i } NR == 7 { print $c }' "$whole/history.csv")
+    awk -v e="$eroded5" 'BEGIN { exit !(e > 0) }' || echo "restart: nothing eroded by frame 5 (eroded energy '$eroded5' J): the restart carries damage only"
+    cmp -s "$whole/history.csv" "$part/history.csv" || { echo "restart: history.csv differs from the uninterrupted run's"; fail=1; }
+    for key in perforated residual_velocity perforation_time eroded_elements failure_energy eroded_energy; do
+        a=$(num "$whole" $key); b=$(num "$part" $key)
+        [ -n "$a" ] && [ "$a" = "$b" ] || { echo "restart: $key '$b', uninterrupted '$a'"; fail=1; }
+    done
 fi
 exit $fail
