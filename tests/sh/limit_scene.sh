@@ -9,6 +9,7 @@
 #    fit recovers V_bl, a, p to 1e-4 and the bracket's V50 +- half-gap holds 120;
 #  - a run that fails (-failspeeds) is reported with its log's path, listed as
 #    failed and skipped; the fit still recovers the law;
+#  - 3 perforating runs (no standard errors): the fit and limit.png still come;
 #  - a run that ends at -tend undecided (not perforated, the projectile still
 #    moving in) is not counted as stopped: listed as failed, naming -tend;
 #  - a scene that never perforates: exit 5, the error names -vmax;
@@ -65,6 +66,14 @@ grep -q 'v250: FAILED, skipped: .*a failing run at 250 m/s.*(log: .*v250/run.log
 grep -q '^250,,,failed,' "$tmp/failing/limit.csv" || { echo "limit.csv: v250 not listed as failed"; fail=1; }
 [ "$(field "$tmp/failing/limit.json" runs_failed)" = 1 ] || { echo "runs_failed not 1"; fail=1; }
 close "V_bl (a run failed)" "$(field "$tmp/failing/limit.json" v_bl)" 150 1e-4
+
+# 2a. three perforating runs (-minperforated 3: no residual variance, no standard
+# errors): the fit is reported and limit.png still drawn
+sweep three -base "-law 120,0.9,2.5" -vmin 100 -vmax 300 -jobs 2 -runs 4 -minperforated 3
+rc=$?
+[ $rc -eq 0 ] || { echo "sweep with 3 perforating runs exited $rc"; tail -5 "$tmp/three.log"; fail=1; }
+[ -s "$tmp/three/limit.png" ] || { echo "3 perforating runs: no limit.png"; grep -i gnuplot "$tmp/three.log"; fail=1; }
+grep -q '"std_error": null' "$tmp/three/limit.json" || { echo "3 perforating runs: a standard error that is not null"; fail=1; }
 
 # 2b. a run undecided at -tend (above V_bl: it would perforate given the time) is
 # not a stopped run: counted so, it would put a stop above the limit
