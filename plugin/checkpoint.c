@@ -262,7 +262,7 @@ int wff_model_load_state(wff_model *m, const char *path, wff_error *err)
         goto done;
     }
     if (h.orientation != want.orientation) { /* (before the settings' hash, which holds it) */
-        wff_fail(err, "checkpoint %s was written with orientation %.17g deg; this model has %.17g "
+        wff_fail(err, "checkpoint %s was written with orientation %.15g deg; this model has %.15g "
                  "deg (the warp's angle to the mesh's x axis: set it as the run was)", path,
                  h.orientation * 180 / M_PI, want.orientation * 180 / M_PI);
         goto done;

@@ -95,8 +95,6 @@ typedef struct wff_element_material {
                              the orientation in front, R(θ) F_pre,mat (the preload as
                              given at θ = 0) */
     double J_pre;         /* det F_pre (= det of the preload: R is a rotation) */
-    double orientation;   /* θ, rad: the warp E1 at θ to the mesh's x axis
-                             (counter-clockwise; 0 by default) */
     int reference_path;   /* 1: always the cell's plain evaluate(), even where it offers
                              evaluate_shared (for checks and benchmarks), and its plain
                              wave_speeds() in the stable-step scan */
@@ -106,6 +104,8 @@ typedef struct wff_element_material {
     int static_amplitudes; /* 1: amplitudes in static balance at every quadrature point
                              (King 2005) instead of dynamic nodal DOFs; see
                              wff_elements_static_amplitudes */
+    double orientation;   /* θ, rad: the warp E1 at θ to the mesh's x axis
+                             (counter-clockwise; 0 by default); F_pre holds R(θ) */
 } wff_element_material;
 
 /* The element map for a preload Fp (material frame, row-major 2×2) at
