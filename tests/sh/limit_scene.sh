@@ -53,9 +53,20 @@ v50=$(sed -n 's/.*"v50_bracket": {"value": \([^,]*\), "half_gap": \([^,]*\),.*/\
 awk -v s="$v50" 'BEGIN { split(s, x, " "); d = x[1] - 120; if (d < 0) d = -d; exit !(s != "" && d <= x[2]) }' \
     || { echo "V50 bracket '$v50' does not hold 120"; fail=1; }
 [ -s "$d/v300/summary.json" ] && [ -s "$d/v300/run.log" ] || { echo "run folder v300 incomplete"; fail=1; }
+[ "$(field "$d/limit.json" runs_undecided)" = 0 ] || { echo "runs_undecided not 0"; fail=1; }
+grep -q '"tend": 0.01[,}]' "$d/v300/summary.json" || { echo "the runs were not given the sweep's -tend 10e-3"; fail=1; }
+
+# 1b. stopped runs that ended at -tend (neither perforated nor rebounded): warned, counted
+sweep undecided -base "-law 120,0.9,2.5 -undecided 1" -vmin 100 -vmax 300 -jobs 2 -runs 6 -minperforated 3
+rc=$?
+[ $rc -eq 0 ] || { echo "undecided sweep exited $rc"; tail -5 "$tmp/undecided.log"; fail=1; }
+grep -q '^  v100: stopped? not perforated by -tend.*raise -tend' "$tmp/undecided.log" \
+    || { echo "no warning for a run that ended at -tend"; grep v100 "$tmp/undecided.log"; fail=1; }
+u=$(field "$tmp/undecided/limit.json" runs_undecided)
+[ "${u:-0}" -ge 1 ] || { echo "runs_undecided '$u', want >= 1"; fail=1; }
 
 # 2. a failing run: reported, skipped
-sweep failing -base "-failspeeds 249:251" -jobs 2 -runs 12
+sweep failing -base "-failspeeds 249:251" -vmin 100 -vmax 400 -jobs 2 -runs 12
 rc=$?
 [ $rc -eq 0 ] || { echo "sweep with a failing run exited $rc"; tail -5 "$tmp/failing.log"; fail=1; }
 grep -q 'v250: FAILED, skipped: .*a failing run at 250 m/s.*(log: .*v250/run.log)' "$tmp/failing.log" \
@@ -77,7 +88,7 @@ sweep allfail -base "-failspeeds 0:1e9" -jobs 2
 rc=$?
 [ $rc -eq 4 ] || { echo "all-failing sweep exited $rc, want 4"; fail=1; }
 grep -q '^error: ballistic_limit: every run of round 1 failed' "$tmp/allfail.log" || { echo "no all-failed error"; fail=1; }
-for bad in "-vmin 300 -vmax 100" "-runs 3" "-growth 1" "-base -law" "-base '-velocity 3'" "-scene nowhere.edp"; do
+for bad in "-vmin 300 -vmax 100" "-runs 3" "-growth 1" "-base -law" "-base '-velocity 3'" "-base '-tend 1'" "-scene nowhere.edp"; do
     eval sweep bad $bad
     rc=$?
     [ $rc -eq 2 ] || { echo "'$bad' exited $rc, want 2"; fail=1; }
