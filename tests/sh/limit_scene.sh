@@ -56,12 +56,16 @@ awk -v s="$v50" 'BEGIN { split(s, x, " "); d = x[1] - 120; if (d < 0) d = -d; ex
 [ "$(field "$d/limit.json" runs_undecided)" = 0 ] || { echo "runs_undecided not 0"; fail=1; }
 grep -q '"tend": 0.01[,}]' "$d/v300/summary.json" || { echo "the runs were not given the sweep's -tend 10e-3"; fail=1; }
 
-# 1b. stopped runs that ended at -tend with the projectile still moving on: warned, counted
-sweep undecided -base "-law 120,0.9,2.5 -undecided 1" -vmin 100 -vmax 300 -jobs 2 -runs 6 -minperforated 3
+# 1b. a stopped run that ended at -tend with the projectile still moving on: undecided,
+#     warned, counted, listed, left out of the bracket and the fit
+sweep undecided -base "-law 120,0.9,2.5 -undecided 100:110" -vmin 100 -vmax 300 -jobs 2 -runs 10
 rc=$?
 [ $rc -eq 0 ] || { echo "undecided sweep exited $rc"; tail -5 "$tmp/undecided.log"; fail=1; }
-grep -q '^  v100: stopped? not perforated by -tend.*still moved on (0.5 m/s).*raise -tend' "$tmp/undecided.log" \
-    || { echo "no warning for a run that ended at -tend"; grep v100 "$tmp/undecided.log"; fail=1; }
+grep -q '^  v100: undecided: not perforated by -tend.*still moved on (0.5 m/s).*left out.*raise -tend' \
+    "$tmp/undecided.log" || { echo "no warning for a run that ended at -tend"; grep v100 "$tmp/undecided.log"; fail=1; }
+grep -q '^100,,,undecided,' "$tmp/undecided/limit.csv" || { echo "limit.csv: v100 not listed as undecided"; fail=1; }
+grep -q 'every run perforated: slower' "$tmp/undecided.log" || { echo "the undecided run was taken as stopped"; fail=1; }
+close "V_bl (a run undecided)" "$(field "$tmp/undecided/limit.json" v_bl)" 120 1e-4
 u=$(field "$tmp/undecided/limit.json" runs_undecided)
 [ "${u:-0}" -ge 1 ] || { echo "runs_undecided '$u', want >= 1"; fail=1; }
 
