@@ -12,16 +12,25 @@
 #            from the bracket, the Lambert-Jonas constants, the runs and the wall
 #            time, and the Phoenix-Porwal V50 (tools/phoenix_porwal.sh) with the
 #            ratio. Writes OUT/study.md; each sweep's files in OUT/M.
-# Cost (2 cores shared, -jobs 2): coarse ~2 min, default ~15 min; fine is ~8x default.
+#   sh bench/limit_study.sh -meshes "" -spot fine -speeds "15.56 16.67"
+#            single runs on mesh -spot at each speed (-tend 6e-3, 2 at once), the outcome
+#            from the history: perforated (summary), turned back (the projectile's
+#            velocity reached 0), or still moving on at the end; written to OUT/spot.md.
+#            The fine mesh's check of the coarse/default bracket (a whole fine sweep is
+#            too slow: ~30 s CPU per ms of a run).
+# Cost (2 cores shared by others, -jobs 2): coarse ~2 min, default ~9 min (5 CPU min);
+# the spot check on fine ~10 min.
 set -u
-meshes="coarse default" jobs=2 out=results/limit_study args=""
+meshes="coarse default" jobs=2 out=results/limit_study args="" spot="" speeds=""
 while [ $# -gt 0 ]; do
     case "$1" in
         -meshes) meshes=$2; shift 2 ;;
         -jobs) jobs=$2; shift 2 ;;
         -out) out=$2; shift 2 ;;
         -args) args=$2; shift 2 ;;
-        *) echo "error: limit_study: unknown option '$1' (-meshes -jobs -out -args)"; exit 2 ;;
+        -spot) spot=$2; shift 2 ;;
+        -speeds) speeds=$2; shift 2 ;;
+        *) echo "error: limit_study: unknown option '$1' (-meshes -jobs -out -args -spot -speeds)"; exit 2 ;;
     esac
 done
 [ -f tools/ff.sh ] || { echo "error: limit_study: run from the repository root"; exit 2; }
@@ -73,3 +82,30 @@ done
     echo "the strain peaks: failure before the cone reaches it above $ppclamp m/s."
 } > "$out/study.md"
 cat "$out/study.md"
+
+# the spot check: single runs on mesh $spot
+if [ -n "$spot" ] && [ -n "$speeds" ]; then
+    for v in $speeds; do
+        sh tools/ff.sh freefem_scripts/ballistic_impact.edp -mesh "$spot" -plots 0 -vtkdt 1 -failure on \
+            -velocity "$v" -threads 1 -tend 6e-3 -overwrite 1 -out "$out/spot_$spot/v$v" > "$out/spot_$spot.v$v.log" 2>&1 &
+    done
+    wait
+    {
+        echo "| mesh | V_s (m/s) | outcome | at (ms) | projectile at the end (m/s) | eroded | failure energy (J) | max energy error |"
+        echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
+        for v in $speeds; do
+            d="$out/spot_$spot/v$v"
+            [ -s "$d/summary.json" ] || { echo "| $spot | $v | failed ($out/spot_$spot.v$v.log) | | | | | |"; continue; }
+            perf=$(num "$d/summary.json" perforated) pt=$(num "$d/summary.json" perforation_time)
+            back=$(awk -F, 'NR > 1 && $4 <= 0 { print $1; exit }' "$d/history.csv")
+            vend=$(num "$d/summary.json" final_projectile_velocity)
+            if [ "$perf" = true ]; then what=perforated at=$pt
+            elif [ -n "$back" ]; then what="turned back" at=$back
+            else what="still moving on at -tend" at=""; fi
+            awk -v m="$spot" -v v="$v" -v w="$what" -v at="$at" -v ve="$vend" -v e="$(num "$d/summary.json" eroded_elements)" \
+                -v f="$(num "$d/summary.json" failure_energy)" -v err="$(num "$d/summary.json" max_energy_error)" \
+                'BEGIN { printf "| %s | %s | %s | %s | %.3g | %s | %.3g | %.3g %% |\n", m, v, w, (at == "" ? "" : sprintf("%.3f", 1e3 * at)), ve, e, f, 100 * err }'
+        done
+    } > "$out/spot.md"
+    cat "$out/spot.md"
+fi
