@@ -7,6 +7,7 @@
 #include "zones.h"
 #include "wovenff/text_io.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,6 +38,7 @@ typedef struct checkpoint_header {
     char state_names[STATE_LAYOUT_MAX]; /* the points' states, space-separated ("gamma_f") */
     uint64_t mesh_hash, material_hash, mass_hash, bc_hash, settings_hash;
     double dt_factor, symmetry_factor, projectile_radius, projectile_mass, projectile_mu;
+    double orientation;               /* the warp's angle to the mesh's x axis, rad */
     uint64_t payload_size;
 } checkpoint_header;
 
@@ -99,6 +101,7 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     h->settings_hash = g;
     h->dt_factor = m->dt_factor;
     h->symmetry_factor = m->symmetry_factor;
+    h->orientation = m->em.orientation;
     if (m->projectile.active) {
         h->projectile_radius = m->projectile.radius;
         h->projectile_mass = m->projectile.mass;
@@ -256,6 +259,12 @@ int wff_model_load_state(wff_model *m, const char *path, wff_error *err)
         wff_fail(err, "checkpoint %s was written with erosion %d; this model has erosion %d "
                  "(0 off, 1 both yarn families, 2 either: set it as the run was)", path,
                  h.erosion, want.erosion);
+        goto done;
+    }
+    if (h.orientation != want.orientation) { /* (before the settings' hash, which holds it) */
+        wff_fail(err, "checkpoint %s was written with orientation %.15g deg; this model has %.15g "
+                 "deg (the warp's angle to the mesh's x axis: set it as the run was)", path,
+                 h.orientation * 180 / M_PI, want.orientation * 180 / M_PI);
         goto done;
     }
     const char *why = hash_mismatch(&h, &want);

@@ -146,6 +146,7 @@ int wff_model_create_ordered(wff_model *m, wff_mesh *mesh, const char *material_
     m->em.mat = &m->mat;
     m->em.F_pre[0] = m->em.F_pre[3] = 1;
     m->em.J_pre = 1;
+    m->preload[0] = m->preload[3] = 1;
     wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
     sum_fabric_mass(m);
     /* amplitude DOFs of a cell without amplitudes stay put */
@@ -173,7 +174,8 @@ int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[
     if (!(det > 0))
         return wff_fail(err, "preload F_pre = [%g %g; %g %g] has det %g: must be > 0", F_pre[0],
                         F_pre[1], F_pre[2], F_pre[3], det);
-    memcpy(m->em.F_pre, F_pre, 4 * sizeof(double));
+    memcpy(m->preload, F_pre, 4 * sizeof(double));
+    wff_orientation_map(m->em.orientation, m->preload, m->em.F_pre); /* (θ = 0: a copy) */
     m->em.J_pre = det;
     wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
     sum_fabric_mass(m);
@@ -186,6 +188,23 @@ int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[
         }
     if (m->zones && wff_zones_preload_changed(m, err)) /* matched zone preloads follow */
         return -1;
+    stored_energy_now(m);
+    return 0;
+}
+
+int wff_model_set_orientation(wff_model *m, double theta, wff_error *err)
+{
+    if (!isfinite(theta))
+        return wff_fail(err, "orientation = %g rad: must be a finite angle", theta);
+    if ((m->step > 0 || m->v_half_valid) && theta != m->em.orientation)
+        return wff_fail(err, "orientation = %g deg: the run has started (t = %g s, step %ld) "
+                        "at %g deg; the warp direction is part of the initial state: set it "
+                        "before the first step", theta * 180 / M_PI, m->time, m->step,
+                        m->em.orientation * 180 / M_PI);
+    m->em.orientation = theta;
+    /* the map the kernels apply (det unchanged: J_pre, the masses and a zone's
+     * matched preload, a material-frame state, stay) */
+    wff_orientation_map(theta, m->preload, m->em.F_pre);
     stored_energy_now(m);
     return 0;
 }
@@ -524,6 +543,13 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
         }
     } else if (strcmp(key, "erosion") == 0) {
         return wff_erosion_set(m, value, err);
+    } else if (strcmp(key, "orientation") == 0) { /* degrees */
+        if (!isfinite(value))
+            return wff_fail(err, "orientation = %g: must be a finite angle in degrees", value);
+        double right_angles = value / 90; /* exact multiples of 90 degrees: k pi/2 */
+        double theta = right_angles == nearbyint(right_angles) ? right_angles * M_PI_2
+                                                               : value * (M_PI / 180);
+        return wff_model_set_orientation(m, theta, err);
     } else if (strcmp(key, "clamp_edge_reaction") == 0) {
         if (m->clamp.n == 0)
             return wff_fail(err, "clamp_edge_reaction: no friction clamp yet (set the clamp "
@@ -535,8 +561,8 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
     } else {
         return wff_fail(err, "unknown solver setting '%s' (known: dtfactor, dtinterval, "
                         "symmetry, reference_path, threads, amplitude_mass_factor, "
-                        "static_amplitudes, contact_search, erosion, clamp_radius, "
-                        "clamp_edge_reaction)",
+                        "static_amplitudes, contact_search, erosion, orientation, "
+                        "clamp_radius, clamp_edge_reaction)",
                         key);
     }
     return 0;

@@ -8,7 +8,8 @@
  * (m->n_state per point) into a zone's (its material's n_state per point: a
  * prefix of the model's, the same names) and scattered back around each pass. A zone's cell may see its own diagonal preload,
  * matched to the model cell's membrane forces at the model's preload
- * (docs/model.md "Zonal materials"). Knows the model, elements and cells
+ * (docs/model.md "Zonal materials"); every zone takes the model's orientation
+ * (its preload, a material-frame state, turned the same way). Knows the model, elements and cells
  * through their tables; nothing of the integrator's step, contact, output
  * files or FreeFEM. Without zones (m->zones NULL) every function is the plain
  * call the model made before zones existed. */
@@ -76,8 +77,8 @@ static void zone_material(const wff_model *m, int k, wff_element_material *em)
     if (k == 0)
         return;
     em->mat = &z->mat;
-    if (z->preload == WFF_ZONE_PRELOAD_MATCHED) {
-        memcpy(em->F_pre, z->F_pre, sizeof em->F_pre);
+    if (z->preload == WFF_ZONE_PRELOAD_MATCHED) { /* (material frame, turned as the model's) */
+        wff_orientation_map(em->orientation, z->F_pre, em->F_pre);
         em->J_pre = z->F_pre[0] * z->F_pre[3] - z->F_pre[1] * z->F_pre[2];
     }
 }
@@ -268,7 +269,7 @@ static int preload_forces(const wff_material *mat, const double a[2], const doub
 static int match_preload(wff_model *m, int k, wff_error *err)
 {
     wff_zone *z = &m->zones->zone[k];
-    const double *Fp = m->em.F_pre;
+    const double *Fp = m->preload; /* (material frame: the orientation does not enter) */
     if (Fp[1] != 0 || Fp[2] != 0)
         return wff_fail(err, "zone %d (%s): a matched preload needs a diagonal model preload "
                         "(F_pre = [%g %g; %g %g])", k, z->mat.source, Fp[0], Fp[1], Fp[2], Fp[3]);

@@ -14,12 +14,24 @@
  * F_eff = F F_pre, and stress, residual, energy and mass per mesh area are
  * divided by J_pre = det F_pre (the mesh is the preloaded configuration).
  *
+ * Orientation (docs/model.md "Ply orientation"): the warp E1 at an angle θ to
+ * the mesh's x axis. R(θ) = [cos θ  −sin θ; sin θ  cos θ] takes material axes
+ * to mesh axes (X_mesh = R X_mat), so the cell's F is F_mat = F_mesh R and its
+ * stress goes back as P_mesh = P_mat Rᵀ (R is a rotation: J = 1, energies and
+ * residuals per area unchanged). The preload is a material-frame state (the
+ * yarn families' stretches): the cell sees F_mesh R F_pre,mat. The element
+ * code applies both as one 2×2 map, em->F_pre = R(θ) F_pre,mat
+ * (wff_orientation_map), through the same gather, kernels and scatter as a
+ * preload alone; at θ = 0 the map is the preload itself, bit for bit.
+ *
  * Kernels only read the geometry and state they are given and add into the
  * force array: no allocation, no I/O. */
 #ifndef WOVENFF_MEMBRANE_H
 #define WOVENFF_MEMBRANE_H
 
 #include "wovenff/cell.h"
+
+#include <math.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -78,8 +90,11 @@ static inline int wff_element_eroded(const wff_elements *el, int e)
 /* Preload and material as the element sees them. */
 typedef struct wff_element_material {
     const wff_material *mat;
-    double F_pre[4];      /* row-major 2×2 */
-    double J_pre;         /* det F_pre */
+    double F_pre[4];      /* row-major 2×2: the map the cell's F passes through,
+                             F_cell = F_mesh F_pre; the preload (material frame) with
+                             the orientation in front, R(θ) F_pre,mat (the preload as
+                             given at θ = 0) */
+    double J_pre;         /* det F_pre (= det of the preload: R is a rotation) */
     int reference_path;   /* 1: always the cell's plain evaluate(), even where it offers
                              evaluate_shared (for checks and benchmarks), and its plain
                              wave_speeds() in the stable-step scan */
@@ -89,7 +104,33 @@ typedef struct wff_element_material {
     int static_amplitudes; /* 1: amplitudes in static balance at every quadrature point
                              (King 2005) instead of dynamic nodal DOFs; see
                              wff_elements_static_amplitudes */
+    double orientation;   /* θ, rad: the warp E1 at θ to the mesh's x axis
+                             (counter-clockwise; 0 by default); F_pre holds R(θ) */
 } wff_element_material;
+
+/* The element map for a preload Fp (material frame, row-major 2×2) at
+ * orientation θ (rad): map = R(θ) Fp, R exact (entries 0, ±1) at multiples of
+ * 90°; θ = 0 copies Fp (no multiply: the results without orientation, bit for
+ * bit). */
+static inline void wff_orientation_map(double theta, const double Fp[4], double map[4])
+{
+    if (theta == 0) {
+        for (int i = 0; i < 4; i++)
+            map[i] = Fp[i];
+        return;
+    }
+    double c = cos(theta), s = sin(theta);
+    double quarter = theta / (2 * atan(1.0)); /* θ in right angles */
+    if (quarter == nearbyint(quarter)) { /* exactly 0, 90, 180, 270 degrees mod 360 */
+        long k = ((long)nearbyint(quarter) % 4 + 4) % 4;
+        c = k == 0 ? 1 : k == 2 ? -1 : 0;
+        s = k == 1 ? 1 : k == 3 ? -1 : 0;
+    }
+    map[0] = c * Fp[0] - s * Fp[2];
+    map[1] = c * Fp[1] - s * Fp[3];
+    map[2] = s * Fp[0] + c * Fp[2];
+    map[3] = s * Fp[1] + c * Fp[3];
+}
 
 /* What one force pass sums (per mesh, J or J/step). */
 typedef struct wff_force_totals {

@@ -127,6 +127,9 @@ typedef struct wff_model {
                                  of the zones' materials') */
     double *reaction;         /* per DOF: −f_int on fixed and prescribed DOFs, last step */
     double fabric_mass;       /* Σ nodal (displacement) masses, kg (model part) */
+    double preload[4];        /* the preload F_pre as given (material frame, row-major 2×2;
+                                 the identity by default); em.F_pre = R(θ) preload with
+                                 θ = em.orientation (membrane.h) */
 
     double time, dt, dt_stable, dt_factor;
     long step;
@@ -190,6 +193,16 @@ void wff_model_free(wff_model *m);
  * after it). */
 int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[2],
                           wff_error *err);
+
+/* Orientation: the warp direction E1 at `theta` (rad, counter-clockwise) to
+ * the mesh's x axis, the weft at theta + 90° (membrane.h: the cell sees
+ * F_mesh R(θ) F_pre, its stress goes back through R(θ)ᵀ; the preload is a
+ * material-frame state). Every zone's material takes the model's orientation.
+ * Before the first step (setting it again to the value it has is allowed
+ * after, as a restart does); theta must be finite. 0 by default: exactly the
+ * results without orientation. The setting "orientation" of
+ * wff_model_set_option takes degrees. */
+int wff_model_set_orientation(wff_model *m, double theta, wff_error *err);
 
 /* Fix DOF `component` (WFF_UX..WFF_DA2) of every node on the physical curve
  * named `curve` (dim 1) or in the physical surface (dim 2) named so. Returns
@@ -286,7 +299,8 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
  * the others stay flat without friction; 0: all of them, the default) and
  * clamp_edge_reaction (1: a node's out-of-plane reaction R_z, e.g. where the
  * fabric bends over the plates' edge at the opening, adds mu |R_z| to its
- * friction limit; 0: the default). */
+ * friction limit; 0: the default), orientation (degrees: the warp at that angle to
+ * the mesh's x axis, wff_model_set_orientation; exact at multiples of 90). */
 int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err);
 
 /* The default thread count: OMP_NUM_THREADS's (its first level) when it is
@@ -333,8 +347,9 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  *            connectivity), the material (cell and parameters), the lumped
  *            masses (material and preload) and the boundary conditions
  *            (DOF kinds, friction clamp), the solver settings (dtfactor,
- *            dtinterval, symmetry, reference_path), the projectile's radius,
- *            mass and friction;
+ *            dtinterval, symmetry, reference_path), the orientation (a
+ *            checkpoint of another is refused, naming both), the projectile's
+ *            radius, mass and friction;
  *   payload  the state;
  *   trailer  FNV-1a 64 checksum of everything before it.
  *
@@ -344,10 +359,11 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 4 /* 2: the projectile's impulse_total added; 3: the points'
+#define WFF_CHECKPOINT_VERSION 5 /* 2: the projectile's impulse_total added; 3: the points'
                                     generic state (n_state and names in the header, every
                                     state saved), failure and eroded energies; 4: the
-                                    erosion rule (header) and the eroded flags */
+                                    erosion rule (header) and the eroded flags; 5: the
+                                    orientation (header) */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 

@@ -33,8 +33,14 @@
  * applied and every internal state held at the mean of its points (as the
  * nodal fields are):
  *   P11 P12 P21 P22 P31 P32   first Piola-Kirchhoff membrane stress of the
- *                             cell at F_eff = F F_pre, N/m (wovenffPoint's P)
- *   lambda1 lambda2           yarn stretches |F_eff E_k| (preload applied)
+ *                             cell at F_eff = F F_pre, N/m (wovenffPoint's P):
+ *                             P_iJ, i the mesh's x y z (current configuration),
+ *                             J the material axes (1 warp, 2 weft); with an
+ *                             orientation θ F_pre holds R(θ) (membrane.h), so
+ *                             these stay the cell's, material-frame columns
+ *                             (on mesh axes: P F_preᵀ / det F_pre)
+ *   lambda1 lambda2           yarn stretches |F_eff E_k| (preload and orientation
+ *                             applied: the warp's and the weft's)
  *   shear_angle               π/2 − angle between F_eff E_1 and F_eff E_2, rad
  *   W                         stored energy per unit cell reference area, J/m²
  *                             (per mesh area: W / det F_pre)

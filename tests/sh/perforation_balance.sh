@@ -9,7 +9,7 @@
 #    failure + eroded - external work - the first row's total) / the impact energy,
 #    equals the energy_error column (to 1e-8) and stays within 1 %.
 # (The momentum balance through perforation is checked in the core, every step:
-# tests/c/test_erosion.c; nothing erodes at 22 m/s: tests/sh/failure_scene.sh.)
+# tests/c/test_erosion.c; the 22 m/s case, which perforates too: tests/sh/failure_scene.sh.)
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/perforation_balance"
 rm -rf "$tmp"; mkdir -p "$tmp"

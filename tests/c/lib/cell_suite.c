@@ -670,7 +670,7 @@ static double step_growth(const wff_material *mat, const step_patch *patch, doub
         return -1;
     }
     const int nn = mesh.n_nodes, n = D * nn;
-    wff_element_material em = {mat, {1, 0, 0, 1}, 1, 0, patch->mass_factor, 0};
+    wff_element_material em = {mat, {1, 0, 0, 1}, 1, 0, patch->mass_factor, 0, 0};
     double *u = calloc((size_t)n, sizeof(double)), *v = calloc((size_t)n, sizeof(double));
     double *f = calloc((size_t)n, sizeof(double)), *mass = calloc((size_t)n, sizeof(double));
     double *gamma_f = calloc((size_t)3 * mesh.n_tris * (size_t)mat->n_state + 1, sizeof(double));
