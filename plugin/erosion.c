@@ -119,20 +119,9 @@ double wff_element_stored_energy(const wff_elements *el, const wff_element_mater
         energy = el->tri_area[e] * W;
     } else {
         int qe = e - el->n_tris;
-        const int *node = el->quad + 4 * qe;
         for (int q = 0; q < WFF_QUAD_POINTS; q++) {
-            const double *grad = el->quad_grad + 32 * qe + 8 * q;
-            double xi = gauss_1d * quad_gauss[q][0], eta = gauss_1d * quad_gauss[q][1];
-            double dA[2] = {0, 0};
-            for (int a = 0; a < 4; a++) {
-                double N = quad_shape(a, xi, eta);
-                dA[0] += N * u[D * node[a] + 3];
-                dA[1] += N * u[D * node[a] + 4];
-            }
-            deformation_gradient(X, u, node, 4, grad, F);
-            preload_apply(em, F, Fe);
-            if (em->static_amplitudes)
-                memcpy(dA, el->point_dA + 6 * el->n_tris + 8 * qe + 2 * q, sizeof dA);
+            double N[4], dA[2];
+            quad_point_kinematics(el, em, X, u, qe, q, N, dA, F, Fe);
             if (mat->cell->evaluate(mat->params, Fe, dA, s + n_state * q, 0, &r) ==
                     WFF_POINT_OK && isfinite(r.energy))
                 energy += el->quad_weight[4 * qe + q] * r.energy;

@@ -696,21 +696,14 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
             continue;
         for (int q = 0; q < WFF_QUAD_POINTS; q++) {
             const double *grad = el->quad_grad + 32 * e + 8 * q;
-            double xi = gauss_1d * quad_gauss[q][0], eta = gauss_1d * quad_gauss[q][1];
-            double N[4], dA[2] = {0, 0}, F[6], Fe[6], Pm[6] = {0, 0, 0, 0, 0, 0};
-            for (int a = 0; a < 4; a++) {
-                N[a] = quad_shape(a, xi, eta);
-                dA[0] += N[a] * u[D * node[a] + 3];
-                dA[1] += N[a] * u[D * node[a] + 4];
-            }
-            deformation_gradient(X, u, node, 4, grad, F);
-            preload_apply(em, F, Fe);
+            double N[4], dA[2], F[6], Fe[6], Pm[6] = {0, 0, 0, 0, 0, 0};
+            quad_point_kinematics(el, em, X, u, e, q, N, dA, F, Fe);
             wff_point_result r;
             double *ps = state + ns * (3 * el->n_tris + 4 * e + q);
             int point_amplitudes = amplitudes;
             double *pdA = dA;
-            if (em->static_amplitudes) { /* the point's own balanced amplitudes */
-                pdA = el->point_dA + 6 * el->n_tris + 8 * e + 2 * q;
+            if (em->static_amplitudes) { /* the point's own balanced amplitudes, updated in place */
+                pdA = quad_point_dA(el, e, q);
                 point_amplitudes = 0;
             }
             int iterations = 0;
@@ -777,22 +770,11 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
         }
     }
     for (int e = 0; e < el->n_quads; e++) {
-        const int *node = el->quad + 4 * e;
         if (wff_element_eroded(el, el->n_tris + e))
             continue;
         for (int q = 0; q < WFF_QUAD_POINTS; q++) {
-            const double *grad = el->quad_grad + 32 * e + 8 * q;
-            double xi = gauss_1d * quad_gauss[q][0], eta = gauss_1d * quad_gauss[q][1];
-            double dA[2] = {0, 0}, F[6], Fe[6];
-            for (int a = 0; a < 4; a++) {
-                double N = quad_shape(a, xi, eta);
-                dA[0] += N * u[D * node[a] + 3];
-                dA[1] += N * u[D * node[a] + 4];
-            }
-            deformation_gradient(X, u, node, 4, grad, F);
-            preload_apply(em, F, Fe);
-            if (em->static_amplitudes)
-                memcpy(dA, el->point_dA + 6 * el->n_tris + 8 * e + 2 * q, sizeof dA);
+            double N[4], dA[2], F[6], Fe[6];
+            quad_point_kinematics(el, em, X, u, e, q, N, dA, F, Fe);
             cell->energy_split(em->mat->params, Fe, dA,
                                state + ns * (3 * el->n_tris + 4 * e + q), point);
             double w = el->quad_weight[4 * e + q] / em->J_pre;

@@ -65,4 +65,33 @@ static inline __attribute__((always_inline)) void deformation_gradient(const dou
     }
 }
 
+/* Quad qe's static amplitudes at its point q (el->point_dA: 6 per triangle, then 8 per quad). */
+static inline double *quad_point_dA(const wff_elements *el, int qe, int q)
+{
+    return el->point_dA + 6 * el->n_tris + 8 * qe + 2 * q;
+}
+
+/* Kinematics at Gauss point q of quad qe, (ξ, η) = quad_gauss[q] / √3: the shape
+ * functions N_a, the amplitudes ΔA = Σ_a N_a ΔA_a (with static amplitudes the
+ * point's own balanced ones instead, a copy of quad_point_dA), F = Σ_a x_a ⊗ ∇N_a
+ * and F_eff = F F_pre. */
+static inline __attribute__((always_inline)) void
+quad_point_kinematics(const wff_elements *el, const wff_element_material *em, const double *X,
+                      const double *u, int qe, int q, double N[4], double dA[2], double F[6],
+                      double Fe[6])
+{
+    const int *node = el->quad + 4 * qe;
+    double xi = gauss_1d * quad_gauss[q][0], eta = gauss_1d * quad_gauss[q][1];
+    dA[0] = dA[1] = 0;
+    for (int a = 0; a < 4; a++) {
+        N[a] = quad_shape(a, xi, eta);
+        dA[0] += N[a] * u[WFF_DOFS_PER_NODE * node[a] + 3];
+        dA[1] += N[a] * u[WFF_DOFS_PER_NODE * node[a] + 4];
+    }
+    deformation_gradient(X, u, node, 4, el->quad_grad + 32 * qe + 8 * q, F);
+    preload_apply(em, F, Fe);
+    if (em->static_amplitudes)
+        memcpy(dA, quad_point_dA(el, qe, q), 2 * sizeof(double));
+}
+
 #endif

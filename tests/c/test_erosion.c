@@ -34,7 +34,7 @@
 #include "wovenff/material.h"
 #include "wovenff/solver.h"
 #include "wovenff/state.h"
-#include "cells/cell_laws.h"
+#include "test_cells_fixture.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -50,146 +50,59 @@
 /* ---- the test cell ------------------------------------------------------ */
 
 typedef struct ero_params {
-    double stiffness[2], shear_stiffness, fail_strain, rupture_strain, failure;
+    tcell_params yarns; /* S_k, G, ε_f, ε_r */
+    double failure;     /* 0: no damage states */
 } ero_params;
 
-static const char *const ero_diag_names[] = {"T1", "T2"};
-static const char *const ero_diag_units[] = {"N", "N"};
-static const char *const ero_mech_names[] = {"yarn_stretch", "shear"};
 static const char *const ero_state_names[] = {"damage1", "damage2"};
 static const char *const ero_state_units[] = {"-", "-"};
 
-typedef struct ero_point {
-    wff_yarn_frame fr;
-    double strain[2], damage[2], force[2], energy_yarn, energy_shear, released;
-} ero_point;
-
-static int ero_point_at(const ero_params *c, const double F[6], const double *state, double dt,
-                        ero_point *pt)
+/* With failure, d_k = max(d_k, clamp((ε_k − ε_f)/(ε_r − ε_f), 0, 1)) when dt > 0
+ * (held at dt = 0); N_k = S_k (1 − d_k) ε_k, W_yarn = Σ ½ S_k (1 − d_k) ε_k²; the
+ * failure dissipation is the stored energy released, Σ ½ S_k ε_k² (d_k' − d_k). */
+static void ero_law(const void *params, const double *state, double dt, tcell_yarns *y,
+                    wff_point_result *out)
 {
-    static const double unit[2] = {1, 1};
-    if (wff_yarn_kinematics(unit, F, &pt->fr) != WFF_POINT_OK)
-        return WFF_POINT_DEGENERATE;
-    pt->energy_yarn = pt->released = 0;
+    const ero_params *c = params;
+    double damage[2], released = 0;
+    y->energy_yarn = 0;
     for (int f = 0; f < 2; f++) {
-        pt->strain[f] = pt->fr.p[f] - 1;
         double old = c->failure ? state[f] : 0, d = old;
         if (c->failure && dt > 0) {
-            double reached = (pt->strain[f] - c->fail_strain) /
-                             (c->rupture_strain - c->fail_strain);
-            reached = reached < 0 ? 0 : reached > 1 ? 1 : reached;
+            double reached = tcell_damage_reached(&c->yarns, y->strain[f]);
             d = reached > old ? reached : old;
         }
-        pt->damage[f] = d;
-        double half = 0.5 * c->stiffness[f] * pt->strain[f] * pt->strain[f];
-        pt->force[f] = c->stiffness[f] * (1 - d) * pt->strain[f];
-        pt->energy_yarn += (1 - d) * half;
-        pt->released += (d - old) * half;
+        damage[f] = d;
+        double half = 0.5 * c->yarns.stiffness[f] * y->strain[f] * y->strain[f];
+        y->force[f] = c->yarns.stiffness[f] * (1 - d) * y->strain[f];
+        y->energy_yarn += (1 - d) * half;
+        released += (d - old) * half;
     }
-    pt->energy_shear = 0.5 * c->shear_stiffness * pt->fr.gamma * pt->fr.gamma;
-    return WFF_POINT_OK;
-}
-
-static int ero_evaluate(const void *params, const double F[6], const double dA[2],
-                        const double *state, double dt, wff_point_result *out)
-{
-    (void)dA;
-    const ero_params *c = params;
-    ero_point pt;
-    if (ero_point_at(c, F, state, dt, &pt) != WFF_POINT_OK) {
-        wff_point_result_nan(out, 2);
-        return WFF_POINT_DEGENERATE;
+    if (out) {
+        out->state[0] = damage[0];
+        out->state[1] = damage[1];
+        out->dissipated = 0;
+        out->failure_dissipated = released;
     }
-    static const double no_spars[2] = {0, 0}, unit_scale[2] = {1, 1};
-    double q[2][2];
-    for (int f = 0; f < 2; f++)
-        wff_q_coefficients(&pt.fr, f, pt.force[f], c->shear_stiffness * pt.fr.gamma, no_spars,
-                           &q[f][f], &q[f][1 - f]);
-    wff_stress_from_q(&pt.fr, q, unit_scale, out->stress);
-    out->residual[0] = out->residual[1] = 0;
-    out->energy = pt.energy_yarn + pt.energy_shear;
-    out->state[0] = pt.damage[0];
-    out->state[1] = pt.damage[1];
-    out->dissipated = 0;
-    out->failure_dissipated = pt.released;
-    out->diag[0] = pt.force[0] * 1e-3; /* a yarn every mm */
-    out->diag[1] = pt.force[1] * 1e-3;
-    return WFF_POINT_OK;
 }
-
-static void ero_energy_split(const void *params, const double F[6], const double dA[2],
-                             const double *state, double *mech)
-{
-    (void)dA;
-    ero_point pt;
-    if (ero_point_at(params, F, state, 0, &pt) != WFF_POINT_OK) {
-        mech[0] = mech[1] = NAN;
-        return;
-    }
-    mech[0] = pt.energy_yarn;
-    mech[1] = pt.energy_shear;
-}
-
-/* linear_yarns' bound at the undamaged stiffnesses. */
-static void ero_wave_speeds(const void *params, double areal_density, const double F[6],
-                            const double dA[2], double *membrane_speed, double *amplitude_omega)
-{
-    (void)dA;
-    const ero_params *c = params;
-    ero_point pt;
-    *amplitude_omega = 0;
-    static const double rest[2] = {0, 0};
-    if (ero_point_at(c, F, rest, 0, &pt) != WFF_POINT_OK) {
-        *membrane_speed = INFINITY;
-        return;
-    }
-    double sn = fmax(pt.fr.sin_t, 0.05), stretch_min = fmin(pt.fr.p[0], pt.fr.p[1]);
-    double shear = 2 * c->shear_stiffness * (1 + fabs(pt.fr.gamma) * (1 + 1 / sn)) /
-                   (stretch_min * stretch_min);
-    double membrane = 0;
-    for (int f = 0; f < 2; f++)
-        membrane = fmax(membrane, c->stiffness[f] + c->stiffness[f] * fabs(pt.strain[f]) /
-                                                        pt.fr.p[f] + shear);
-    *membrane_speed = sqrt(membrane / areal_density);
-}
+TCELL_OPS(ero)
 
 static int ero_parse(wff_kv *kv, wff_material *mat, wff_error *err)
 {
     ero_params *c = (ero_params *)mat->params;
-    memset(c, 0, sizeof *c);
-    if (wff_kv_number(kv, "S_1", &c->stiffness[0], err) ||
-        wff_kv_number(kv, "S_2", &c->stiffness[1], err) ||
-        wff_kv_number(kv, "G", &c->shear_stiffness, err) ||
-        wff_kv_number(kv, "failure", &c->failure, err) ||
-        wff_kv_number(kv, "fail_strain", &c->fail_strain, err) ||
-        wff_kv_number(kv, "rupture_strain", &c->rupture_strain, err))
+    if (tcell_parse(kv, mat, sizeof *c, err) || wff_kv_number(kv, "failure", &c->failure, err))
         return -1;
-    if (!(c->rupture_strain > c->fail_strain))
+    if (!(c->yarns.rupture_strain > c->yarns.fail_strain))
         return wff_kv_reject(kv, "rupture_strain", err, "rupture > fail strain");
     mat->yarn_spacing[0] = mat->yarn_spacing[1] = 1e-3;
     mat->n_state = c->failure != 0 ? 2 : 0; /* failure = 0: no damage states */
     return 0;
 }
 
-static const wff_cell_type test_erosion = {
-    .name = "test_erosion",
-    .summary = "test only: linear yarns with a damage per family",
-    .n_amplitudes = 0,
-    .n_diag = 2,
-    .diag_names = ero_diag_names,
-    .diag_units = ero_diag_units,
-    .yarn_tension_diag = {0, 1},
-    .n_mech = 2,
-    .mech_names = ero_mech_names,
-    .n_state_max = 2,
-    .state_names = ero_state_names,
-    .state_units = ero_state_units,
-    .damage_state = {0, 1},
-    .parse = ero_parse,
-    .evaluate = ero_evaluate,
-    .wave_speeds = ero_wave_speeds,
-    .energy_split = ero_energy_split,
-};
+static const wff_cell_type test_erosion =
+    TCELL_TABLE("test_erosion", ero, ero_parse,
+                .summary = "test only: linear yarns with a damage per family",
+                .n_state_max = 2, .damage_state = {0, 1});
 WFF_REGISTER_CELL(test_erosion);
 
 /* The same cell declaring no yarn failure (damage_state −1): erosion refused. */
@@ -200,25 +113,10 @@ static int nodamage_parse(wff_kv *kv, wff_material *mat, wff_error *err)
     mat->n_state = 0;
     return rc;
 }
-static const wff_cell_type test_erosion_nodamage = {
-    .name = "test_erosion_nodamage",
-    .summary = "test only: linear yarns, no failure",
-    .n_amplitudes = 0,
-    .n_diag = 2,
-    .diag_names = ero_diag_names,
-    .diag_units = ero_diag_units,
-    .yarn_tension_diag = {0, 1},
-    .n_mech = 2,
-    .mech_names = ero_mech_names,
-    .n_state_max = 0,
-    .state_names = ero_state_names,
-    .state_units = ero_state_units,
-    .damage_state = {-1, -1},
-    .parse = nodamage_parse,
-    .evaluate = ero_evaluate,
-    .wave_speeds = ero_wave_speeds,
-    .energy_split = ero_energy_split,
-};
+static const wff_cell_type test_erosion_nodamage =
+    TCELL_TABLE("test_erosion_nodamage", ero, nodamage_parse,
+                .summary = "test only: linear yarns, no failure",
+                .n_state_max = 0, .damage_state = {-1, -1});
 WFF_REGISTER_CELL(test_erosion_nodamage);
 
 /* ---- helpers -------------------------------------------------------------- */
@@ -564,23 +462,10 @@ static void check_stable_step(check_state *st, const char *material, int by_dama
 
 static const test_rect square = {-0.03, 0.03, -0.03, 0.03, 14, 14, TEST_MESH_TRI, 1, 0.2, 11};
 
+/* The square of EROSION with a 10 g projectile at velocity (m/s). */
 static int struck(check_state *st, wff_model *m, double velocity)
 {
-    wff_error err;
-    int rc = test_model_rect(m, &square, EROSION, &err);
-    CHECK(st, rc == 0, "%s", err.message);
-    if (rc)
-        return -1;
-    static const char *const edges[] = {"left", "right", "bottom", "top"};
-    for (int g = 0; g < 4 && rc >= 0; g++)
-        for (int c = WFF_UX; c <= WFF_UZ && rc >= 0; c++)
-            rc = wff_model_fix_group(m, edges[g], c, &err);
-    if (rc >= 0)
-        rc = wff_model_set_projectile(m, 6.35e-3, 0.01, velocity, 0.2, &err);
-    CHECK(st, rc >= 0, "%s", err.message);
-    if (rc < 0)
-        wff_model_free(m);
-    return rc < 0 ? -1 : 0;
+    return tcell_struck(st, m, &square, EROSION, 0.01, velocity);
 }
 
 static void check_perforation(check_state *st)

@@ -27,7 +27,7 @@
 #include "wovenff/material.h"
 #include "wovenff/solver.h"
 #include "wovenff/state.h"
-#include "cells/cell_laws.h"
+#include "test_cells_fixture.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -41,174 +41,65 @@
 /* ---- the test cell ------------------------------------------------------ */
 
 typedef struct two_params {
-    double stiffness[2];     /* S_k, N/m */
-    double shear_stiffness;  /* G, N/m */
-    double relax_time;       /* τ, s */
-    double fail_strain;      /* ε_f */
-    double rupture_strain;   /* ε_r */
+    tcell_params yarns;     /* S_k, G, ε_f, ε_r */
+    double relax_time;      /* τ, s */
 } two_params;
 
-static const char *const two_diag_names[] = {"T1", "T2"};
-static const char *const two_diag_units[] = {"N", "N"};
-static const char *const two_mech_names[] = {"yarn_stretch", "shear"};
 static const char *const two_state_names[] = {"flow_strain", "damage1"};
 static const char *const two_state_units[] = {"-", "-"};
 enum { S_FLOW, S_DAMAGE, S_COUNT };
 
-typedef struct two_point {
-    wff_yarn_frame fr;
-    double strain[2], elastic1, stiffness1, force[2], flow, damage, energy_yarn, energy_shear;
-} two_point;
-
-/* The point with its states updated by dt (held when dt = 0). */
-static int two_point_at(const two_params *c, const double F[6], const double *state, double dt,
-                        two_point *pt)
+/* The point's yarn forces with its states updated by dt (held when dt = 0). */
+static void two_law(const void *params, const double *state, double dt, tcell_yarns *y,
+                    wff_point_result *out)
 {
-    static const double unit[2] = {1, 1};
-    if (wff_yarn_kinematics(unit, F, &pt->fr) != WFF_POINT_OK)
-        return WFF_POINT_DEGENERATE;
-    for (int f = 0; f < 2; f++)
-        pt->strain[f] = pt->fr.p[f] - 1;
+    const two_params *c = params;
+    const double *stiffness = c->yarns.stiffness;
     double r = dt / c->relax_time;
-    pt->flow = (state[S_FLOW] + r * pt->strain[0]) / (1 + r);
-    double reached = (pt->strain[0] - c->fail_strain) / (c->rupture_strain - c->fail_strain);
-    reached = reached < 0 ? 0 : reached > 1 ? 1 : reached;
-    pt->damage = dt > 0 && reached > state[S_DAMAGE] ? reached : state[S_DAMAGE];
-    pt->elastic1 = pt->strain[0] - pt->flow;
-    pt->stiffness1 = c->stiffness[0] * (1 - pt->damage);
-    pt->force[0] = pt->stiffness1 * pt->elastic1;
-    pt->force[1] = c->stiffness[1] * pt->strain[1];
-    pt->energy_yarn = 0.5 * pt->stiffness1 * pt->elastic1 * pt->elastic1 +
-                      0.5 * c->stiffness[1] * pt->strain[1] * pt->strain[1];
-    pt->energy_shear = 0.5 * c->shear_stiffness * pt->fr.gamma * pt->fr.gamma;
-    return WFF_POINT_OK;
-}
-
-static int two_evaluate(const void *params, const double F[6], const double dA[2],
-                        const double *state, double dt, wff_point_result *out)
-{
-    (void)dA;
-    const two_params *c = params;
-    two_point pt;
-    if (two_point_at(c, F, state, dt, &pt) != WFF_POINT_OK) {
-        wff_point_result_nan(out, 2);
-        return WFF_POINT_DEGENERATE;
-    }
-    static const double no_spars[2] = {0, 0}, unit_scale[2] = {1, 1};
-    double q[2][2];
-    for (int f = 0; f < 2; f++)
-        wff_q_coefficients(&pt.fr, f, pt.force[f], c->shear_stiffness * pt.fr.gamma, no_spars,
-                           &q[f][f], &q[f][1 - f]);
-    wff_stress_from_q(&pt.fr, q, unit_scale, out->stress);
-    out->residual[0] = out->residual[1] = 0;
-    out->energy = pt.energy_yarn + pt.energy_shear;
-    out->state[S_FLOW] = pt.flow;
-    out->state[S_DAMAGE] = pt.damage;
-    out->dissipated = c->stiffness[0] * (1 - state[S_DAMAGE]) * pt.elastic1 *
-                      (pt.flow - state[S_FLOW]);
+    double flow = (state[S_FLOW] + r * y->strain[0]) / (1 + r);
+    double reached = tcell_damage_reached(&c->yarns, y->strain[0]);
+    double damage = dt > 0 && reached > state[S_DAMAGE] ? reached : state[S_DAMAGE];
+    double elastic1 = y->strain[0] - flow, stiffness1 = stiffness[0] * (1 - damage);
+    y->force[0] = stiffness1 * elastic1;
+    y->force[1] = stiffness[1] * y->strain[1];
+    y->energy_yarn = 0.5 * stiffness1 * elastic1 * elastic1 +
+                     0.5 * stiffness[1] * y->strain[1] * y->strain[1];
+    if (!out)
+        return;
+    out->state[S_FLOW] = flow;
+    out->state[S_DAMAGE] = damage;
+    out->dissipated = stiffness[0] * (1 - state[S_DAMAGE]) * elastic1 * (flow - state[S_FLOW]);
     out->failure_dissipated =
-        0.5 * c->stiffness[0] * pt.elastic1 * pt.elastic1 * (pt.damage - state[S_DAMAGE]);
-    out->diag[0] = pt.force[0] * 1e-3; /* a yarn every mm */
-    out->diag[1] = pt.force[1] * 1e-3;
-    return WFF_POINT_OK;
+        0.5 * stiffness[0] * elastic1 * elastic1 * (damage - state[S_DAMAGE]);
 }
-
-static void two_energy_split(const void *params, const double F[6], const double dA[2],
-                             const double *state, double *mech)
-{
-    (void)dA;
-    two_point pt;
-    if (two_point_at(params, F, state, 0, &pt) != WFF_POINT_OK) {
-        mech[0] = mech[1] = NAN;
-        return;
-    }
-    mech[0] = pt.energy_yarn;
-    mech[1] = pt.energy_shear;
-}
-
-/* linear_yarns' bound (its stiffnesses are upper bounds of the damaged ones). */
-static void two_wave_speeds(const void *params, double areal_density, const double F[6],
-                            const double dA[2], double *membrane_speed, double *amplitude_omega)
-{
-    (void)dA;
-    const two_params *c = params;
-    two_point pt;
-    *amplitude_omega = 0;
-    if (two_point_at(c, F, wff_rest_state, 0, &pt) != WFF_POINT_OK) {
-        *membrane_speed = INFINITY;
-        return;
-    }
-    double sn = fmax(pt.fr.sin_t, 0.05), stretch_min = fmin(pt.fr.p[0], pt.fr.p[1]);
-    double shear = 2 * c->shear_stiffness * (1 + fabs(pt.fr.gamma) * (1 + 1 / sn)) /
-                   (stretch_min * stretch_min);
-    double membrane = 0;
-    for (int f = 0; f < 2; f++) {
-        /* |N| with the flow strain at its extremes (0 and the strain) */
-        double s_f = c->stiffness[f] + c->stiffness[f] * fabs(pt.strain[f]) / pt.fr.p[f] + shear;
-        membrane = fmax(membrane, s_f);
-    }
-    *membrane_speed = sqrt(membrane / areal_density);
-}
+TCELL_OPS(two)
 
 static int two_parse(wff_kv *kv, wff_material *mat, wff_error *err)
 {
     two_params *c = (two_params *)mat->params;
-    memset(c, 0, sizeof *c);
-    if (wff_kv_number(kv, "S_1", &c->stiffness[0], err) ||
-        wff_kv_number(kv, "S_2", &c->stiffness[1], err) ||
-        wff_kv_number(kv, "G", &c->shear_stiffness, err) ||
-        wff_kv_number(kv, "relax_time", &c->relax_time, err) ||
-        wff_kv_number(kv, "fail_strain", &c->fail_strain, err) ||
-        wff_kv_number(kv, "rupture_strain", &c->rupture_strain, err))
+    if (tcell_parse(kv, mat, sizeof *c, err) ||
+        wff_kv_number(kv, "relax_time", &c->relax_time, err))
         return -1;
-    if (!(c->relax_time > 0) || !(c->rupture_strain > c->fail_strain))
+    if (!(c->relax_time > 0) || !(c->yarns.rupture_strain > c->yarns.fail_strain))
         return wff_kv_reject(kv, "relax_time", err, "relax_time > 0, rupture > fail strain");
     mat->yarn_spacing[0] = mat->yarn_spacing[1] = 1e-3;
     mat->n_state = S_COUNT;
     return 0;
 }
 
-static const wff_cell_type test_two_states = {
-    .name = "test_two_states",
-    .summary = "test only: linear yarns with a relaxing flow strain and a damage on family 1",
-    .n_amplitudes = 0,
-    .n_diag = 2,
-    .diag_names = two_diag_names,
-    .diag_units = two_diag_units,
-    .yarn_tension_diag = {0, 1},
-    .n_mech = 2,
-    .mech_names = two_mech_names,
-    .n_state_max = S_COUNT,
-    .state_names = two_state_names,
-    .state_units = two_state_units,
-    .damage_state = {S_DAMAGE, -1},
-    .parse = two_parse,
-    .evaluate = two_evaluate,
-    .wave_speeds = two_wave_speeds,
-    .energy_split = two_energy_split,
-};
+static const wff_cell_type test_two_states =
+    TCELL_TABLE("test_two_states", two, two_parse,
+                .summary = "test only: linear yarns with a relaxing flow strain and a damage on "
+                           "family 1",
+                .n_state_max = S_COUNT, .damage_state = {S_DAMAGE, -1});
 WFF_REGISTER_CELL(test_two_states);
 
 /* ---- the model tests ---------------------------------------------------- */
 
-/* A square with fixed edges struck by a light projectile. */
+/* A square with fixed edges struck by a light projectile (2 g at 20 m/s). */
 static int struck(check_state *st, wff_model *m, const test_rect *r, const char *material)
 {
-    wff_error err;
-    int rc = test_model_rect(m, r, material, &err);
-    CHECK(st, rc == 0, "%s: %s", material, err.message);
-    if (rc)
-        return -1;
-    static const char *const edges[] = {"left", "right", "bottom", "top"};
-    for (int g = 0; g < 4 && rc >= 0; g++)
-        for (int c = WFF_UX; c <= WFF_UZ && rc >= 0; c++)
-            rc = wff_model_fix_group(m, edges[g], c, &err);
-    if (rc >= 0)
-        rc = wff_model_set_projectile(m, 6.35e-3, 0.002, 20, 0.2, &err);
-    CHECK(st, rc >= 0, "%s", err.message);
-    if (rc < 0)
-        wff_model_free(m);
-    return rc < 0 ? -1 : 0;
+    return tcell_struck(st, m, r, material, 0.002, 20);
 }
 
 static size_t n_values(const wff_model *m)
