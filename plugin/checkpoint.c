@@ -23,7 +23,7 @@ static const char checkpoint_magic[8] = {'W', 'F', 'F', 'S', 'T', 'A', 'T', 'E'}
 
 static size_t n_points(const wff_model *m)
 {
-    return (size_t)(WFF_TRI_POINTS * m->el.n_tris + WFF_QUAD_POINTS * m->el.n_quads);
+    return wff_elements_point_count(&m->el);
 }
 
 #define STATE_LAYOUT_MAX 128

@@ -13,13 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static size_t point_base(const wff_elements *el, int e)
-{
-    return e < el->n_tris ? (size_t)WFF_TRI_POINTS * (size_t)e
-                          : (size_t)WFF_TRI_POINTS * (size_t)el->n_tris +
-                                (size_t)WFF_QUAD_POINTS * (size_t)(e - el->n_tris);
-}
-
 /* Index in mat's points of family k's damage, or −1 when they carry none. */
 static int damage_index(const wff_material *mat, int k)
 {
@@ -100,7 +93,7 @@ double wff_element_stored_energy(const wff_elements *el, const wff_element_mater
                                  int n_state, int e)
 {
     const wff_material *mat = em->mat;
-    const double *s = state + (size_t)n_state * point_base(el, e);
+    const double *s = state + (size_t)n_state * wff_element_first_point(el->n_tris, e);
     double F[6], Fe[6], energy = 0;
     wff_point_result r;
     if (e < el->n_tris) {
@@ -159,7 +152,7 @@ double wff_erosion_scan(wff_model *m, const double *u, const double *state)
             continue;
         wff_element_material scratch;
         const wff_element_material *em = wff_zones_element_material(m, e, &scratch);
-        const double *s = state + (size_t)m->n_state * point_base(&m->el, e);
+        const double *s = state + (size_t)m->n_state * wff_element_first_point(m->el.n_tris, e);
         if (!ruptured(m, em->mat, s, e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS,
                       m->el.erosion))
             continue;
@@ -181,7 +174,7 @@ double wff_element_damage(const wff_model *m, int e, int k)
     if (i < 0)
         return 0;
     const int n = e < m->el.n_tris ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
-    const double *s = m->state + (size_t)m->n_state * point_base(&m->el, e);
+    const double *s = m->state + (size_t)m->n_state * wff_element_first_point(m->el.n_tris, e);
     double mean = 0;
     for (int q = 0; q < n; q++)
         mean += s[m->n_state * q + i] / n;

@@ -60,7 +60,7 @@ int wff_element_center_eval(const wff_elements *el, const wff_element_material *
 {
     double mean[WFF_STATE_MAX] = {0};
     const int n = e < el->n_tris ? 3 : 4, ns = em->mat->n_state;
-    const double *g = state + ns * (e < el->n_tris ? 3 * e : 3 * el->n_tris + 4 * (e - el->n_tris));
+    const double *g = state + ns * wff_element_first_point(el->n_tris, e);
     for (int q = 0; q < n; q++)
         for (int i = 0; i < ns; i++)
             mean[i] += g[ns * q + i] / n;

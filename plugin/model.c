@@ -127,7 +127,7 @@ int wff_model_create_ordered(wff_model *m, wff_mesh *mesh, const char *material_
     m->n_nodes = m->mesh.n_nodes;
     m->n_dofs = D * m->n_nodes;
     size_t nd = (size_t)m->n_dofs;
-    size_t nq = (size_t)(WFF_TRI_POINTS * m->el.n_tris + WFF_QUAD_POINTS * m->el.n_quads);
+    size_t nq = wff_elements_point_count(&m->el);
     m->u = calloc(nd, sizeof(double));
     m->v = calloc(nd, sizeof(double));
     m->f = calloc(nd, sizeof(double));

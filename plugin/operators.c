@@ -19,7 +19,7 @@
 /* Quadrature points of the mesh (γᶠ entries). */
 static size_t n_points(const wff_model *m)
 {
-    return (size_t)(WFF_TRI_POINTS * m->el.n_tris + WFF_QUAD_POINTS * m->el.n_quads);
+    return wff_elements_point_count(&m->el);
 }
 
 /* The scratch copy of the points' state (n_points × n_state) followed by room for the static

@@ -342,7 +342,7 @@ static int old_points(const wff_model *m, const locator *L, int t, const double 
         if (d < best_d)
             best_d = d, best = q;
     }
-    idx[0] = WFF_TRI_POINTS * m->mesh.n_tris + WFF_QUAD_POINTS * (e - m->mesh.n_tris) + best;
+    idx[0] = (int)wff_element_first_point(m->mesh.n_tris, e) + best;
     w[0] = 1;
     return 1;
 }
@@ -350,7 +350,7 @@ static int old_points(const wff_model *m, const locator *L, int t, const double 
 static int allocate(wff_model *nm, wff_error *err)
 {
     size_t nd = (size_t)nm->n_dofs, nn = (size_t)nm->n_nodes;
-    size_t nq = (size_t)(WFF_TRI_POINTS * nm->el.n_tris + WFF_QUAD_POINTS * nm->el.n_quads);
+    size_t nq = wff_elements_point_count(&nm->el);
     nm->u = calloc(nd, sizeof(double));
     nm->v = calloc(nd, sizeof(double));
     nm->f = calloc(nd, sizeof(double));

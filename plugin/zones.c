@@ -83,13 +83,6 @@ static void zone_material(const wff_model *m, int k, wff_element_material *em)
     }
 }
 
-static size_t point_base(int e, int n_tris)
-{
-    return e < n_tris ? (size_t)WFF_TRI_POINTS * (size_t)e
-                      : (size_t)WFF_TRI_POINTS * (size_t)n_tris +
-                            (size_t)WFF_QUAD_POINTS * (size_t)(e - n_tris);
-}
-
 /* The material of zone k (zone 0: the model's). */
 static const wff_material *zone_mat(const wff_model *m, int k)
 {
@@ -107,8 +100,8 @@ static void zone_state(const wff_model *m, int k, double *state, int to_model)
     for (int i = 0; i < z->n_elements; i++) {
         int e = z->element[i];
         int np = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
-        double *global = state + (size_t)ns * point_base(e, nt);
-        double *local = z->state + (size_t)nz * point_base(i, z->n_tris);
+        double *global = state + (size_t)ns * wff_element_first_point(nt, e);
+        double *local = z->state + (size_t)nz * wff_element_first_point(z->n_tris, i);
         for (int q = 0; q < np; q++)
             for (int j = 0; j < nz; j++) {
                 if (to_model)
@@ -154,7 +147,7 @@ static int zone_states_fit(wff_model *m, const wff_material *mat, const char *pa
                             have->cell->state_names[i], have->cell->name);
     if (mat->n_state <= m->n_state)
         return 0;
-    size_t np = (size_t)(WFF_TRI_POINTS * m->el.n_tris + WFF_QUAD_POINTS * m->el.n_quads);
+    size_t np = wff_elements_point_count(&m->el);
     size_t ns = (size_t)mat->n_state;
     double *wide = calloc(np * ns > 0 ? np * ns : 1, sizeof(double));
     if (!wide)
@@ -192,7 +185,7 @@ static int build(wff_model *m, wff_error *err)
         z->tri = malloc(sizeof(int) * 3 * (size_t)(tris ? tris : 1));
         z->quad = malloc(sizeof(int) * 4 * (size_t)(quads ? quads : 1));
         z->state = malloc(sizeof(double) *
-                          ((size_t)zone_mat(m, k)->n_state * point_base(count, tris) + 1));
+                          ((size_t)zone_mat(m, k)->n_state * wff_element_first_point(tris, count) + 1));
         if (!z->element || !z->tri || !z->quad || !z->state) {
             zone_unbuild(z);
             return wff_fail(err, "zones: out of memory for zone %d (%d elements)", k, count);
@@ -615,7 +608,7 @@ int wff_zones_center_eval(const wff_model *m, const double *u, int e, wff_point_
     const wff_element_material *em = wff_zones_element_material(m, e, &scratch);
     const int nt = m->el.n_tris, n = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
     const int ns = m->n_state, nz = em->mat->n_state;
-    const double *g = m->state + (size_t)ns * point_base(e, nt);
+    const double *g = m->state + (size_t)ns * wff_element_first_point(nt, e);
     double mean[WFF_STATE_MAX] = {0}; /* as wff_element_center_eval: Σ_q s_q / n */
     for (int q = 0; q < n; q++)
         for (int j = 0; j < nz; j++)

@@ -31,6 +31,8 @@
 
 #include "wovenff/cell.h"
 
+#include <stddef.h>
+
 #include <math.h>
 
 #ifdef __cplusplus
@@ -75,6 +77,22 @@ enum { WFF_EROSION_OFF = 0, WFF_EROSION_BOTH = 1, WFF_EROSION_EITHER = 2 };
 static inline int wff_element_eroded(const wff_elements *el, int e)
 {
     return el->eroded && el->eroded[e];
+}
+
+/* Index of element e's first quadrature point in a mesh of n_tris triangles
+ * (tris first, 3 points each, then quads, 4 each): where its per-point state
+ * starts, in points (× n_state for doubles). */
+static inline size_t wff_element_first_point(int n_tris, int e)
+{
+    return e < n_tris ? (size_t)WFF_TRI_POINTS * (size_t)e
+                      : (size_t)WFF_TRI_POINTS * (size_t)n_tris +
+                            (size_t)WFF_QUAD_POINTS * (size_t)(e - n_tris);
+}
+
+/* Quadrature points of the whole mesh (the length of a per-point array, in points). */
+static inline size_t wff_elements_point_count(const wff_elements *el)
+{
+    return wff_element_first_point(el->n_tris, el->n_tris + el->n_quads);
 }
 
 /* Most threads a force pass uses. */
