@@ -160,6 +160,7 @@ int wff_model_create_ordered(wff_model *m, wff_mesh *mesh, const char *material_
         wff_model_free(m);
         return -1;
     }
+    wff_model_set_element_lengths(m); /* a state the element code sets (cell.h) */
     stored_energy_now(m);
     return 0;
 }

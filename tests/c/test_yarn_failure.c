@@ -154,7 +154,7 @@ static void test_linear_and_irreversible(check_state *st)
         /* a fresh yarn pulled to e: d = (e − ε_f)/(ε_r − ε_f), clamped */
         for (int i = 0; i <= 20; i++) {
             double e = 0.02 + 0.04 * i / 20.0;
-            wff_yarn_damage y = wff_yarn_damage_step(&f, k, e, yarn_energy(e), 0, e, dt);
+            wff_yarn_damage y = wff_yarn_damage_step(&f, k, e, yarn_energy(e), 0, e, 0, dt);
             double want = e <= ef ? 0 : e >= er ? 1 : (e - ef) / (er - ef);
             CHECK_CLOSE(st, y.damage, want, 1e-14, 1e-14, "linear damage");
             CHECK_CLOSE(st, y.factor, 1 - want, 1e-14, 1e-14, "tension factor");
@@ -166,7 +166,7 @@ static void test_linear_and_irreversible(check_state *st)
         double d_at_max = (e_max - ef) / (er - ef);
         for (size_t i = 0; i < sizeof path / sizeof path[0]; i++) {
             wff_yarn_damage y = wff_yarn_damage_step(&f, k, path[i], yarn_energy(path[i]), d,
-                                                     prev, dt);
+                                                     prev, 0, dt);
             CHECK(st, y.damage >= d, "damage decreased at step %zu: %g < %g", i, y.damage, d);
             CHECK(st, y.released >= 0, "negative release %g", y.released);
             released += y.released;
@@ -178,9 +178,9 @@ static void test_linear_and_irreversible(check_state *st)
         CHECK_CLOSE(st, released, d_at_max * yarn_energy(e_max), 1e-14, 1e-18,
                     "released over the cycle");
         /* beyond rupture: 1, and stays 1 */
-        wff_yarn_damage y = wff_yarn_damage_step(&f, k, 2 * er, yarn_energy(2 * er), d, prev, dt);
+        wff_yarn_damage y = wff_yarn_damage_step(&f, k, 2 * er, yarn_energy(2 * er), d, prev, 0, dt);
         CHECK(st, y.damage == 1 && y.factor == 0, "not ruptured at 2 eps_r: %g", y.damage);
-        y = wff_yarn_damage_step(&f, k, 0.001, yarn_energy(0.001), 1, 2 * er, dt);
+        y = wff_yarn_damage_step(&f, k, 0.001, yarn_energy(0.001), 1, 2 * er, 0, dt);
         CHECK(st, y.damage == 1 && y.factor == 0 && y.released == 0, "rupture undone");
     }
 }
@@ -190,21 +190,21 @@ static void test_tension_only_and_held(check_state *st)
     const wff_yarn_failure f = law(0, 0);
     /* a compressed yarn keeps its force and energy whatever its damage */
     for (double d = 0; d <= 1; d += 0.25) {
-        wff_yarn_damage y = wff_yarn_damage_step(&f, 0, -0.02, yarn_energy(-0.02), d, 0, 1e-6);
+        wff_yarn_damage y = wff_yarn_damage_step(&f, 0, -0.02, yarn_energy(-0.02), d, 0, 0, 1e-6);
         CHECK(st, y.factor == 1 && y.released == 0 && y.damage == d,
               "compression changed by damage %g: factor %g", d, y.factor);
-        y = wff_yarn_damage_step(&f, 0, 0.02, yarn_energy(0.02), d, 0, 1e-6);
+        y = wff_yarn_damage_step(&f, 0, 0.02, yarn_energy(0.02), d, 0, 0, 1e-6);
         CHECK_CLOSE(st, y.factor, 1 - d, 1e-15, 1e-15, "tension at damage");
     }
     /* dt = 0 holds d and the strain history, even far beyond rupture */
-    wff_yarn_damage y = wff_yarn_damage_step(&f, 1, 0.2, yarn_energy(0.2), 0.3, 0.01, 0);
+    wff_yarn_damage y = wff_yarn_damage_step(&f, 1, 0.2, yarn_energy(0.2), 0.3, 0.01, 0, 0);
     CHECK(st, y.damage == 0.3 && y.strain_prev == 0.01 && y.released == 0,
           "dt = 0 moved the state: d %g prev %g", y.damage, y.strain_prev);
     CHECK_CLOSE(st, y.factor, 0.7, 1e-15, 1e-15, "dt = 0 factor");
     /* failure off: nothing */
     wff_yarn_failure off = f;
     off.enabled = 0;
-    y = wff_yarn_damage_step(&off, 0, 0.2, yarn_energy(0.2), 0, 0, 1e-6);
+    y = wff_yarn_damage_step(&off, 0, 0.2, yarn_energy(0.2), 0, 0, 0, 1e-6);
     CHECK(st, y.damage == 0 && y.factor == 1 && y.released == 0, "off: damaged");
     /* the damaged tension is the derivative of the damaged energy at fixed d:
      * W^d = (1 − d) ½ e² for e > 0, T^d = (1 − d) e */
@@ -212,9 +212,9 @@ static void test_tension_only_and_held(check_state *st)
     for (double e = -0.03; e <= 0.03; e += 0.01) {
         if (fabs(e) < 2 * h)
             continue;
-        double wp = wff_yarn_damage_step(&f, 0, e + h, 0, d, 0, 0).factor * yarn_energy(e + h);
-        double wm = wff_yarn_damage_step(&f, 0, e - h, 0, d, 0, 0).factor * yarn_energy(e - h);
-        double t = wff_yarn_damage_step(&f, 0, e, 0, d, 0, 0).factor * e;
+        double wp = wff_yarn_damage_step(&f, 0, e + h, 0, d, 0, 0, 0).factor * yarn_energy(e + h);
+        double wm = wff_yarn_damage_step(&f, 0, e - h, 0, d, 0, 0, 0).factor * yarn_energy(e - h);
+        double t = wff_yarn_damage_step(&f, 0, e, 0, d, 0, 0, 0).factor * e;
         CHECK_CLOSE(st, (wp - wm) / (2 * h), t, 1e-8, 1e-12, "T = dW/de at fixed d");
     }
 }
@@ -228,7 +228,7 @@ static void test_rate(check_state *st)
     for (int i = 0; i < 6; i++) {
         double rate = i == 0 ? 0 : pow(10.0, i); /* 1/s */
         double prev = e - rate * dt;
-        wff_yarn_damage y = wff_yarn_damage_step(&f, 0, e, yarn_energy(e), 0, prev, dt);
+        wff_yarn_damage y = wff_yarn_damage_step(&f, 0, e, yarn_energy(e), 0, prev, 0, dt);
         /* the stated law: both strains times φ = 1 + (ε̇/C)^(1/p) */
         double phi = 1 + pow(rate / C, 1 / p);
         double ef = 0.03 * phi, er = 0.045 * phi;
@@ -238,14 +238,14 @@ static void test_rate(check_state *st)
         CHECK(st, y.strain_prev == e, "history not the strain now");
         last = y.damage;
         if (i == 0) {
-            wff_yarn_damage z = wff_yarn_damage_step(&plain, 0, e, yarn_energy(e), 0, prev, dt);
+            wff_yarn_damage z = wff_yarn_damage_step(&plain, 0, e, yarn_energy(e), 0, prev, 0, dt);
             CHECK_CLOSE(st, y.damage, z.damage, 1e-15, 1e-15, "zero rate = rate-free law");
         }
     }
-    CHECK(st, last < 0.5 * wff_yarn_damage_step(&plain, 0, e, 0, 0, e, dt).damage,
+    CHECK(st, last < 0.5 * wff_yarn_damage_step(&plain, 0, e, 0, 0, e, 0, dt).damage,
           "rate scaling too weak to test: %g", last);
     /* unloading fast scales by |ε̇| too, and damage never decreases */
-    wff_yarn_damage y = wff_yarn_damage_step(&f, 0, e, yarn_energy(e), 0.5, e + 1e5 * dt, dt);
+    wff_yarn_damage y = wff_yarn_damage_step(&f, 0, e, yarn_energy(e), 0.5, e + 1e5 * dt, 0, dt);
     CHECK(st, y.damage == 0.5, "fast unloading changed damage: %g", y.damage);
     CHECK_CLOSE(st, wff_yarn_failure_rate_factor(&f, -1e6), 1 + pow(100.0, 1 / p), 1e-15, 1,
                 "|rate|");
