@@ -12,7 +12,7 @@
 # failure energy > 0, the energy balance within 1 % of the impact energy, the
 # history's failure columns, damage.png, the damage fields in the VTK frames;
 # a run stopped after elements eroded and restarted from its checkpoint ends as the
-# uninterrupted one.
+# uninterrupted one. With the paper's friction clamp 22 m/s damages nothing.
 # (-failure off, the paper's scene unchanged: sh/ballistic_scene.sh, make run.)
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/failure_scene"
@@ -106,6 +106,28 @@ else
         if (!(r > 0 && r < 22)) { print "slow: residual velocity " r " not in (0, 22)"; bad = 1 }
         if (!(e > 0)) { print "slow: no element eroded"; bad = 1 }
         if (!(err <= 0.01)) { print "slow: energy error " err " above 1 %"; bad = 1 }
+        exit bad }' || fail=1
+fi
+
+# 22 m/s with the paper's clamp (-clamp friction: the ply slips in it): no
+# element erodes, no yarn is damaged, the projectile turns back (coarse: at
+# 2.80 ms, failure energy 0); the fixed clamp's perforation above is the clamp's
+# doing (docs/penetration.md).
+out="$tmp/slow_clamp"
+sh tools/ff.sh "$scene" -mesh coarse -plots 0 -vtkdt 1e-3 -tend 3.5e-3 -failure on -clamp friction \
+    -out "$out" > "$out.log" 2>&1
+rc=$?
+if [ $rc -ne 0 ]; then echo "slow_clamp: exit $rc"; sed 's/^/    | /' "$out.log" | tail -6; fail=1
+else
+    [ "$(num "$out" perforated)" = false ] || { echo "slow_clamp: perforated at 22 m/s with the friction clamp"; fail=1; }
+    back=$(awk -F, 'NR > 1 && $4 <= 0 { print $1; exit }' "$out/history.csv")
+    echo "slow_clamp: eroded $(num "$out" eroded_elements), failure energy $(num "$out" failure_energy) J, turned back at ${back:-never} s"
+    awk -v e="$(num "$out" eroded_elements)" -v w="$(num "$out" failure_energy)" -v b="$back" \
+        -v err="$(num "$out" max_energy_error)" 'BEGIN {
+        if (e != 0) { print "slow_clamp: " e " elements eroded"; bad = 1 }
+        if (!(w == 0)) { print "slow_clamp: failure energy " w " J (a yarn was damaged)"; bad = 1 }
+        if (b == "") { print "slow_clamp: the projectile did not turn back by 3.5 ms"; bad = 1 }
+        if (!(err <= 0.01)) { print "slow_clamp: energy error " err " above 1 %"; bad = 1 }
         exit bad }' || fail=1
 fi
 
