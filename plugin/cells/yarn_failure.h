@@ -55,7 +55,14 @@
  * length h* = h_ref (ε_f² + ε_f ε_r + ε_r²)/(3 ε_f²) (1.20 h_ref for 3.8 and
  * 4.52 %) no span releases as little as h_ref's element: there the span is
  * the floor WFF_YARN_BAND_SPAN_FLOOR s₀ (near-brittle, still well defined)
- * and the element releases more than h_ref's. element_length 0 (the cell
+ * and the element releases more than h_ref's. Below h_ref the span is kept
+ * ≤ max(ε_f, ε_r − ε_f): with ε_r(h) > 2 ε_f the tension (1 − d) T would
+ * still rise past the onset (d/dε [(ε_r − ε) ε] > 0 at ε_f), the element
+ * would harden rather than soften and damage spread beyond one element (a
+ * bar pulled through rupture then releases more, not h_ref's); at the cap,
+ * h < h_ref (7 ε_f²)⁻¹(ε_f² + ε_f ε_r + ε_r²) (0.515 h_ref for 3.8 and
+ * 4.52 %), the element releases less than h_ref's. So the band holds exactly
+ * between 0.515 and 1.20 h_ref for these strains. element_length 0 (the cell
  * suite, the explorer, wff_rest_state) means no scaling.
  *
  * Material keys (parsed here, once for every cell): failure (0 off, the
@@ -215,7 +222,8 @@ WFF_INLINE double wff_yarn_failure_rate_factor(const wff_yarn_failure *f, double
 
 /* Family k's span ε_r(h) − ε_f at element length h (the crack band of the
  * header comment): ε_r − ε_f without the band, at h ≤ 0 or at h = h_ref;
- * never below WFF_YARN_BAND_SPAN_FLOOR (ε_r − ε_f). */
+ * never below WFF_YARN_BAND_SPAN_FLOOR (ε_r − ε_f), never above
+ * max(ε_f, ε_r − ε_f). */
 WFF_INLINE double wff_yarn_failure_span(const wff_yarn_failure *f, int k,
                                         double element_length)
 {
@@ -227,11 +235,12 @@ WFF_INLINE double wff_yarn_failure_span(const wff_yarn_failure *f, int k,
      * the cancellation at h ≈ h_ref */
     const double excess = 3 * onset * onset * (ratio - 1) + ratio * span * (3 * onset + span);
     const double floor = WFF_YARN_BAND_SPAN_FLOOR * span;
+    const double ceiling = onset > span ? onset : span;
     if (!(excess > 0))
         return floor;
     /* the positive root of s² + 3 ε_f s − excess, in the form without cancellation */
     const double s = 2 * excess / (3 * onset + sqrt(9 * onset * onset + 4 * excess));
-    return s > floor ? s : floor;
+    return s < floor ? floor : s > ceiling ? ceiling : s;
 }
 
 /* The damage a strain ε alone would give family k at rate factor φ and
