@@ -219,14 +219,14 @@ static void basket_point_fail(const basket_params *k, const double *state, doubl
     if (k->failure.enabled == 0)
         return;
     const double *fs = state + STATE_DAMAGE1;
-    const int rate_law = k->failure.rate_C > 0; /* then ε_k of the last update is kept */
+    const int kept = wff_yarn_failure_keeps_strain(&k->failure); /* ε_k of the last update */
     const double length = wff_yarn_failure_length(&k->failure, fs);
     pt->failure_state[WFF_YARN_STATE_LENGTH] = length; /* (the element code's) */
     for (int f = 0; f < FAMILIES; f++) {
         basket_family *y = &pt->yarn[f];
         double strain = (2 * pt->fr.p[f] + 2 * y->length - k->path0[f]) / k->path0[f];
         wff_yarn_damage d = wff_yarn_damage_step(&k->failure, f, strain, y->energy_yarn, fs[f],
-                                                 rate_law ? fs[2 + f] : 0, length, dt);
+                                                 kept ? fs[2 + f] : 0, length, dt);
         y->tension *= d.factor;
         y->energy_yarn *= d.factor;
         y->tension_factor = d.factor;

@@ -246,11 +246,11 @@ WFF_INLINE void king_point_at(const king_params *k, const wff_yarn_frame *fr, co
         pt->yarn[f] = king_family_at(k, fr, f, dA[f], locking_exponent);
     pt->failure_released = 0;
     if (failure_state) {
-        const int rate_law = k->failure.rate_C > 0; /* then ε_k of the last update is kept */
+        const int kept = wff_yarn_failure_keeps_strain(&k->failure); /* ε_k of the last update */
         const double length = wff_yarn_failure_length(&k->failure, failure_state);
         for (int f = 0; f < FAMILIES; f++) {
             wff_yarn_damage d = king_family_fail(k, f, &pt->yarn[f], failure_state[f],
-                                                 rate_law ? failure_state[2 + f] : 0, length,
+                                                 kept ? failure_state[2 + f] : 0, length,
                                                  dt);
             pt->failure_state[f] = d.damage;
             pt->failure_state[2 + f] = d.strain_prev;

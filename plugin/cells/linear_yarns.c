@@ -129,14 +129,14 @@ static void linear_point_fail(const linear_params *c, const double *state, doubl
 {
     if (c->failure.enabled == 0)
         return;
-    const int rate_law = c->failure.rate_C > 0; /* then ε_k of the last update is kept */
+    const int kept = wff_yarn_failure_keeps_strain(&c->failure); /* ε_k of the last update */
     const double length = wff_yarn_failure_length(&c->failure, state + STATE_DAMAGE1);
     pt->failure_state[WFF_YARN_STATE_LENGTH] = length; /* (the element code's) */
     pt->energy_yarn = 0;
     for (int f = 0; f < FAMILIES; f++) {
         wff_yarn_damage d = wff_yarn_damage_step(
             &c->failure, f, pt->fr.p[f] - 1, pt->energy_family[f], state[STATE_DAMAGE1 + f],
-            rate_law ? state[STATE_STRAIN1 + f] : 0, length, dt);
+            kept ? state[STATE_STRAIN1 + f] : 0, length, dt);
         pt->force[f] *= d.factor;
         pt->energy_family[f] *= d.factor;
         pt->energy_yarn += pt->energy_family[f];

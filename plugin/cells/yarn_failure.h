@@ -107,6 +107,14 @@ typedef struct wff_yarn_failure {
  * the band (the name a cell gives it: "element_length", unit m). */
 enum { WFF_YARN_STATE_LENGTH = 4, WFF_YARN_STATES_MAX = 5 };
 
+/* 1 when the points keep ε_k^prev (the rate law or the band: the states from
+ * d_1 on are then at least d_1, d_2, ε_1, ε_2); what a cell passes as
+ * strain_prev otherwise is 0. */
+static inline int wff_yarn_failure_keeps_strain(const wff_yarn_failure *f)
+{
+    return f->rate_C > 0 || f->band_length > 0;
+}
+
 /* The per-point states the law adds to a cell's: d_1, d_2, and ε_1^prev,
  * ε_2^prev with the rate law or the band, then h with the band; 0 when
  * failure is off. */
