@@ -3,7 +3,8 @@
  *      states, energies) under a projectile impact;
  *   2. three plies far apart: the struck ply is the plain model to round-off,
  *      the others stay where they were; groups hold every ply's nodes;
- *   3. free flight keeps the plies' offsets; per-ply energies sum to the model's;
+ *   3. threads (the plies' force passes at once) give the same bits;
+ *      free flight keeps the plies' offsets; per-ply energies sum to the model's;
  *      the "ply" fields;
  *   4. bad input: plies <= 0, > 40, gap < 0, after boundary conditions, a ply
  *      index out of range, a ply material that cannot be read, checkpoints. */
@@ -144,6 +145,26 @@ static void far_plies(check_state *st)
     wff_model_free(&b);
 }
 
+/* The force pass of a pack with threads runs its plies at once: the same bits. */
+static void threaded_plies(check_state *st)
+{
+    wff_model a, b;
+    wff_error err;
+    if (impact(st, &a, 4, 0.2e-3) || impact(st, &b, 4, 0.2e-3))
+        return;
+    int rc = wff_model_set_option(&b, "threads", 2, &err);
+    CHECK(st, rc == 0, "threads: %s", err.message);
+    if (rc == 0 && (wff_model_advance(&a, 3e-5, 100000, &err) ||
+                    wff_model_advance(&b, 3e-5, 100000, &err)))
+        CHECK(st, 0, "advance: %s", err.message);
+    size_t nd = sizeof(double) * (size_t)a.n_dofs;
+    CHECK(st, a.step == b.step && a.step > 10 && memcmp(a.u, b.u, nd) == 0 &&
+              memcmp(a.v, b.v, nd) == 0,
+          "4 plies, 1 and 2 threads: u, v differ (steps %ld %ld)", a.step, b.step);
+    wff_model_free(&a);
+    wff_model_free(&b);
+}
+
 static void free_flight(check_state *st)
 {
     wff_model m;
@@ -231,6 +252,7 @@ int main(void)
     check_state st = {0, 0};
     same_model(&st);
     far_plies(&st);
+    threaded_plies(&st);
     free_flight(&st);
     bad_input(&st);
     return check_summary(&st, "test_pack");
