@@ -315,21 +315,25 @@ static void eight_plies(check_state *st, int clamped)
     }
     wff_energies e;
     wff_model_energies(&m, &e);
-    double p[3], back, contacts;
+    double p[3], back, contacts, slip;
     momentum(&m, p);
+    wff_model_pack_value(&m, "ply_slip", &slip, &err);
     wff_model_pack_value(&m, "back_face", &back, &err);
     wff_model_pack_value(&m, "ply_contacts", &contacts, &err);
     double impulse = m.projectile.impulse_total;
     printf("  8 plies, %s edges, %ld steps: energy error %.3g %% of the impact energy, ply "
-           "contact dissipated %.4g J, back face %.4f mm, %g contacts, penetration %.3g m; "
-           "projectile impulse %.9g N s, fabric momentum %.9g N s\n",
-           clamped ? "clamped" : "free", m.step, 100 * worst, e.dissipated_ply_contact,
-           1e3 * back, contacts, worst_pen, impulse, p[2]);
+           "contact dissipated %.4g J, back face %.4f mm, %g contacts, penetration %.3g m, "
+           "slip %.3g mm (element %.3g mm); projectile impulse %.9g N s, fabric momentum "
+           "%.9g N s\n", clamped ? "clamped" : "free", m.step, 100 * worst,
+           e.dissipated_ply_contact, 1e3 * back, contacts, worst_pen, 1e3 * slip, 1e3 * m.el.size[0],
+           impulse, p[2]);
     CHECK(st, worst <= 0.01, "energy balance %.3g %% of the impact energy", 100 * worst);
     CHECK(st, e.dissipated_ply_contact > 0 && back > 0 && contacts > 0,
           "the pack works: dissipated %g, back face %g, contacts %g", e.dissipated_ply_contact,
           back, contacts);
     CHECK(st, worst_pen <= 0.2 * t, "penetration %g m (bound 20 %% of t)", worst_pen);
+    CHECK(st, slip <= 0.1 * m.el.size[0], "ply slip %g m against the element size %g m: the "
+          "node-to-node pairing needs it small", slip, m.el.size[0]);
     if (!clamped)
         /* (along z: the nose's normal impulses have in-plane parts its guide takes) */
         CHECK(st, fabs(impulse - p[2]) <= 1e-9 * impulse,
