@@ -472,6 +472,7 @@ int wff_zones_pack(wff_model *m, wff_error *err)
         wff_zones_free(m);
         return -1;
     }
+    wff_model_set_element_lengths(m);
     return 0;
 }
 

@@ -12,13 +12,16 @@
  *   4. zones: only the points of the zone whose material has the band carry a
  *      length (the model's material without it);
  *   5. a mesh transfer gives the new points their new elements' lengths, not
- *      the old ones' mean. */
+ *      the old ones' mean;
+ *   6. a pack of three plies, the middle one of the band's material: its
+ *      points carry their lengths, the others none. */
 #include "check.h"
 #include "test_meshes.h"
 #include "test_tmp.h"
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
 #include "wovenff/membrane.h"
+#include "wovenff/pack.h"
 #include "wovenff/solver.h"
 
 #include <math.h>
@@ -346,6 +349,49 @@ static void remesh(check_state *st)
     wff_model_free(&m);
 }
 
+static void pack(check_state *st)
+{
+    const char *plain = material(st, "pack_plain.txt", "failure=1");
+    const char *band = material(st, "pack_band.txt", "failure=1,failure_band_length=1e-3");
+    test_rect r = {0, 0.02, 0, 0.01, 6, 3, TEST_MESH_TRI, 1, 0.2, 9};
+    wff_model m;
+    wff_error err;
+    if (test_model_rect(&m, &r, plain, &err)) {
+        CHECK(st, 0, "pack model: %s", err.message);
+        return;
+    }
+    int rc = wff_model_set_plies(&m, 3, 3e-4, &err) < 0 ||
+             wff_model_ply_material(&m, 1, band, &err) < 0; /* (returns the elements) */
+    CHECK(st, rc == 0, "pack: %s", err.message);
+    int i = -1;
+    for (int k = 0; rc == 0 && k < wff_model_zone_count(&m); k++) {
+        int j = wff_material_state_index(wff_model_zone_material(&m, k), WFF_ELEMENT_LENGTH_STATE);
+        i = j >= 0 ? j : i;
+    }
+    CHECK(st, rc != 0 || (i >= 0 && m.n_state == 6), "pack: %d states, element_length at %d",
+          m.n_state, i);
+    if (rc == 0 && i >= 0) {
+        int n_el = m.el.n_tris + m.el.n_quads, per_ply = n_el / 3, out = 0;
+        unsigned char *flag = calloc((size_t)n_el, 1);
+        double outside = 0;
+        for (int e = 0; e < n_el; e++) {
+            flag[e] = e / per_ply == 1; /* (pack.h: ply p's triangles p t .. p t + t − 1) */
+            if (!flag[e])
+                for (int q = 0; q < WFF_TRI_POINTS; q++, out++)
+                    outside = fmax(outside, fabs(point_state(&m, e, q, i)));
+        }
+        int points;
+        double worst = length_error(&m, i, flag, &points);
+        printf("  pack of 3 plies, the middle one with the band: its %d points carry their "
+               "length (largest relative difference %.2g), the other %d points 0 (largest "
+               "%.2g)\n", points, worst, out, outside);
+        CHECK(st, points == 3 * per_ply && worst < 1e-13 && outside == 0,
+              "pack: %d points, length error %g, outside %g", points, worst, outside);
+        free(flag);
+    }
+    wff_model_free(&m);
+}
+
 int main(void)
 {
     check_state st = {0, 0};
@@ -358,6 +404,7 @@ int main(void)
     restart(&st);
     zones(&st);
     remesh(&st);
+    pack(&st);
     test_tmp_remove(tmpdir);
     return check_summary(&st, "test_crack_band");
 }
