@@ -5,13 +5,15 @@
 #
 # Usage (repository root, after make):
 #   sh bench/limit_study.sh [-meshes "coarse default"] [-jobs 2] [-out results/limit_study]
-#                           [-args "more ballistic_limit options"]
+#                           [-args "more ballistic_limit options"] [-set "key=value,..."]
 # Each mesh: tools/ff.sh freefem_scripts/ballistic_limit.edp -mesh M -jobs J
 #            -out OUT/M $args  (the sweep's defaults otherwise: -vmin 10 -vmax 100
 #            -runs 16 -tend 10e-3), then a table (markdown) of V50 from the fit and
 #            from the bracket, the Lambert-Jonas constants, the runs and the wall
 #            time, and the Phoenix-Porwal V50 (tools/phoenix_porwal.sh) with the
-#            ratio. Writes OUT/study.md; each sweep's files in OUT/M.
+#            ratio. Writes OUT/study.md; each sweep's files in OUT/M. -set: material
+#            values for every run (the scene's -set, through the sweep's -base; the spot
+#            runs too), e.g. -set failure_band_length=1.55e-3 (docs/penetration.md).
 #   sh bench/limit_study.sh -meshes "" -spot fine -speeds "15.56 16.67"
 #            single runs on mesh -spot at each speed (-tend 6e-3, 2 at once), the outcome
 #            from the history: perforated (summary), turned back (the projectile's
@@ -21,7 +23,7 @@
 # Cost (2 cores shared by others, -jobs 2): coarse ~2 min, default ~9 min (5 CPU min);
 # the spot check on fine ~10 min.
 set -u
-meshes="coarse default" jobs=2 out=results/limit_study args="" spot="" speeds=""
+meshes="coarse default" jobs=2 out=results/limit_study args="" spot="" speeds="" set=""
 while [ $# -gt 0 ]; do
     case "$1" in
         -meshes) meshes=$2; shift 2 ;;
@@ -30,9 +32,11 @@ while [ $# -gt 0 ]; do
         -args) args=$2; shift 2 ;;
         -spot) spot=$2; shift 2 ;;
         -speeds) speeds=$2; shift 2 ;;
-        *) echo "error: limit_study: unknown option '$1' (-meshes -jobs -out -args -spot -speeds)"; exit 2 ;;
+        -set) set=$2; shift 2 ;;
+        *) echo "error: limit_study: unknown option '$1' (-meshes -jobs -out -args -spot -speeds -set)"; exit 2 ;;
     esac
 done
+case "$set" in *" "*) echo "error: limit_study: -set '$set': no blanks (key=value,key=value)"; exit 2 ;; esac
 [ -f tools/ff.sh ] || { echo "error: limit_study: run from the repository root"; exit 2; }
 mkdir -p "$out"
 # num FILE KEY [FIELD]: "KEY": {"FIELD": x ...} or "KEY": x
@@ -49,7 +53,7 @@ for m in $meshes; do
     t0=$(date +%s)
     # shellcheck disable=SC2086
     sh tools/ff.sh freefem_scripts/ballistic_limit.edp -mesh "$m" -jobs "$jobs" -overwrite 1 -out "$d" $args \
-        > "$out/$m.log" 2>&1
+        ${set:+-base "-set $set"} > "$out/$m.log" 2>&1
     rc=$? t1=$(date +%s)
     grep -E '^(Lambert|V50|done|error)' "$out/$m.log" | sed "s/^/$m: /"
     j="$d/limit.json"
@@ -74,7 +78,7 @@ for m in $meshes; do
 | $m | $elems | $row |"
 done
 {
-    echo "# Ballistic-limit study ($(date -u +%Y-%m-%d), meshes: $meshes, -jobs $jobs${args:+, $args})"
+    echo "# Ballistic-limit study ($(date -u +%Y-%m-%d), meshes: $meshes, -jobs $jobs${args:+, $args}${set:+, -set $set})"
     echo
     echo "$table"
     echo
@@ -87,7 +91,8 @@ cat "$out/study.md"
 if [ -n "$spot" ] && [ -n "$speeds" ]; then
     for v in $speeds; do
         sh tools/ff.sh freefem_scripts/ballistic_impact.edp -mesh "$spot" -plots 0 -vtkdt 1 -failure on \
-            -velocity "$v" -threads 1 -tend 6e-3 -overwrite 1 -out "$out/spot_$spot/v$v" > "$out/spot_$spot.v$v.log" 2>&1 &
+            -velocity "$v" -threads 1 -tend 6e-3 -overwrite 1 -out "$out/spot_$spot/v$v" ${set:+-set "$set"} \
+            > "$out/spot_$spot.v$v.log" 2>&1 &
     done
     wait
     {

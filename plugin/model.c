@@ -167,6 +167,7 @@ int wff_model_setup(wff_model *m, wff_error *err)
         wff_model_free(m);
         return -1;
     }
+    wff_model_set_element_lengths(m); /* a state the element code sets (cell.h) */
     stored_energy_now(m);
     return 0;
 }

@@ -380,7 +380,8 @@ static int allocate(wff_model *nm, wff_error *err)
  * weights old_points gives: barycentric over an old triangle's three points,
  * or a quad's nearest Gauss point), except a yarn damage (the cell's
  * damage_state), which must not decrease: the largest of the old points'
- * with a positive weight. */
+ * with a positive weight. (An element_length state is then set anew,
+ * wff_model_set_element_lengths.) */
 static int transfer_state(const wff_model *m, wff_model *nm, const locator *L,
                           wff_remesh_report *rep, wff_error *err)
 {
@@ -565,6 +566,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     }
     if (locator_build(&L, &m->mesh, err) || transfer_state(m, &nm, &L, &rep, err))
         goto fail;
+    wff_model_set_element_lengths(&nm); /* the new elements' own, not the old ones' mean */
     wff_elements_masses(&nm.el, &nm.em, nm.n_nodes, nm.mass);
     nm.fabric_mass = 0;
     for (int n = 0; n < nm.n_nodes; n++)

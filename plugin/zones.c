@@ -449,6 +449,7 @@ static int zone_elements_model(wff_model *m, const unsigned char *selected,
         }
     if (build(m, err) || wff_model_masses_changed(m, err))
         return -1;
+    wff_model_set_element_lengths(m); /* (the zone's material may carry them) */
     return count;
 }
 
@@ -471,6 +472,7 @@ int wff_zones_pack(wff_model *m, wff_error *err)
         wff_zones_free(m);
         return -1;
     }
+    wff_model_set_element_lengths(m);
     return 0;
 }
 
@@ -546,6 +548,29 @@ int wff_model_zone_disc(wff_model *m, double x, double y, double radius, int out
     int n = zone_elements_model(m, sel, material_path, preload, err);
     free(sel);
     return n;
+}
+
+void wff_model_set_element_lengths(wff_model *m)
+{
+    const int nt = m->el.n_tris, n_el = nt + m->el.n_quads, ns = m->n_state;
+    const int n_zones = m->zones ? m->zones->n : 1;
+    int slot[WFF_ZONES_MAX], any = 0;
+    for (int k = 0; k < n_zones; k++) {
+        slot[k] = wff_material_state_index(zone_mat(m, k), WFF_ELEMENT_LENGTH_STATE);
+        any |= slot[k] >= 0;
+    }
+    if (!any)
+        return;
+    for (int e = 0; e < n_el; e++) {
+        int i = slot[m->zones ? m->zones->element_zone[e] : 0];
+        if (i < 0)
+            continue;
+        const int np = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
+        const double h = wff_element_band_length(&m->el, e);
+        double *state = m->state + (size_t)ns * wff_element_first_point(nt, e);
+        for (int q = 0; q < np; q++)
+            state[ns * q + i] = h;
+    }
 }
 
 int wff_model_zone_count(const wff_model *m)

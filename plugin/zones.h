@@ -9,6 +9,12 @@
 
 #include "solver_internal.h"
 
+/* Every point whose material (its element's zone's) carries the state
+ * WFF_ELEMENT_LENGTH_STATE gets its element's wff_element_band_length (cell.h's
+ * contract): at model creation, after a zone assignment, after a mesh
+ * transfer. Other points are left alone. */
+void wff_model_set_element_lengths(wff_model *m);
+
 /* Free the zones (wff_model_free). */
 void wff_zones_free(wff_model *m);
 /* The element force pass: wff_elements_forces over each zone with its own

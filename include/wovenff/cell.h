@@ -37,8 +37,15 @@
  *     not read by callers). A state never changes in a dt = 0 evaluation
  *     (held): then out->state equals the input. damage_state[k] names the
  *     state holding yarn family k's damage (0 intact .. 1 ruptured, never
- *     decreasing) or is −1. A cell with n_state 0 gets a valid pointer it
- *     must not read.
+ *     decreasing) or is −1. A state named "element_length" (unit m;
+ *     WFF_ELEMENT_LENGTH_STATE) is not the cell's: the element code sets it,
+ *     for every point, to the characteristic length of the point's element
+ *     (yarn failure's crack band, docs/model.md §20: sqrt(2 × area) for a
+ *     triangle, sqrt(area) for a quad) when the model is built, a zone
+ *     assigned or the mesh transferred; the cell reads it and never changes
+ *     it (dt > 0 or not), and 0 (a point outside any mesh: the cell suite,
+ *     the explorer, wff_rest_state) means no element size. A cell with
+ *     n_state 0 gets a valid pointer it must not read.
  *   - Statuses. evaluate and evaluate_shared return WFF_POINT_OK or
  *     WFF_POINT_DEGENERATE; the element code adds WFF_POINT_NONFINITE for a
  *     NaN or infinite state or result (a cell need not check for it).
@@ -329,6 +336,10 @@ static inline int wff_material_evaluate(const wff_material *mat, const double F[
 
 /* The state every point starts from (all zeros), for evaluations at rest. */
 static const double wff_rest_state[WFF_STATE_MAX] = {0};
+
+/* The name of the state the element code fills with the element's length
+ * (the contract above). */
+#define WFF_ELEMENT_LENGTH_STATE "element_length"
 
 /* Index of the state named `name` in mat's points (< mat->n_state), or −1. */
 int wff_material_state_index(const wff_material *mat, const char *name);

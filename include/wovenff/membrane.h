@@ -95,6 +95,21 @@ static inline size_t wff_elements_point_count(const wff_elements *el)
     return wff_element_first_point(el->n_tris, el->n_tris + el->n_quads);
 }
 
+/* Element e's characteristic length for yarn failure's crack band
+ * (docs/model.md §20), m, from its reference area A: sqrt(2 A) for a
+ * triangle, the legs of a right isosceles triangle (the side of the square two
+ * of them make, so a mesh of squares split in two has the length its quads
+ * would have, and 0.93 of the side of an equilateral one), sqrt(A) for a quad
+ * (its side when square). Not el->size (the smallest altitude, for the
+ * stable step): a band crosses an element at any angle. */
+static inline double wff_element_band_length(const wff_elements *el, int e)
+{
+    if (e < el->n_tris)
+        return sqrt(2 * el->tri_area[e]);
+    const double *w = el->quad_weight + WFF_QUAD_POINTS * (e - el->n_tris);
+    return sqrt(w[0] + w[1] + w[2] + w[3]);
+}
+
 /* Most threads a force pass uses. */
 #define WFF_MAX_THREADS 64
 /* Least work, in triangles (a quad counts as 3), for which a mesh's passes

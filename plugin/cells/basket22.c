@@ -66,7 +66,8 @@
  *   ε_k = (ℓ_k − ℓ_k⁰)/ℓ_k⁰      (T_k = EA_k ε_k),
  *
  * (yarn_failure.h). States: γᶠ, then d_1, d_2, then ε_1, ε_2 of the last update
- * with the rate law (n_state 1, 3 or 5); the wave speeds stay the undamaged
+ * with the rate law or the crack band, then the element length h with the band
+ * (the element code's, never changed here; n_state 1, 3, 5 or 6); the wave speeds stay the undamaged
  * bounds.
  */
 #include "wovenff/cell.h"
@@ -110,7 +111,8 @@ typedef struct basket_params {
     double pair_spar_length0[FAMILIES];  /* e_k⁰, m */
     double cell_area;                    /* 16 p1⁰ p2⁰, m² */
     wff_yarn_failure failure;            /* yarn failure (docs/model.md §20); off: enabled 0 */
-    int n_state;                         /* states per point: γᶠ [, d_1, d_2 [, ε_1, ε_2]] */
+    int n_state;                         /* states per point: γᶠ [, d_1, d_2 [, ε_1, ε_2
+                                            [, h]]] */
 } basket_params;
 
 _Static_assert(sizeof(basket_params) <= sizeof(((wff_material *)0)->params),
@@ -138,7 +140,8 @@ typedef struct basket_point {
     wff_yarn_frame fr;             /* g_k, p_k, θ, J, γ */
     wff_compaction compaction;     /* F_I at I = −ΔA_1 − ΔA_2, one crossover */
     basket_family yarn[FAMILIES];
-    double failure_state[4];       /* d_1, d_2, ε_1, ε_2 after the update (with failure) */
+    double failure_state[WFF_YARN_STATES_MAX]; /* d_1, d_2, ε_1, ε_2, h after the update
+                                                  (with failure) */
     double failure_released;       /* Σ_k Δd_k W_k⁺, J per cell */
 } basket_point;
 
@@ -153,13 +156,17 @@ static const char *const basket_mech_names[] = {"yarn_stretch", "yarn_bending", 
                                                 "locking", "shear"};
 enum { MECH_YARN, MECH_BENDING, MECH_COMPACTION, MECH_LOCKING, MECH_SHEAR, MECH_COUNT };
 /* The internal state of a point: γᶠ, the dissipative shear angle; with yarn
- * failure the damages d_1, d_2; with its rate law the yarn strains of the last
- * update. */
+ * failure the damages d_1, d_2; with its rate law (or the crack band) the yarn
+ * strains of the last update; with the crack band the element length (the
+ * element code's). */
 static const char *const basket_state_names[] = {"gamma_f", "damage1", "damage2",
-                                                 "yarn_strain1", "yarn_strain2"};
-static const char *const basket_state_units[] = {"rad", "-", "-", "-", "-"};
+                                                 "yarn_strain1", "yarn_strain2",
+                                                 "element_length"};
+static const char *const basket_state_units[] = {"rad", "-", "-", "-", "-", "m"};
 enum { STATE_GAMMA_F, STATE_DAMAGE1, STATE_DAMAGE2, STATE_STRAIN1, STATE_STRAIN2,
-       STATE_COUNT };
+       STATE_LENGTH, STATE_COUNT };
+_Static_assert(STATE_LENGTH - STATE_DAMAGE1 == WFF_YARN_STATE_LENGTH,
+               "basket_2x2: the failure states are yarn_failure.h's");
 _Static_assert(STATE_COUNT <= WFF_STATE_MAX, "basket_2x2 carries too many states");
 
 /* Kinematics, laws and energies (all but shear, which needs the flow update):
@@ -212,12 +219,14 @@ static void basket_point_fail(const basket_params *k, const double *state, doubl
     if (k->failure.enabled == 0)
         return;
     const double *fs = state + STATE_DAMAGE1;
-    const int rate_law = k->failure.rate_C > 0; /* then ε_k of the last update is kept */
+    const int kept = wff_yarn_failure_keeps_strain(&k->failure); /* ε_k of the last update */
+    const double length = wff_yarn_failure_length(&k->failure, fs);
+    pt->failure_state[WFF_YARN_STATE_LENGTH] = length; /* (the element code's) */
     for (int f = 0; f < FAMILIES; f++) {
         basket_family *y = &pt->yarn[f];
         double strain = (2 * pt->fr.p[f] + 2 * y->length - k->path0[f]) / k->path0[f];
         wff_yarn_damage d = wff_yarn_damage_step(&k->failure, f, strain, y->energy_yarn, fs[f],
-                                                 rate_law ? fs[2 + f] : 0, dt);
+                                                 kept ? fs[2 + f] : 0, length, dt);
         y->tension *= d.factor;
         y->energy_yarn *= d.factor;
         y->tension_factor = d.factor;

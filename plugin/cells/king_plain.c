@@ -47,7 +47,8 @@
  *
  * (yarn_failure.h). Bending, compaction, locking and shear are not damaged.
  * States: γᶠ, then d_1, d_2 with failure, then ε_1, ε_2 of the last update
- * with the rate law (n_state 1, 3 or 5). The blocked kernels decline a
+ * with the rate law or the crack band, then the element length h with the
+ * band (set by the element code, never changed here; n_state 1, 3, 5 or 6). The blocked kernels decline a
  * material with failure on; the wave speeds stay the undamaged bounds.
  *
  * The model is written once: king_family_at (one yarn family at a point),
@@ -89,7 +90,7 @@ typedef struct king_params {
     double cell_area;                    /* 4 p1⁰ p2⁰, m² */
     wff_yarn_failure failure;            /* yarn failure (docs/model.md §20); off: enabled 0 */
     int n_state;                         /* states per point (mat->n_state): γᶠ [, d_1, d_2
-                                            [, ε_1, ε_2]] */
+                                            [, ε_1, ε_2 [, h]]] */
 } king_params;
 
 _Static_assert(sizeof(king_params) <= sizeof(((wff_material *)0)->params),
@@ -105,13 +106,17 @@ static const char *const king_mech_names[] = {"yarn_stretch", "yarn_bending", "c
                                               "locking", "shear"};
 enum { MECH_YARN, MECH_BENDING, MECH_COMPACTION, MECH_LOCKING, MECH_SHEAR, MECH_COUNT };
 /* The internal state of a point: γᶠ, the dissipative shear angle; with yarn
- * failure the damages d_1, d_2; with its rate law the yarn strains of the last
- * update (for the strain rate). */
+ * failure the damages d_1, d_2; with its rate law (or the crack band) the yarn
+ * strains of the last update (for the strain rate); with the crack band the
+ * element length (the element code's). */
 static const char *const king_state_names[] = {"gamma_f", "damage1", "damage2",
-                                               "yarn_strain1", "yarn_strain2"};
-static const char *const king_state_units[] = {"rad", "-", "-", "-", "-"};
+                                               "yarn_strain1", "yarn_strain2",
+                                               "element_length"};
+static const char *const king_state_units[] = {"rad", "-", "-", "-", "-", "m"};
 enum { STATE_GAMMA_F, STATE_DAMAGE1, STATE_DAMAGE2, STATE_STRAIN1, STATE_STRAIN2,
-       STATE_COUNT };
+       STATE_LENGTH, STATE_COUNT };
+_Static_assert(STATE_LENGTH - STATE_DAMAGE1 == WFF_YARN_STATE_LENGTH,
+               "king_plain: the failure states are yarn_failure.h's");
 _Static_assert(STATE_COUNT <= WFF_STATE_MAX, "king_plain carries too many states");
 
 /* One yarn family k at one point: king_family_at fills the laws,
@@ -178,11 +183,12 @@ WFF_INLINE king_family king_family_at(const king_params *k, const wff_yarn_frame
  * yarn_failure.h from state d_k (and ε_k of the last update for the rate law),
  * then T_k and k_k (L_k − L_k⁰)² times 1 − d_k where stretched. */
 WFF_INLINE wff_yarn_damage king_family_fail(const king_params *k, int f, king_family *y,
-                                            double damage, double strain_prev, double dt)
+                                            double damage, double strain_prev,
+                                            double element_length, double dt)
 {
     double strain = (y->length - k->length0[f]) / k->length0[f];
     wff_yarn_damage d = wff_yarn_damage_step(&k->failure, f, strain, y->energy_yarn, damage,
-                                             strain_prev, dt);
+                                             strain_prev, element_length, dt);
     y->tension *= d.factor;
     y->energy_yarn *= d.factor;
     y->tension_factor = d.factor;
@@ -212,7 +218,8 @@ typedef struct king_point {
     double residual[FAMILIES]; /* R_k, N/m² */
     double q[FAMILIES][FAMILIES]; /* Q_k along ĝ_m, N */
     double energy;             /* W_cell, J per cell */
-    double failure_state[4];   /* d_1, d_2, ε_1, ε_2 after the step (with failure) */
+    double failure_state[WFF_YARN_STATES_MAX]; /* d_1, d_2, ε_1, ε_2, h after the step
+                                                  (with failure) */
     double failure_released;   /* Σ_k Δd_k W_k⁺, J per cell */
 } king_point;
 
@@ -225,8 +232,8 @@ typedef struct king_point {
  *          + (K_I/a)(exp(a I) − 1) − K_I I + ½ K_s (γ − γᶠ)²
  * locking_exponent and flow_exponent are c and n (constants 2 and 1 in the
  * blocked kernel, which leaves it branch-free). failure_state: NULL without
- * yarn failure (the blocked kernels), else d_1, d_2 [, ε_1, ε_2] of the point,
- * advanced over dt (§20). */
+ * yarn failure (the blocked kernels), else d_1, d_2 [, ε_1, ε_2 [, h]] of the
+ * point, advanced over dt (§20; h held). */
 WFF_INLINE void king_point_at(const king_params *k, const wff_yarn_frame *fr, const double dA[2],
                               double gamma_f, const double *failure_state, double dt,
                               const wff_shear_flow *flow, double locking_exponent,
@@ -239,14 +246,17 @@ WFF_INLINE void king_point_at(const king_params *k, const wff_yarn_frame *fr, co
         pt->yarn[f] = king_family_at(k, fr, f, dA[f], locking_exponent);
     pt->failure_released = 0;
     if (failure_state) {
-        const int rate_law = k->failure.rate_C > 0; /* then ε_k of the last update is kept */
+        const int kept = wff_yarn_failure_keeps_strain(&k->failure); /* ε_k of the last update */
+        const double length = wff_yarn_failure_length(&k->failure, failure_state);
         for (int f = 0; f < FAMILIES; f++) {
             wff_yarn_damage d = king_family_fail(k, f, &pt->yarn[f], failure_state[f],
-                                                 rate_law ? failure_state[2 + f] : 0, dt);
+                                                 kept ? failure_state[2 + f] : 0, length,
+                                                 dt);
             pt->failure_state[f] = d.damage;
             pt->failure_state[2 + f] = d.strain_prev;
             pt->failure_released += d.released;
         }
+        pt->failure_state[WFF_YARN_STATE_LENGTH] = length; /* (the element code's) */
     }
     /* both families' laws first, then their forces: fewer values live across
      * the vector atan calls (the blocked kernel runs 2-3 % faster so) */
@@ -318,7 +328,7 @@ WFF_INLINE void king_residual_tangent_at(const king_params *k, const wff_yarn_fr
         y[f] = king_family_at(k, fr, f, dA[f], locking_exponent);
     if (damage)
         for (int f = 0; f < FAMILIES; f++)
-            (void)king_family_fail(k, f, &y[f], damage[f], 0, 0);
+            (void)king_family_fail(k, f, &y[f], damage[f], 0, 0, 0); /* (held) */
 #pragma GCC unroll 2
     for (int f = 0; f < FAMILIES; f++) {
         king_family_forces(k, fr, f, &y[f]);

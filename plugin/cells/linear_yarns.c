@@ -40,8 +40,9 @@
  *   ε_k = λ_k − 1
  *
  * (yarn_failure.h). The only internal state is failure's: d_1, d_2, then ε_1,
- * ε_2 of the last update with the rate law (n_state 0 without failure, 2 or
- * 4 with it). The blocked kernel declines a material with failure on; the
+ * ε_2 of the last update with the rate law or the crack band, then the element
+ * length h with the band (the element code's, never changed here; n_state 0
+ * without failure, 2, 4 or 5 with it). The blocked kernel declines a material with failure on; the
  * wave speeds stay the undamaged bounds.
  */
 #include "wovenff/cell.h"
@@ -66,7 +67,7 @@ typedef struct linear_params {
     double yarn_spacing[FAMILIES]; /* m, a copy of mat->yarn_spacing: evaluate()
                                       sees only params and reports T_k = N_k × spacing */
     wff_yarn_failure failure;      /* yarn failure (docs/model.md §20); off: enabled 0 */
-    int n_state;                   /* states per point: 0, or d_1, d_2 [, ε_1, ε_2] */
+    int n_state;                   /* states per point: 0, or d_1, d_2 [, ε_1, ε_2 [, h]] */
 } linear_params;
 
 _Static_assert(sizeof(linear_params) <= sizeof(((wff_material *)0)->params),
@@ -79,7 +80,8 @@ typedef struct linear_point {
                                    (times 1 − d_k once linear_point_fail has run) */
     double energy_family[FAMILIES]; /* ½ S_k (λ_k − 1)² (damaged likewise), J/m² */
     double energy_yarn, energy_shear;
-    double failure_state[4];    /* d_1, d_2, ε_1, ε_2 after the update (with failure) */
+    double failure_state[WFF_YARN_STATES_MAX]; /* d_1, d_2, ε_1, ε_2, h after the update
+                                                  (with failure) */
     double failure_released;    /* Σ_k Δd_k W_k⁺, J/m² */
 } linear_point;
 
@@ -88,12 +90,16 @@ static const char *const linear_diag_units[] = {"N", "N", "-", "-"};
 enum { DIAG_T1, DIAG_T2, DIAG_LAMBDA1, DIAG_LAMBDA2, DIAG_COUNT };
 static const char *const linear_mech_names[] = {"yarn_stretch", "shear"};
 enum { MECH_YARN, MECH_SHEAR, MECH_COUNT };
-/* The internal state, only with yarn failure: the damages d_1, d_2, and with
- * its rate law the yarn strains of the last update. */
+/* The internal state, only with yarn failure: the damages d_1, d_2, with its
+ * rate law (or the crack band) the yarn strains of the last update, with the
+ * crack band the element length (the element code's). */
 static const char *const linear_state_names[] = {"damage1", "damage2", "yarn_strain1",
-                                                 "yarn_strain2"};
-static const char *const linear_state_units[] = {"-", "-", "-", "-"};
-enum { STATE_DAMAGE1, STATE_DAMAGE2, STATE_STRAIN1, STATE_STRAIN2, STATE_COUNT };
+                                                 "yarn_strain2", "element_length"};
+static const char *const linear_state_units[] = {"-", "-", "-", "-", "m"};
+enum { STATE_DAMAGE1, STATE_DAMAGE2, STATE_STRAIN1, STATE_STRAIN2, STATE_LENGTH,
+       STATE_COUNT };
+_Static_assert(STATE_LENGTH - STATE_DAMAGE1 == WFF_YARN_STATE_LENGTH,
+               "linear_yarns: the failure states are yarn_failure.h's");
 _Static_assert(STATE_COUNT <= WFF_STATE_MAX, "linear_yarns carries too many states");
 
 /* The kinematics with G_k = E_k (docs/model.md §1, p_k⁰ = 1), N_k and W. */
@@ -123,12 +129,14 @@ static void linear_point_fail(const linear_params *c, const double *state, doubl
 {
     if (c->failure.enabled == 0)
         return;
-    const int rate_law = c->failure.rate_C > 0; /* then ε_k of the last update is kept */
+    const int kept = wff_yarn_failure_keeps_strain(&c->failure); /* ε_k of the last update */
+    const double length = wff_yarn_failure_length(&c->failure, state + STATE_DAMAGE1);
+    pt->failure_state[WFF_YARN_STATE_LENGTH] = length; /* (the element code's) */
     pt->energy_yarn = 0;
     for (int f = 0; f < FAMILIES; f++) {
         wff_yarn_damage d = wff_yarn_damage_step(
             &c->failure, f, pt->fr.p[f] - 1, pt->energy_family[f], state[STATE_DAMAGE1 + f],
-            rate_law ? state[STATE_STRAIN1 + f] : 0, dt);
+            kept ? state[STATE_STRAIN1 + f] : 0, length, dt);
         pt->force[f] *= d.factor;
         pt->energy_family[f] *= d.factor;
         pt->energy_yarn += pt->energy_family[f];

@@ -34,12 +34,45 @@
  * the crimped path, (L_k − L_k⁰)/L_k⁰ (k_k = EA/L_k⁰, so T_k = EA ε_k);
  * basket_2x2 the half-repeat path (ℓ_k − ℓ_k⁰)/ℓ_k⁰; linear_yarns λ_k − 1.
  *
+ * Crack band (optional key failure_band_length = h_ref, m; 0 or absent: none).
+ * Softening inside one element releases, per unit crack length, h times the
+ * energy per unit area a point releases on its way to rupture, which for a
+ * linear yarn (W_k = c ε_k², the cells here) under a rising strain is
+ *
+ *   g(ε_f, ε_r) = ∫ W_k dd_k = c (ε_f² + ε_f ε_r + ε_r²)/3,
+ *
+ * onset energy included (c ε_f², 83 % of it at ε_r/ε_f = 1.19: the damage
+ * takes the whole stored energy). With the band, a point of an element of
+ * length h (its state element_length, set by the element code) takes the
+ * span s(h) = ε_r(h) − ε_f that keeps g·h = g(ε_f, ε_r)·h_ref (onset ε_f
+ * unchanged, both still times φ):
+ *
+ *   s² + 3 ε_f s = (h_ref/h)(ε_f² + ε_f ε_r + ε_r²) − 3 ε_f²,
+ *
+ * s = s₀ = ε_r − ε_f at h = h_ref (today's law exactly), larger for smaller
+ * elements. Scaling the span alone, s₀ h_ref/h, would keep the onset energy
+ * ∝ h (at h = h_ref/2, 0.59 of the energy instead of 1). Above the snap-back
+ * length h* = h_ref (ε_f² + ε_f ε_r + ε_r²)/(3 ε_f²) (1.20 h_ref for 3.8 and
+ * 4.52 %) no span releases as little as h_ref's element: there the span is
+ * the floor WFF_YARN_BAND_SPAN_FLOOR s₀ (near-brittle, still well defined)
+ * and the element releases more than h_ref's. Below h_ref the span is kept
+ * ≤ max(ε_f, ε_r − ε_f): with ε_r(h) > 2 ε_f the tension (1 − d) T would
+ * still rise past the onset (d/dε [(ε_r − ε) ε] > 0 at ε_f), the element
+ * would harden rather than soften and damage spread beyond one element (a
+ * bar pulled through rupture then releases more, not h_ref's); at the cap,
+ * h < h_ref (7 ε_f²)⁻¹(ε_f² + ε_f ε_r + ε_r²) (0.515 h_ref for 3.8 and
+ * 4.52 %), the element releases less than h_ref's. So the band holds exactly
+ * between 0.515 and 1.20 h_ref for these strains. element_length 0 (the cell
+ * suite, the explorer, wff_rest_state) means no scaling.
+ *
  * Material keys (parsed here, once for every cell): failure (0 off, the
  * default; 1 on), fail_strain_1, fail_strain_2, rupture_strain_1,
  * rupture_strain_2 (−), failure_rate_C (1/s) and failure_rate_p (−), the rate
- * pair optional. The strains come as a set of four; present with failure = 0
- * they are checked and kept but unused (a scene switches failure on through
- * the material override, which replaces values of keys already in the file).
+ * pair optional, failure_band_length (m, optional). The strains come as a set
+ * of four; present with failure = 0 they are checked and kept but unused (a
+ * scene switches failure on through the material override, which replaces
+ * values of keys already in the file: hence failure_band_length = 0 for
+ * none, so that a file can carry the key and a scene set it).
  *
  * Pure functions, no allocation, no state: included by cells, which are
  * compiled once per kernel variant. */
@@ -61,14 +94,36 @@ typedef struct wff_yarn_failure {
     double rupture_strain[2];    /* ε_r,k, where the yarn carries nothing, − */
     double rate_C;               /* C, 1/s; 0: no rate scaling (φ = 1) */
     double rate_p;               /* p, −; 0 without rate scaling */
+    double band_length;          /* h_ref, m, the crack band's reference element length;
+                                    0: no scaling (no element_length state) */
 } wff_yarn_failure;
 
+/* The smallest span with the crack band, a fraction of the unscaled ε_r − ε_f
+ * (elements beyond the snap-back length h*; see the header comment). */
+#define WFF_YARN_BAND_SPAN_FLOOR 0.1
+
+/* The law's states, from d_1 on (a cell puts them after its own): d_1, d_2;
+ * ε_1^prev, ε_2^prev with the rate law or the band; the element length h with
+ * the band (the name a cell gives it: "element_length", unit m). */
+enum { WFF_YARN_STATE_LENGTH = 4, WFF_YARN_STATES_MAX = 5 };
+
+/* 1 when the points keep ε_k^prev (the rate law or the band: the states from
+ * d_1 on are then at least d_1, d_2, ε_1, ε_2); what a cell passes as
+ * strain_prev otherwise is 0. */
+static inline int wff_yarn_failure_keeps_strain(const wff_yarn_failure *f)
+{
+    return f->rate_C > 0 || f->band_length > 0;
+}
+
 /* The per-point states the law adds to a cell's: d_1, d_2, and ε_1^prev,
- * ε_2^prev with the rate law; 0 when failure is off. */
+ * ε_2^prev with the rate law or the band, then h with the band; 0 when
+ * failure is off. */
 static inline int wff_yarn_failure_states(const wff_yarn_failure *f)
 {
     if (f->enabled == 0)
         return 0;
+    if (f->band_length > 0)
+        return 5;
     return f->rate_C > 0 ? 4 : 2;
 }
 
@@ -78,14 +133,14 @@ static inline int wff_yarn_failure_states(const wff_yarn_failure *f)
  *   some strain keys but not all four (e.g. one family only);
  *   a strain ≤ 0; rupture_strain_k ≤ fail_strain_k;
  *   one rate constant without the other, a rate constant ≤ 0, or the rate
- *   constants without the strains.
+ *   constants without the strains; failure_band_length < 0.
  * Returns 0 or -1. */
 static inline int wff_yarn_failure_parse(wff_kv *kv, wff_yarn_failure *f, wff_error *err)
 {
     static const char *const strain_key[4] = {"fail_strain_1", "fail_strain_2",
                                               "rupture_strain_1", "rupture_strain_2"};
-    double failure, strain[4], rate_C, rate_p;
-    f->enabled = f->rate_C = f->rate_p = 0;
+    double failure, strain[4], rate_C, rate_p, band;
+    f->enabled = f->rate_C = f->rate_p = f->band_length = 0;
     f->fail_strain[0] = f->fail_strain[1] = f->rupture_strain[0] = f->rupture_strain[1] = 0;
     if (wff_kv_number_or(kv, "failure", 0.0, &failure, err))
         return -1;
@@ -94,7 +149,8 @@ static inline int wff_yarn_failure_parse(wff_kv *kv, wff_yarn_failure *f, wff_er
         if (wff_kv_number_or(kv, strain_key[i], NAN, &strain[i], err))
             return -1;
     if (wff_kv_number_or(kv, "failure_rate_C", NAN, &rate_C, err) ||
-        wff_kv_number_or(kv, "failure_rate_p", NAN, &rate_p, err))
+        wff_kv_number_or(kv, "failure_rate_p", NAN, &rate_p, err) ||
+        wff_kv_number_or(kv, "failure_band_length", 0.0, &band, err))
         return -1;
     if (failure != 0 && failure != 1)
         return wff_kv_reject(kv, "failure", err, "must be 0 (no yarn failure) or 1 (yarns fail "
@@ -144,7 +200,13 @@ static inline int wff_yarn_failure_parse(wff_kv *kv, wff_yarn_failure *f, wff_er
         return wff_kv_reject(kv, "failure_rate_C", err, "rate scaling of the failure strains "
                              "given without the strains (fail_strain_k, rupture_strain_k)");
 
+    if (band < 0)
+        return wff_kv_reject(kv, "failure_band_length", err,
+                             "must be >= 0 m (the crack band's reference element length; "
+                             "0: no scaling of the rupture strain with the element size)");
+
     f->enabled = failure;
+    f->band_length = band;
     if (present) {
         f->fail_strain[0] = strain[0];
         f->fail_strain[1] = strain[1];
@@ -166,13 +228,36 @@ WFF_INLINE double wff_yarn_failure_rate_factor(const wff_yarn_failure *f, double
     return 1.0 + pow(fabs(strain_rate) / f->rate_C, 1.0 / f->rate_p);
 }
 
-/* The damage a strain ε alone would give family k at rate factor φ:
- * clamp((ε − ε_f φ)/((ε_r − ε_f) φ), 0, 1). */
+/* Family k's span ε_r(h) − ε_f at element length h (the crack band of the
+ * header comment): ε_r − ε_f without the band, at h ≤ 0 or at h = h_ref;
+ * never below WFF_YARN_BAND_SPAN_FLOOR (ε_r − ε_f), never above
+ * max(ε_f, ε_r − ε_f). */
+WFF_INLINE double wff_yarn_failure_span(const wff_yarn_failure *f, int k,
+                                        double element_length)
+{
+    const double onset = f->fail_strain[k], span = f->rupture_strain[k] - onset;
+    if (!(f->band_length > 0) || !(element_length > 0) || element_length == f->band_length)
+        return span;
+    const double ratio = f->band_length / element_length; /* h_ref/h */
+    /* the right-hand side above, (h_ref/h)(3 ε_f² + 3 ε_f s₀ + s₀²) − 3 ε_f², without
+     * the cancellation at h ≈ h_ref */
+    const double excess = 3 * onset * onset * (ratio - 1) + ratio * span * (3 * onset + span);
+    const double floor = WFF_YARN_BAND_SPAN_FLOOR * span;
+    const double ceiling = onset > span ? onset : span;
+    if (!(excess > 0))
+        return floor;
+    /* the positive root of s² + 3 ε_f s − excess, in the form without cancellation */
+    const double s = 2 * excess / (3 * onset + sqrt(9 * onset * onset + 4 * excess));
+    return s < floor ? floor : s > ceiling ? ceiling : s;
+}
+
+/* The damage a strain ε alone would give family k at rate factor φ and
+ * element length h (0: no scaling): clamp((ε − ε_f φ)/(s(h) φ), 0, 1). */
 WFF_INLINE double wff_yarn_damage_of_strain(const wff_yarn_failure *f, int k, double strain,
-                                            double rate_factor)
+                                            double rate_factor, double element_length)
 {
     double onset = f->fail_strain[k] * rate_factor;
-    double span = (f->rupture_strain[k] - f->fail_strain[k]) * rate_factor;
+    double span = wff_yarn_failure_span(f, k, element_length) * rate_factor;
     double d = (strain - onset) / span;
     d = d > 0 ? d : 0.0;
     return d < 1 ? d : 1.0;
@@ -188,18 +273,20 @@ typedef struct wff_yarn_damage {
 
 /* Family k at engineering strain `strain` with undamaged yarn-stretch energy
  * `energy` (W_k: its W^+ when strain > 0), state damage (d_k) and strain_prev
- * (ε_k^prev, unused without the rate law), step dt: the update of the header
+ * (ε_k^prev, unused without the rate law), the point's element length
+ * (state element_length; 0: no scaling), step dt: the update of the header
  * comment. Failure off: nothing changes, factor 1. */
 WFF_INLINE wff_yarn_damage wff_yarn_damage_step(const wff_yarn_failure *f, int k, double strain,
                                                 double energy, double damage,
-                                                double strain_prev, double dt)
+                                                double strain_prev, double element_length,
+                                                double dt)
 {
     wff_yarn_damage y;
     y.damage = damage;
     y.strain_prev = strain_prev;
     if (f->enabled != 0 && dt > 0) {
         double rate_factor = wff_yarn_failure_rate_factor(f, (strain - strain_prev) / dt);
-        double d = wff_yarn_damage_of_strain(f, k, strain, rate_factor);
+        double d = wff_yarn_damage_of_strain(f, k, strain, rate_factor, element_length);
         y.damage = d > damage ? d : damage;
         y.strain_prev = strain;
     }
@@ -207,6 +294,13 @@ WFF_INLINE wff_yarn_damage wff_yarn_damage_step(const wff_yarn_failure *f, int k
     y.factor = tension ? 1 - y.damage : 1.0;
     y.released = tension ? (y.damage - damage) * energy : 0.0;
     return y;
+}
+
+/* The element length h of a point from the law's states fs (d_1 first):
+ * fs[WFF_YARN_STATE_LENGTH] with the band, else 0 (no scaling). */
+WFF_INLINE double wff_yarn_failure_length(const wff_yarn_failure *f, const double *fs)
+{
+    return f->band_length > 0 ? fs[WFF_YARN_STATE_LENGTH] : 0.0;
 }
 
 #endif

@@ -3,7 +3,8 @@
 # Refusals, each exit 2 with one line naming the option and the file, and no
 # summary.json: -failure on with a material file without failure data, with a
 # cell that cannot fail or failure data it refuses, with -adapt, -zonal or
-# -amplitudes static; -erosion without -failure on. Then (the Kevlar file
+# -amplitudes static; a negative crack band (-set failure_band_length=-1e-3);
+# -erosion without -failure on. Then (the Kevlar file
 # holding failure data) the paper's 22 m/s on the coarse mesh: with failure off
 # the largest yarn strain passes the rupture strain under the nose, and with
 # failure on the projectile perforates (the model's prediction; the experiment
@@ -60,6 +61,8 @@ refuse with_adapt "-failure on with -adapt 5: a mesh transfer does not carry the
     -- $short -failure on -adapt 5
 refuse with_zonal "-failure on with -zonal 0.05" -- $short -failure on -zonal 0.05
 refuse with_static "-failure on with -amplitudes static" -- $short -failure on -amplitudes static
+refuse band_negative "key 'failure_band_length' = -1e-3: must be >= 0 m" -- $short -failure on \
+    -set failure_band_length=-1e-3
 refuse erosion_alone "-erosion either is a setting of -failure on" -- $short -erosion either
 refuse bad_choice "-failure 'yes': must be one of on|off" -- $short -failure yes
 

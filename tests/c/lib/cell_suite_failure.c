@@ -2,7 +2,8 @@
  * cell whose type names damage states for both yarn families (damage_state[k]
  * >= 0), on the case's material with failure switched on and low failure
  * strains (damage from about 1 % to 3.5 % yarn strain, so that the suite's
- * states reach it), with and without the Cowper–Symonds rate law:
+ * states reach it), with and without the Cowper–Symonds rate law, and with
+ * the crack band (failure_band_length; random element lengths 0.3–3 mm):
  *   - the state layout: the material with failure off carries no damage state;
  *   - at fixed damage (dt = 0, random damages in [0, 1]) stress = dW/dF and
  *     residual = −dW/dΔA by fourth-order central differences, the state held,
@@ -16,7 +17,9 @@
  *   - the fast paths (evaluate_shared, the blocks unless they decline) equal
  *     evaluate() with damage present, state update included;
  *   - a point with dynamic amplitudes driven through rupture keeps its
- *     amplitudes bounded (wff_point_path_segment). */
+ *     amplitudes bounded (wff_point_path_segment);
+ *   - with the band: the element_length state is never changed (dt > 0 or
+ *     not), and it reaches the law (another length, another damage). */
 #include "cell_suite.h"
 #include "cell_suite_failure.h"
 #include "rng.h"
@@ -34,10 +37,12 @@
  * matter on the path below (φ = 1 + (ε̇/C)^(1/p) ≈ 1.16 at 25 1/s). */
 static const char *const kFailureKeys[] = {"failure", "fail_strain_1", "fail_strain_2",
                                            "rupture_strain_1", "rupture_strain_2",
-                                           "failure_rate_C", "failure_rate_p"};
+                                           "failure_rate_C", "failure_rate_p",
+                                           "failure_band_length"};
 #define FAILURE_LINES "failure = 1\nfail_strain_1 = 0.01\nfail_strain_2 = 0.012\n" \
                       "rupture_strain_1 = 0.03\nrupture_strain_2 = 0.035\n"
 #define RATE_LINES "failure_rate_C = 1e3\nfailure_rate_p = 2\n"
+#define BAND_LINES "failure_band_length = 1e-3\n"
 
 /* The text of `path` without its failure keys, plus `extra` lines. */
 static int failing_material(const char *path, const char *extra, const char *label,
@@ -109,7 +114,8 @@ static void random_F(rng *r, double F[6])
 }
 
 /* A random state by the states' names: damages in [0, 1], γᶠ ±0.05 rad, a
- * strain history in [0, 0.04]; anything else 0. */
+ * strain history in [0, 0.04], an element length in [0.3, 3] mm; anything
+ * else 0. */
 static void random_point_state(rng *r, const wff_material *mat, double *state)
 {
     const wff_cell_type *cell = mat->cell;
@@ -122,6 +128,8 @@ static void random_point_state(rng *r, const wff_material *mat, double *state)
             state[i] = rng_uniform(r, -0.05, 0.05);
         else if (strncmp(name, "yarn_strain", 11) == 0)
             state[i] = rng_uniform(r, 0, 0.04);
+        else if (strcmp(name, WFF_ELEMENT_LENGTH_STATE) == 0)
+            state[i] = rng_uniform(r, 0.3e-3, 3e-3);
     }
 }
 
@@ -545,6 +553,38 @@ static void check_amplitudes_bounded(check_state *st, const wff_material *mat,
           "quarter wavelength", label, worst);
 }
 
+/* The band: element_length held by every evaluation, and read by the law
+ * (the damages at one state differ between two lengths, at some state). */
+static void check_band(check_state *st, const wff_material *mat, const char *label, rng *r)
+{
+    const int i = wff_material_state_index(mat, WFF_ELEMENT_LENGTH_STATE);
+    CHECK(st, i >= 0, "%s: no %s state", label, WFF_ELEMENT_LENGTH_STATE);
+    if (i < 0)
+        return;
+    const int *dk = mat->cell->damage_state;
+    int held = 1, differs = 0;
+    for (int s = 0; s < FAILURE_STATES; s++) {
+        double F[6], dA[2] = {0, 0}, state[WFF_STATE_MAX], other[WFF_STATE_MAX];
+        random_F(r, F);
+        random_point_state(r, mat, state);
+        state[dk[0]] = state[dk[1]] = 0;
+        memcpy(other, state, sizeof state);
+        other[i] = 2 * state[i];
+        wff_point_result a, b;
+        const double dt = s % 3 ? 1e-7 : 0;
+        if (wff_material_evaluate(mat, F, dA, state, dt, &a) != WFF_POINT_OK ||
+            wff_material_evaluate(mat, F, dA, other, dt, &b) != WFF_POINT_OK)
+            continue;
+        held &= a.state[i] == state[i] && b.state[i] == other[i];
+        differs |= dt > 0 && (a.state[dk[0]] != b.state[dk[0]] ||
+                              a.state[dk[1]] != b.state[dk[1]]);
+    }
+    printf("  %-48s failure, band: element_length held over %d states (dt 0 and > 0), read by "
+           "the law: %s\n", label, FAILURE_STATES, differs ? "yes" : "no");
+    CHECK(st, held, "%s: an evaluation changed the element_length state", label);
+    CHECK(st, differs, "%s: the element length does not reach the damage", label);
+}
+
 void cell_suite_failure(check_state *st, const cell_case *c)
 {
     wff_material off;
@@ -564,12 +604,14 @@ void cell_suite_failure(check_state *st, const cell_case *c)
         CHECK(st, cell->damage_state[k] >= off.n_state,
               "%s: failure off, yet the points carry damage state %d (n_state %d)", c->material,
               cell->damage_state[k], off.n_state);
-    for (int variant = 0; variant < 2; variant++) {
+    static const char *const extra[3] = {FAILURE_LINES, FAILURE_LINES RATE_LINES,
+                                         FAILURE_LINES BAND_LINES};
+    for (int variant = 0; variant < 3; variant++) {
         char label[160];
-        snprintf(label, sizeof label, "%s +failure%s", c->material, variant ? "+rate" : "");
+        snprintf(label, sizeof label, "%s +failure%s", c->material,
+                 variant == 1 ? "+rate" : variant == 2 ? "+band" : "");
         wff_material mat;
-        int rc = failing_material(c->material, variant ? FAILURE_LINES RATE_LINES
-                                                       : FAILURE_LINES, label, &mat, &err);
+        int rc = failing_material(c->material, extra[variant], label, &mat, &err);
         CHECK(st, rc == 0, "%s: %s", label, err.message);
         if (rc)
             continue;
@@ -588,5 +630,7 @@ void cell_suite_failure(check_state *st, const cell_case *c)
         check_fast_paths(st, c, &mat, label, &r);
         if (variant == 0)
             check_amplitudes_bounded(st, &mat, &off, label);
+        if (variant == 2)
+            check_band(st, &mat, label, &r);
     }
 }
