@@ -1,0 +1,95 @@
+#!/bin/sh
+# The pack study (issue 14, item 4; README "Packs"): V50 and the back-face
+# deformation of packs of 1, 2, 4, 8 plies on the coarse mesh, against areal
+# density, and Cunniff's dimensionless form (tools/cunniff.sh). Not part of make test.
+#
+# Usage (repository root, after make):
+#   sh bench/pack_study.sh [-plies "1 2 4 8"] [-mesh coarse] [-jobs 2] [-out results/pack_study]
+#                          [-args "more ballistic_limit options, e.g. -runs 10 -layup 0"]
+# Each N: tools/ff.sh freefem_scripts/ballistic_limit.edp -mesh M -plies N -jobs J
+#         -overwrite 1 -out OUT/pN $args (the sweep's defaults otherwise: -vmin 10
+#         -vmax 100 -runs 16 -tend 10e-3). V50: the fit's (the bracket's when the fit
+#         failed); the back-face deformation (BFD): summary.json "back_face_deformation"
+#         of the fastest stopped run (the one nearest the limit that holds).
+# Writes OUT/study.md (the table), OUT/study.csv (tools/cunniff.sh's columns and the
+# fit/bracket V50), OUT/study.png (two panels: V50 and BFD against areal density;
+# V50/U*^(1/3) against A_D A_p/m_p), each sweep's files in OUT/pN.
+# Cost (2 cores, -jobs 2): ~2 min for 1 ply, about N times that for N plies.
+set -u
+plies="1 2 4 8" mesh=coarse jobs=2 out=results/pack_study args=""
+while [ $# -gt 0 ]; do
+    [ $# -ge 2 ] || { echo "error: pack_study: option $1 needs a value"; exit 2; }
+    case "$1" in
+        -plies) plies=$2 ;; -mesh) mesh=$2 ;; -jobs) jobs=$2 ;; -out) out=$2 ;; -args) args=$2 ;;
+        *) echo "error: pack_study: unknown option '$1' (-plies -mesh -jobs -out -args)"; exit 2 ;;
+    esac
+    shift 2
+done
+[ -f tools/ff.sh ] || { echo "error: pack_study: run from the repository root"; exit 2; }
+for n in $plies; do
+    case "$n" in ''|*[!0-9]*) echo "error: pack_study: -plies '$plies': '$n' is not a ply count"; exit 2 ;; esac
+done
+mkdir -p "$out"
+# num FILE KEY [FIELD]: "KEY": {"FIELD": x ...} or "KEY": x
+num() {
+    if [ $# -eq 3 ]; then sed -n "s/^  \"$2\": {.*\"$3\": \([^,}]*\)[,}].*/\1/p" "$1" | head -1
+    else sed -n "s/^  \"$2\": \([^,]*\),*$/\1/p" "$1" | head -1; fi
+}
+rows="plies,v50,bfd"
+table="| plies | areal density (kg/m²) | V50 fit (m/s) | V50 bracket (m/s) | BFD (mm) at (m/s) | runs | wall (s) |
+| --- | --- | --- | --- | --- | --- | --- |"
+for n in $plies; do
+    d="$out/p$n"
+    t0=$(date +%s)
+    # shellcheck disable=SC2086
+    sh tools/ff.sh freefem_scripts/ballistic_limit.edp -mesh "$mesh" -plies "$n" -jobs "$jobs" -overwrite 1 \
+        -out "$d" $args > "$out/p$n.log" 2>&1
+    rc=$? t1=$(date +%s)
+    grep -E '^(Lambert|V50|done|error)' "$out/p$n.log" | sed "s/^/$n plies: /"
+    j="$d/limit.json"
+    if [ ! -s "$j" ]; then
+        table="$table
+| $n | | failed (exit $rc, $out/p$n.log) | | | | $((t1 - t0)) |"
+        continue
+    fi
+    fit=$(num "$j" v50_fit value) fse=$(num "$j" v50_fit error)
+    br=$(num "$j" v50_bracket value) bh=$(num "$j" v50_bracket half_gap)
+    runs=$(num "$j" runs_total)
+    # the fastest stopped run: its back-face deformation
+    best=$(awk -F, 'NR > 1 && $3 == "0" && $4 == "ok" { v = $1; dir = $6 } END { if (v != "") print v "," dir }' "$d/limit.csv")
+    bv=${best%%,*} bdir=${best#*,}
+    bfd=""
+    [ -n "$best" ] && [ -s "$bdir/summary.json" ] && bfd=$(num "$bdir/summary.json" back_face_deformation)
+    v50=$fit
+    case "$fit" in ''|null) v50=$br ;; esac
+    case "$v50" in ''|null) ;; *) rows="$rows
+$n,$v50,$bfd" ;; esac
+    row=$(awk -v n="$n" -v f="$fit" -v fs="$fse" -v b="$br" -v bh="$bh" -v bfd="$bfd" -v bv="$bv" -v r="$runs" -v w="$((t1 - t0))" 'BEGIN {
+        fs_ = (f == "null" || f == "") ? "no fit" : sprintf("%.2f +- %.2f", f, fs)
+        bs_ = (b == "null" || b == "") ? "" : sprintf("%.2f +- %.2f", b, bh)
+        bf_ = (bfd == "" || bfd == "null") ? "" : sprintf("%.1f at %s", 1e3 * bfd, bv)
+        printf "| %d | AD | %s | %s | %s | %s | %s |", n, fs_, bs_, bf_, r, w }')
+    table="$table
+$row"
+done
+printf '%s\n' "$rows" > "$out/rows.csv"
+sh tools/cunniff.sh "$out/rows.csv" > "$out/study.csv" || { echo "error: pack_study: tools/cunniff.sh failed"; exit 1; }
+# the areal density into the table (from tools/cunniff.sh: the material's rho_A x plies)
+for n in $plies; do
+    ad=$(awk -F, -v n="$n" 'NR > 1 && $1 == n { print $2 }' "$out/study.csv")
+    table=$(printf '%s\n' "$table" | sed "s/^| $n | AD |/| $n | ${ad:-} |/")
+done
+ustar=$(sh tools/cunniff.sh -ustar)
+{
+    echo "# Pack study ($(date -u +%Y-%m-%d), mesh $mesh, plies $plies, -jobs $jobs${args:+, $args})"
+    echo
+    echo "$table"
+    echo
+    echo "Cunniff (tools/cunniff.sh): $ustar; A_p = pi (6.35 mm)^2, m_p = 0.104 kg."
+    echo
+    echo '```'
+    cat "$out/study.csv"
+    echo '```'
+} > "$out/study.md"
+cat "$out/study.md"
+gnuplot -e "data='$out/study.csv'; out='$out/study.png'" bench/pack_study.gp || echo "warning: pack_study: no study.png (gnuplot failed)"
