@@ -5,6 +5,7 @@
  * model's arrays; nothing of how they evolve, of cells by name or of FreeFEM. */
 #include "solver_internal.h"
 #include "zones.h"
+#include "pack.h"
 #include "wovenff/text_io.h"
 
 #include <math.h>
@@ -160,6 +161,9 @@ static int state_fields(wff_model *m, int n_candidates, state_field *f)
 
 int wff_model_save(const wff_model *m, const char *path, wff_error *err)
 {
+    if (m->pack && m->pack->n > 1)
+        return wff_fail(err, "checkpoint '%s': a pack of %d plies cannot be checkpointed (its "
+                        "ply contact state is not in the format): refused", path, m->pack->n);
     checkpoint_header h;
     fingerprint(m, &h);
     state_field fields[MAX_STATE_FIELDS];
@@ -202,6 +206,10 @@ static const char *hash_mismatch(const checkpoint_header *a, const checkpoint_he
 
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err)
 {
+    if (m->pack && m->pack->n > 1)
+        return wff_fail(err, "checkpoint '%s': a pack of %d plies cannot be restarted from a "
+                        "checkpoint (its ply contact state is not in the format): refused", path,
+                        m->pack->n);
     char *buf;
     size_t size;
     if (wff_read_file(path, "checkpoint", CHECKPOINT_FILE_MAX, &buf, &size, err))

@@ -9,6 +9,7 @@
 #include "solver_internal.h"
 #include "erosion.h"
 #include "zones.h"
+#include "pack.h"
 #include "wovenff/state.h"
 
 #include <math.h>
@@ -87,10 +88,15 @@ int wff_model_element_values(const wff_model *m, const char *name, double *out,
 int wff_model_element_values_model(const wff_model *m, const char *name, double *out,
                                    wff_error *err)
 {
+    int n_el = m->el.n_tris + m->el.n_quads;
+    if (strcmp(name, "ply") == 0) { /* a pack's ply of each element, 0-based (pack.h) */
+        for (int e = 0; e < n_el; e++)
+            out[e] = wff_pack_element_ply(m, e);
+        return 0;
+    }
     int code = field_code(m, name);
     if (code < 0)
         return unknown(m, name, err);
-    int n_el = m->el.n_tris + m->el.n_quads;
     const double *Fp = m->em.F_pre;
     for (int e = 0; e < n_el; e++) {
         double value;

@@ -8,6 +8,7 @@
 #include "erosion.h"
 #include "membrane_geometry.h"
 #include "zones.h"
+#include "pack.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -156,7 +157,9 @@ double wff_erosion_scan(wff_model *m, const double *u, const double *state)
         if (!ruptured(m, em->mat, s, e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS,
                       m->el.erosion))
             continue;
-        removed += wff_element_stored_energy(&m->el, em, m->mesh.xy, u, state, m->n_state, e);
+        double stored = wff_element_stored_energy(&m->el, em, m->mesh.xy, u, state, m->n_state, e);
+        removed += stored;
+        wff_pack_eroded(m, e, stored); /* the ply's share (pack.h) */
         eroded[e] = 1;
         m->n_eroded++;
         any = 1;

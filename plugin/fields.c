@@ -5,6 +5,7 @@
  * nothing of the integrator, contact or FreeFEM. */
 #include "solver_internal.h"
 #include "zones.h"
+#include "pack.h"
 #include "wovenff/state.h"
 
 #include <math.h>
@@ -16,6 +17,11 @@ static const char *const dof_names[D] = {"ux", "uy", "uz", "dA1", "dA2"};
 
 int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff_error *err)
 {
+    if (strcmp(name, "ply") == 0) { /* a pack's ply of each node, 0-based (pack.h) */
+        for (int n = 0; n < m->n_nodes; n++)
+            out[wff_model_user_node(m, n)] = wff_pack_node_ply(m, n);
+        return 0;
+    }
     for (int c = 0; c < D; c++)
         if (strcmp(name, dof_names[c]) == 0) {
             for (int n = 0; n < m->n_nodes; n++)

@@ -8,6 +8,7 @@
 #include "solver_internal.h"
 #include "erosion.h"
 #include "zones.h"
+#include "pack.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -106,6 +107,7 @@ static int force_pass_added(wff_model *m, const double *u, double *f, double *st
         m->internal_energy = t.internal_energy;
         m->dissipated_shear += t.dissipated;
         m->dissipated_failure += t.failure_dissipated;
+        wff_pack_accumulate(m); /* per-ply energies of a pack */
     }
     return 0;
 }
@@ -237,10 +239,14 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     out->transfer = s * m->transfer_energy;
     out->dissipated_failure = s * m->dissipated_failure;
     out->eroded = s * m->eroded_energy;
+    const double ply_contact = m->pack ? m->pack->dissipated : 0; /* (pack.h) */
+    out->dissipated_ply_contact = s * ply_contact;
     /* initial + external work = kinetic + internal + shear + friction + failure + eroded */
     double total = k[0] + k[1] + k[2] + k[3] + m->internal_energy +
                    m->dissipated_shear + m->dissipated_friction + m->dissipated_failure +
                    m->eroded_energy - m->external_work - m->transfer_energy;
+    if (ply_contact != 0)
+        total += ply_contact;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
      * boundaries) the work done on it or the energy it now holds */
     double stored = m->internal_energy - (m->initial_total - m->initial_kinetic);
@@ -281,7 +287,8 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         m->v_half_valid = 1;
         /* first half step */
         update_velocities(m, 0.5 * m->dt, 0);
-        if (wff_contact_correct(m, m->dt, 0.5 * m->dt, err))
+        if (wff_contact_correct(m, m->dt, 0.5 * m->dt, err) ||
+            (m->pack && wff_ply_contact_correct(m, m->dt, 0.5 * m->dt, err)))
             return -1;
     }
     if (m->projectile.active)
@@ -306,7 +313,8 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         if (compute_forces_zeroed(m, dt, err))
             return -1;
         update_velocities(m, 0.5 * (dt + m->dt), dt);
-        if (wff_contact_correct(m, m->dt, 0.5 * (dt + m->dt), err))
+        if (wff_contact_correct(m, m->dt, 0.5 * (dt + m->dt), err) ||
+            (m->pack && wff_ply_contact_correct(m, m->dt, 0.5 * (dt + m->dt), err)))
             return -1;
         {   /* every step (a pass over the DOFs, ~4 % of a step): an unstable
              * step grows the energy by a large factor per step */

@@ -7,6 +7,7 @@
 #include "solver_internal.h"
 #include "erosion.h"
 #include "zones.h"
+#include "pack.h"
 #include "wovenff/material.h"
 #include "wovenff/kernel.h"
 
@@ -32,6 +33,7 @@ void wff_model_free(wff_model *m)
     free(m->clamp.normal_force);
     free(m->operator_scratch);
     free(m->bc);
+    wff_pack_free(m);
     wff_zones_free(m);
     wff_model_order_free(m);
     wff_elements_free(&m->el);
@@ -124,6 +126,11 @@ int wff_model_create_ordered(wff_model *m, wff_mesh *mesh, const char *material_
             return -1;
         }
     }
+    return wff_model_setup(m, err);
+}
+
+int wff_model_setup(wff_model *m, wff_error *err)
+{
     m->n_nodes = m->mesh.n_nodes;
     m->n_dofs = D * m->n_nodes;
     size_t nd = (size_t)m->n_dofs;
@@ -202,6 +209,7 @@ int wff_model_set_orientation(wff_model *m, double theta, wff_error *err)
                         "before the first step", theta * 180 / M_PI, m->time, m->step,
                         m->em.orientation * 180 / M_PI);
     m->em.orientation = theta;
+    wff_pack_orientation_all(m, theta); /* every ply of a pack */
     /* the map the kernels apply (det unchanged: J_pre, the masses and a zone's
      * matched preload, a material-frame state, stay) */
     wff_orientation_map(theta, m->preload, m->em.F_pre);
@@ -457,6 +465,9 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
 
 int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err)
 {
+    int rc;
+    if (wff_pack_set_option(m, key, value, &rc, err)) /* ply_mu, ply_thickness */
+        return rc;
     if (strcmp(key, "dtfactor") == 0) {
         if (!(value > 0 && value <= 2))
             return wff_fail(err, "dtfactor = %g: must be in (0, 2] (1 is the stability limit)",
@@ -562,7 +573,7 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
         return wff_fail(err, "unknown solver setting '%s' (known: dtfactor, dtinterval, "
                         "symmetry, reference_path, threads, amplitude_mass_factor, "
                         "static_amplitudes, contact_search, erosion, orientation, "
-                        "clamp_radius, clamp_edge_reaction)",
+                        "clamp_radius, clamp_edge_reaction, ply_mu, ply_thickness)",
                         key);
     }
     return 0;

@@ -61,6 +61,11 @@ double wff_contact_retract(wff_model *m);
 int wff_model_log_bc(wff_model *m, int kind, const char *group, int component, double value,
                      double mu, wff_error *err);
 
+/* model.c: a model's arrays, masses and defaults from its mesh, material and
+ * elements (m->mesh, m->mat, m->el and the order arrays set; every other field
+ * 0): the second half of wff_model_create_ordered. On failure m is freed. */
+int wff_model_setup(wff_model *m, wff_error *err);
+
 /* renumber.c: renumber the model's mesh (before its elements are set up)
  * and keep the permutations; free them. */
 int wff_model_renumber(wff_model *m, wff_error *err);

@@ -14,6 +14,7 @@
  * files or FreeFEM. Without zones (m->zones NULL) every function is the plain
  * call the model made before zones existed. */
 #include "zones.h"
+#include "pack.h"
 #include "wovenff/kernel.h"
 #include "wovenff/material.h"
 #include "wovenff/text_io.h"
@@ -33,6 +34,9 @@ typedef struct wff_zone {
     wff_elements el;
     double *state;            /* the zone's points' states (3 points per tri, then 4 per
                                  quad; the zone material's n_state each) */
+    int ply;                  /* the ply of a pack its elements are all in (pack.h: a
+                                 pack's zones are split by ply), 0 outside a pack */
+    wff_force_totals pass;    /* the zone's totals at the last force pass (per-ply sums) */
 } wff_zone;
 
 struct wff_zones {
@@ -40,7 +44,8 @@ struct wff_zones {
     int n_el;                 /* elements of the model */
     int *element_zone;        /* per element: its zone */
     double *mass;             /* one zone's masses (5 per node) */
-    wff_zone zone[WFF_ZONES_MAX];
+    int cap;                  /* zones allocated */
+    wff_zone *zone;
 };
 
 static void zone_unbuild(wff_zone *z)
@@ -64,6 +69,7 @@ void wff_zones_free(wff_model *m)
         zone_unbuild(&Z->zone[k]);
     free(Z->element_zone);
     free(Z->mass);
+    free(Z->zone);
     free(Z);
     m->zones = NULL;
 }
@@ -74,10 +80,14 @@ static void zone_material(const wff_model *m, int k, wff_element_material *em)
 {
     const wff_zone *z = &m->zones->zone[k];
     *em = m->em;
+    if (m->pack && wff_pack_plies(m) > 1) { /* a pack's ply has its own warp direction */
+        em->orientation = wff_pack_orientation(m, z->ply);
+        wff_orientation_map(em->orientation, m->preload, em->F_pre);
+    }
     if (k == 0)
         return;
     em->mat = &z->mat;
-    if (z->preload == WFF_ZONE_PRELOAD_MATCHED) { /* (material frame, turned as the model's) */
+    if (z->preload == WFF_ZONE_PRELOAD_MATCHED) { /* (material frame, turned as the ply's) */
         wff_orientation_map(em->orientation, z->F_pre, em->F_pre);
         em->J_pre = z->F_pre[0] * z->F_pre[3] - z->F_pre[1] * z->F_pre[2];
     }
@@ -316,7 +326,59 @@ int wff_zones_preload_changed(wff_model *m, wff_error *err)
     return wff_model_masses_changed(m, err);
 }
 
-/* wff_model_zone_elements with the selection in the model's own element order. */
+/* The zone table of a model without one: zone 0 (the model's material) holding
+ * every element; -1 (err set) if out of memory. */
+static int zones_create(wff_model *m, const char *what, wff_error *err)
+{
+    int n_el = m->el.n_tris + m->el.n_quads;
+    struct wff_zones *Z = calloc(1, sizeof *Z);
+    if (Z) {
+        Z->element_zone = calloc((size_t)(n_el ? n_el : 1), sizeof(int));
+        Z->mass = malloc(sizeof(double) * (size_t)m->n_dofs);
+        Z->cap = 1 + (m->pack ? wff_pack_plies(m) : 0) + 8;
+        Z->zone = calloc((size_t)Z->cap, sizeof *Z->zone);
+    }
+    if (!Z || !Z->element_zone || !Z->mass || !Z->zone) {
+        if (Z)
+            free(Z->element_zone), free(Z->mass), free(Z->zone);
+        free(Z);
+        return wff_fail(err, "%s: out of memory", what);
+    }
+    Z->n = 1;
+    Z->n_el = n_el;
+    m->zones = Z;
+    return 0;
+}
+
+/* A new zone of material mat for ply `ply` (its elements given later); its index, or -1
+ * (err set) if the table is full or out of memory. */
+static int zone_add(wff_model *m, const wff_material *mat, int preload, int ply,
+                    const char *what, wff_error *err)
+{
+    struct wff_zones *Z = m->zones;
+    if (Z->n >= WFF_ZONES_MAX)
+        return wff_fail(err, "zone material '%s': %d zones already, the most a model has (a "
+                        "pack's zone is split into one per ply)", what, WFF_ZONES_MAX);
+    if (Z->n >= Z->cap) {
+        int cap = 2 * Z->cap < WFF_ZONES_MAX ? 2 * Z->cap : WFF_ZONES_MAX;
+        wff_zone *grown = realloc(Z->zone, sizeof *grown * (size_t)cap);
+        if (!grown)
+            return wff_fail(err, "zone material '%s': out of memory", what);
+        memset(grown + Z->cap, 0, sizeof *grown * (size_t)(cap - Z->cap));
+        Z->zone = grown;
+        Z->cap = cap;
+    }
+    int k = Z->n++;
+    wff_zone *z = &Z->zone[k];
+    memset(z, 0, sizeof *z);
+    z->mat = *mat;
+    z->preload = preload;
+    z->ply = ply;
+    return k;
+}
+
+/* wff_model_zone_elements with the selection in the model's own element order.
+ * In a pack of several plies the selection becomes one zone per ply it touches. */
 static int zone_elements_model(wff_model *m, const unsigned char *selected,
                                const char *material_path, int preload, wff_error *err)
 {
@@ -330,9 +392,6 @@ static int zone_elements_model(wff_model *m, const unsigned char *selected,
         return wff_fail(err, "zone material '%s': preload mode %d: must be 0 (shared) or 1 "
                         "(matched)", material_path, preload);
     int n_el = m->el.n_tris + m->el.n_quads;
-    if (m->zones && m->zones->n >= WFF_ZONES_MAX)
-        return wff_fail(err, "zone material '%s': %d zones already, the most a model has",
-                        material_path, WFF_ZONES_MAX);
     wff_material mat;
     /* on the model's kernel variant (kernel.h), like the model's own material */
     if (wff_material_load(material_path, &mat, err) ||
@@ -347,46 +406,91 @@ static int zone_elements_model(wff_model *m, const unsigned char *selected,
         return wff_fail(err, "zone material '%s': a matched preload is for a cell without "
                         "amplitudes (cell '%s' has them: use the shared preload)",
                         material_path, mat.cell->name);
+    int plies = m->pack ? wff_pack_plies(m) : 1;
+    int used[WFF_PLIES_MAX] = {0}, needed = 0;
+    for (int e = 0; e < n_el; e++)
+        if (selected[e])
+            used[plies > 1 ? wff_pack_element_ply(m, e) : 0] = 1;
+    for (int p = 0; p < plies; p++)
+        needed += used[p];
+    if (needed == 0) { /* an empty zone is allowed: one zone (of ply 0) */
+        used[0] = 1;
+        needed = 1;
+    }
+    if (m->zones && m->zones->n + needed > WFF_ZONES_MAX)
+        return wff_fail(err, "zone material '%s': %d zones already, the most a model has is "
+                        "%d (a pack's zone is split into one per ply: this one needs %d)",
+                        material_path, m->zones->n, WFF_ZONES_MAX, needed);
     if (zone_states_fit(m, &mat, material_path, err))
         return -1;
     int fresh = m->zones == NULL;
-    if (fresh) {
-        struct wff_zones *Z = calloc(1, sizeof *Z);
-        if (Z) {
-            Z->element_zone = calloc((size_t)(n_el ? n_el : 1), sizeof(int));
-            Z->mass = malloc(sizeof(double) * (size_t)m->n_dofs);
-        }
-        if (!Z || !Z->element_zone || !Z->mass) {
-            if (Z)
-                free(Z->element_zone), free(Z->mass);
-            free(Z);
-            return wff_fail(err, "zone material '%s': out of memory", material_path);
-        }
-        Z->n = 1;
-        Z->n_el = n_el;
-        m->zones = Z;
-    }
-    struct wff_zones *Z = m->zones;
-    int k = Z->n, count = 0;
-    wff_zone *z = &Z->zone[k];
-    memset(z, 0, sizeof *z);
-    z->mat = mat;
-    z->preload = preload;
-    Z->n++;
-    if (preload == WFF_ZONE_PRELOAD_MATCHED && match_preload(m, k, err)) {
-        Z->n--;
-        if (fresh)
-            wff_zones_free(m);
+    if (fresh && zones_create(m, material_path, err))
         return -1;
+    struct wff_zones *Z = m->zones;
+    int first = Z->n, count = 0;
+    for (int p = 0; p < plies; p++) {
+        if (!used[p])
+            continue;
+        int k = zone_add(m, &mat, preload, p, material_path, err);
+        if (k < 0 || (preload == WFF_ZONE_PRELOAD_MATCHED && match_preload(m, k, err))) {
+            Z->n = first;
+            if (fresh)
+                wff_zones_free(m);
+            return -1;
+        }
     }
     for (int e = 0; e < n_el; e++)
         if (selected[e]) {
+            int p = plies > 1 ? wff_pack_element_ply(m, e) : 0, k = first;
+            while (k < Z->n - 1 && Z->zone[k].ply != p)
+                k++;
             Z->element_zone[e] = k;
             count++;
         }
     if (build(m, err) || wff_model_masses_changed(m, err))
         return -1;
     return count;
+}
+
+int wff_zones_pack(wff_model *m, wff_error *err)
+{
+    if (m->zones)
+        return wff_fail(err, "plies: the model has zonal materials already; give the plies "
+                        "first, then the zones");
+    if (zones_create(m, "plies", err))
+        return -1;
+    struct wff_zones *Z = m->zones;
+    for (int p = 0; p < wff_pack_plies(m); p++)
+        if (zone_add(m, &m->mat, WFF_ZONE_PRELOAD_SHARED, p, m->mat.source, err) < 0) {
+            wff_zones_free(m);
+            return -1;
+        }
+    for (int e = 0; e < Z->n_el; e++)
+        Z->element_zone[e] = 1 + wff_pack_element_ply(m, e);
+    if (build(m, err) || wff_model_masses_changed(m, err)) {
+        wff_zones_free(m);
+        return -1;
+    }
+    return 0;
+}
+
+void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, double *failure)
+{
+    const struct wff_zones *Z = m->zones;
+    int plies = m->pack ? wff_pack_plies(m) : 1;
+    for (int p = 0; p < plies; p++)
+        stored[p] = shear[p] = failure[p] = 0;
+    if (!Z)
+        return;
+    for (int k = 0; k < Z->n; k++) {
+        const wff_zone *z = &Z->zone[k];
+        if (z->n_elements == 0)
+            continue;
+        int p = z->ply >= 0 && z->ply < plies ? z->ply : 0;
+        stored[p] += z->pass.internal_energy;
+        shear[p] += z->pass.dissipated;
+        failure[p] += z->pass.failure_dissipated;
+    }
 }
 
 int wff_model_zone_region(wff_model *m, const char *group, int group_tag,
@@ -506,6 +610,7 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
         wff_force_totals t;
         wff_elements_forces(&z->el, &em, m->mesh.xy, u, z->state, dt, f, &t);
         zone_state(m, k, state, 1);
+        z->pass = t;
         totals->internal_energy += t.internal_energy;
         totals->dissipated += t.dissipated;
         totals->failure_dissipated += t.failure_dissipated;

@@ -98,6 +98,8 @@ typedef struct wff_energies {
     double reference;         /* normaliser: the largest of the initial kinetic energy,
                                  the external work, the kinetic energy now and the change
                                  of stored energy since the start */
+    double dissipated_ply_contact; /* the kinetic energy ply-to-ply contact removed (pack.h),
+                                 a term of D in error */
 } wff_energies;
 
 /* A boundary condition as it was set, by group name, so that a mesh
@@ -169,6 +171,8 @@ typedef struct wff_model {
     int *node_model;          /* per caller's node: the model's */
     int *element_user;        /* per model element (tris, then quads): the caller's */
     int *element_model;       /* per caller's element: the model's */
+    struct wff_pack *pack;    /* plies and their contact (include/wovenff/pack.h); NULL:
+                                 one ply, the plain path */
 } wff_model;
 
 /* Create a model from a mesh file (.geo or .msh, see mesh.h; mesh_options
@@ -477,7 +481,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
  * more than WFF_ZONES_MAX zones; a mesh transfer (wff_model_remesh) of a model
  * with zones is refused too. Returns the number of elements selected (0 is
  * allowed: the zone is empty) or -1 (err set). */
-#define WFF_ZONES_MAX 8
+#define WFF_ZONES_MAX 512 /* (a pack's zone is one per ply: pack.h) */
 enum { WFF_ZONE_PRELOAD_SHARED = 0, WFF_ZONE_PRELOAD_MATCHED = 1 };
 /* selected: one flag per element (nonzero: in the zone), in the caller's element
  * order (tris then quads of the mesh given; the model maps it to its own). */

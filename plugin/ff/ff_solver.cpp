@@ -41,6 +41,7 @@ extern "C" {
 #include "wovenff/renumber.h"
 #include "wovenff/options.h"
 #include "wovenff/mesh_labels.h"
+#include "wovenff/pack.h"
 }
 
 using namespace Fem2D;
@@ -84,7 +85,9 @@ const StateQuantity kState[] = {
     {"dt_worst_element", false},  {"transfer_energy", true},
     {"projectile_impulse", false}, {"dissipated_failure", true},
     {"eroded_energy", true},      {"eroded_elements", false},
-    {"failure_energy", true}};
+    {"failure_energy", true},     {"plies", false},
+    {"back_face", false},         {"ply_contact_dissipated", false},
+    {"ply_penetration", false},   {"ply_contacts", false}};
 const int kStateSize = sizeof kState / sizeof kState[0];
 
 std::string state_names()
@@ -93,6 +96,15 @@ std::string state_names()
     for (int i = 0; i < kStateSize; i++)
         names += std::string(i ? " " : "") + kState[i].name;
     return names;
+}
+
+// A pack's value by name (include/wovenff/pack.h; a model without plies is one ply).
+double pack_value(const wff_model *m, const char *key)
+{
+    double v = 0;
+    wff_error err;
+    wff_model_pack_value(m, key, &v, &err);
+    return v;
 }
 
 // Every state quantity in kState order; the energies only if with_energies
@@ -111,7 +123,9 @@ void state_values(const wff_model *m, bool with_energies, double values[kStateSi
                         (double)(m->el.n_tris + m->el.n_quads), (double)m->n_nodes,
                         (double)(wff_model_user_element(m, m->dt_worst_element) + 1), e.transfer,
                         s * m->projectile.impulse_total, e.dissipated_failure, e.eroded,
-                        (double)m->n_eroded, e.dissipated_failure};
+                        (double)m->n_eroded, e.dissipated_failure, pack_value(m, "plies"),
+                        pack_value(m, "back_face"), pack_value(m, "ply_contact_dissipated"),
+                        pack_value(m, "ply_penetration"), pack_value(m, "ply_contacts")};
     static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
     for (int i = 0; i < kStateSize; i++)
         values[i] = v[i];

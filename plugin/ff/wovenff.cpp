@@ -95,6 +95,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_threads,
     wff_ff_register_kernel,
     wff_ff_register_limit,
+    wff_ff_register_pack,
 };
 
 static void init()
