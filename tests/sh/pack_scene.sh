@@ -16,7 +16,7 @@ list() { sed -n "s/^  \"$1\": \[\(.*\)\],*$/\1/p" "$2/summary.json" | head -1; }
 # -plies 1 against no -plies: the same numbers
 rm -rf "$out-none" "$out-one"
 run -tend 0.3e-3 -out "$out-none" > "$out-none.log" 2>&1 || { echo "no -plies: exit $?"; tail -3 "$out-none.log"; fail=1; }
-run -tend 0.3e-3 -plies 1 -out "$out-one" > "$out-one.log" 2>&1 || { echo "-plies 1: exit $?"; tail -3 "$out-one.log"; fail=1; }
+run -tend 0.3e-3 -plies 1 -gap 3e-4 -out "$out-one" > "$out-one.log" 2>&1 || { echo "-plies 1: exit $?"; tail -3 "$out-one.log"; fail=1; }
 for key in steps peak_displacement peak_time max_energy_error max_penetration final_projectile_velocity dt_min; do
     a=$(num "$key" "$out-none") b=$(num "$key" "$out-one")
     if [ -z "$a" ] || [ "$a" != "$b" ]; then echo "-plies 1: $key '$b', without -plies '$a'"; fail=1; fi
@@ -28,7 +28,7 @@ echo "-plies 1: peak $(num peak_displacement "$out-one") m, as without -plies $(
 # two plies on the coarse mesh
 dir="$out-two"
 rm -rf "$dir"
-run -tend 0.5e-3 -plies 2 -out "$dir" > "$dir.log" 2>&1
+run -tend 0.5e-3 -plies 2 -gap 3e-4 -out "$dir" > "$dir.log" 2>&1
 rc=$?
 grep -E '^pack:' "$dir.log"
 if [ $rc -ne 0 ]; then
@@ -58,7 +58,7 @@ fi
 # a layup at 45 struck at the centre: the full specimen, said
 dir="$out-45"
 rm -rf "$dir"
-run -tend 2e-5 -plies 2 -layup 0,45 -out "$dir" > "$dir.log" 2>&1 || { echo "-layup 0,45: exit $?"; tail -3 "$dir.log"; fail=1; }
+run -tend 2e-5 -plies 2 -gap 3e-4 -layup 0,45 -out "$dir" > "$dir.log" 2>&1 || { echo "-layup 0,45: exit $?"; tail -3 "$dir.log"; fail=1; }
 grep -q "the full specimen" "$dir.log" && [ "$(num symmetry "$dir")" = 1 ] \
     || { echo "-layup 0,45: symmetry '$(num symmetry "$dir")', no 'the full specimen' line"; fail=1; }
 [ "$(list layup "$dir" | tr -d ' ')" = "0,45" ] || { echo "-layup 0,45: layup '$(list layup "$dir")'"; fail=1; }
