@@ -86,4 +86,6 @@ bad "-plymaterial 'no_such.txt': entry 1 'no_such.txt': no such file" -plies 2 -
 bad "-plymaterial 'README.md': entry 1 README.md cannot be read" -plies 2 -plymaterial README.md
 bad "-layup 45 (ply 0 at 45 deg) with -mesh meshes/ballistic_quarter.geo" -plies 2 -layup 45 -mesh meshes/ballistic_quarter.geo
 bad "-plymu -1: must be >= 0" -plies 2 -plymu -1
+bad "-plies 2 with -checkpoint" -plies 2 -checkpoint 5
+bad "-plies 2 with -adapt" -plies 2 -adapt 5
 exit $fail
