@@ -60,6 +60,9 @@ for n in $plies; do
     bv=${best%%,*} bdir=${best#*,}
     bfd=""
     [ -n "$best" ] && [ -s "$bdir/summary.json" ] && bfd=$(num "$bdir/summary.json" back_face_deformation)
+    if [ -n "$best" ] && [ "$n" -gt 1 ] && [ "$(num "$bdir/summary.json" plies)" != "$n" ]; then
+        echo "error: pack_study: $bdir/summary.json has plies '$(num "$bdir/summary.json" plies)', not $n (-plies not passed?)"; exit 1
+    fi
     v50=$fit
     case "$fit" in ''|null) v50=$br ;; esac
     case "$v50" in ''|null) ;; *) rows="$rows
