@@ -328,6 +328,7 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
 {
     wff_projectile *p = &m->projectile;
     p->force = 0;
+    p->n_contact = 0;
     if (!p->active)
         return 0;
     const double tip_now = p->tip, v_proj_before = p->velocity;
@@ -400,6 +401,7 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
         if (rest > p->max_penetration)
             p->max_penetration = rest;
     }
+    p->n_contact = touched;
     /* forces and their work over the step */
     double work = 0;
     for (int c = 0; c < touched; c++) {

@@ -160,7 +160,6 @@ int wff_model_set_plies(wff_model *m, int n_plies, double gap, wff_error *err)
     P->tris = m->mesh.n_tris;
     P->quads = m->mesh.n_quads;
     P->mu = WFF_PLY_MU_DEFAULT;
-    P->refreshed_step = -1;
     for (int p = 0; p < n_plies; p++)
         P->orientation[p] = m->em.orientation;
     if (n_plies == 1) { /* the model as it is */

@@ -25,15 +25,14 @@ struct wff_pack {
     double dissipated;        /* kinetic energy the ply contact removed, J (model part) */
     double penetration;       /* largest interpenetration left after the last correction, m */
     int contacts;             /* node-facet pairs corrected in the last step */
-    int *cand_start;          /* per contact slot (2 (N − 1) n: ply p+1's nodes on ply p's
-                                 facets, then ply p's nodes on ply p+1's), its candidates'
-                                 first index into cand; n_slots + 1 entries */
-    int *cand;                /* candidate facets (triangles of a ply; a quad as two) */
-    int n_cand, cap_cand;
-    long refreshed_step;      /* step of the last candidate search (-1: never) */
     double *impulse;          /* per DOF (3 per node), this step's contact impulses, N·s */
     unsigned char *touched;   /* per node: an impulse this step */
     int *touched_list, n_touched;
+    int *active, n_active;    /* node pairs corrected in this step's first sweep */
+    int *on_projectile;       /* per node: its index in the projectile's contacts this step,
+                                 -1 if none (such a node moves with the projectile along z) */
+    double *normal;           /* per node: its ply's normal at the predicted positions (3) */
+    double projectile_dv;     /* the projectile's velocity change by the ply contact, m/s */
     double *facet_x;          /* workspace */
 };
 
@@ -75,11 +74,9 @@ void wff_pack_orientation_all(wff_model *m, double theta);
  * result in *rc), 0 otherwise. */
 int wff_pack_set_option(wff_model *m, const char *key, double value, int *rc, wff_error *err);
 
-/* ply_contact.c: the candidate facets of every contact node refreshed at the
- * current state; the kinematic contact of one step (after the projectile's),
+/* ply_contact.c: the kinematic contact of one step (after the projectile's),
  * impulses on v, forces impulse/dt_mid into f, the dissipation counted; -1 (err
  * set) if out of memory. */
-int wff_ply_contact_refresh(wff_model *m, wff_error *err);
 int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
 void wff_ply_contact_free(struct wff_pack *P);
 

@@ -1,5 +1,30 @@
 /* ply_contact.c: kinematic contact between neighbouring plies of a pack
- * (include/wovenff/pack.h). */
+ * (include/wovenff/pack.h). Every ply is a two-sided surface of thickness t:
+ * the mid-planes of plies p and p + 1 keep h = min(t, gap) apart. The plies
+ * are copies of one mesh, coincident in plane at the start, so the contact is
+ * node to node: node i of ply p against node i of ply p + 1 (a symmetric rule,
+ * no facet search), along n, the mean of the two plies' nodal normals (area-
+ * weighted facet normals at the predicted positions, continuous as the pack
+ * deflects). Each step, after the projectile's correction, the pairs whose
+ * predicted distance x_B − x_A (x = X + u + Δt v) along n is below h get an
+ * inelastic normal impulse j_n = δ / (Δt w) (w: the pair's inverse mass along
+ * n), +j_n n on the upper node and −j_n n on the lower (momentum conserved
+ * exactly), then Coulomb friction μ against the tangential relative velocity,
+ * |j_t| <= μ j_n (stick if the cone allows). A pair already closer than h now
+ * has only RECOVERY of that removed per step (pushing it all out at once would
+ * put energy in). The pairs corrected are swept again (symmetric Gauss-Seidel)
+ * until what is left is below SWEEP_TOLERANCE h (a pack pushed as a chain). A
+ * component held by a boundary condition takes no impulse: its support's
+ * reaction does; a node the projectile pushed this step moves with it along z
+ * (the projectile's mass added, its velocity and impulse updated). The impulses
+ * enter f as forces j / Δt_mid; their work at the integer-step velocities,
+ * negated, is the ply contact dissipation (a term of the energy balance). No
+ * effect on the stable step. Limits: the pairs are fixed, so the relative
+ * in-plane slip of neighbouring plies must stay small against the element
+ * size (the inter-ply friction keeps it so near the impact; a ply that slides
+ * by more meets its neighbour's node i still, not the node now below it);
+ * plies pair with their neighbours only (enough while plies cannot pass each
+ * other, which the contact keeps). Plain serial code. */
 #include "pack.h"
 
 #include <math.h>
@@ -8,29 +33,309 @@
 
 void wff_ply_contact_free(struct wff_pack *P)
 {
-    free(P->cand_start);
-    free(P->cand);
     free(P->impulse);
     free(P->touched);
     free(P->touched_list);
+    free(P->active);
+    free(P->on_projectile);
+    free(P->normal);
+    P->normal = NULL;
+    P->active = P->on_projectile = NULL;
     free(P->facet_x);
-    P->cand_start = P->cand = P->touched_list = NULL;
+    P->touched_list = NULL;
     P->impulse = P->facet_x = NULL;
     P->touched = NULL;
 }
 
-int wff_ply_contact_refresh(wff_model *m, wff_error *err)
+/* Facets per ply: triangles, then two per quad. */
+static int facet_count(const struct wff_pack *P)
 {
-    (void)m;
-    (void)err;
+    return P->tris + 2 * P->quads;
+}
+
+/* The specimen-local nodes of facet f (ply 0's connectivity: the first
+ * triangles and quads of the model's mesh are ply 0's). */
+static void facet_nodes(const wff_model *m, int f, int out[3])
+{
+    const struct wff_pack *P = m->pack;
+    if (f < P->tris) {
+        const int *t = m->mesh.tri + 3 * f;
+        out[0] = t[0], out[1] = t[1], out[2] = t[2];
+    } else {
+        int q = (f - P->tris) / 2, second = (f - P->tris) % 2;
+        const int *c = m->mesh.quad + 4 * q;
+        out[0] = c[0];
+        out[1] = second ? c[2] : c[1];
+        out[2] = second ? c[3] : c[2];
+    }
+    /* counter-clockwise in the reference plane, so that the normal is +z there
+     * (a mesh may list an element either way round) */
+    const double *xy = m->mesh.xy, *p0 = xy + 2 * out[0], *p1 = xy + 2 * out[1],
+                 *p2 = xy + 2 * out[2];
+    if ((p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1]) < 0) {
+        int t = out[1];
+        out[1] = out[2], out[2] = t;
+    }
+}
+
+/* Node n's position at u + s v (s = 0: now; s = Δt: predicted). */
+static inline void position(const wff_model *m, int n, double s, double x[3])
+{
+    const double *u = m->u + D * n, *v = m->v + D * n;
+    x[0] = m->mesh.xy[2 * n] + u[0] + s * v[0];
+    x[1] = m->mesh.xy[2 * n + 1] + u[1] + s * v[1];
+    x[2] = u[2] + s * v[2];
+}
+
+static int ensure_workspace(wff_model *m, wff_error *err)
+{
+    struct wff_pack *P = m->pack;
+    if (P->impulse)
+        return 0;
+    size_t slots = (size_t)(P->n - 1) * (size_t)P->nodes;
+    P->impulse = calloc(3 * (size_t)m->n_nodes, sizeof(double));
+    P->touched = calloc((size_t)m->n_nodes, 1);
+    P->touched_list = malloc(sizeof(int) * (size_t)m->n_nodes);
+    P->active = malloc(sizeof(int) * (slots + 1));
+    P->on_projectile = malloc(sizeof(int) * (size_t)m->n_nodes);
+    P->normal = malloc(sizeof(double) * 3 * (size_t)m->n_nodes);
+    if (P->on_projectile)
+        for (int n = 0; n < m->n_nodes; n++)
+            P->on_projectile[n] = -1;
+    if (!P->impulse || !P->touched || !P->touched_list || !P->active ||
+        !P->on_projectile || !P->normal) {
+        wff_ply_contact_free(P);
+        return wff_fail(err, "ply contact: out of memory for %zu node pairs", slots);
+    }
     return 0;
+}
+
+/* Interpenetration below ROUND_OFF h is round-off of the flat pack's
+ * coordinates (z = p gap), not contact. */
+#define ROUND_OFF 1e-9
+/* Sweeps over the slots in contact after the first (Gauss-Seidel), until what
+ * is left is below SWEEP_TOLERANCE h. */
+#define MAX_SWEEPS 20
+/* The share of an interpenetration already there that a step removes. */
+#define RECOVERY 0.2
+#define SWEEP_TOLERANCE 1e-6
+
+/* The mass component c of node n moves with: its own, and the projectile's
+ * along z while the projectile pushes it (this step's projectile contact): a
+ * node on the nose that the next ply pushes back takes the projectile with it,
+ * rather than being pushed into it. */
+static inline double moving_mass(const wff_model *m, int n, int c)
+{
+    double mass = m->mass[D * n];
+    if (c == WFF_UZ && m->pack->on_projectile[n] >= 0)
+        mass += m->projectile.mass;
+    return mass;
+}
+
+/* Add impulse j (3) to node n: its free components' velocities (and the
+ * projectile's, moving with it), the held ones' reactions; the node's share
+ * kept for the forces and work. */
+static void give(wff_model *m, int n, const double j[3], double dt_mid)
+{
+    struct wff_pack *P = m->pack;
+    for (int c = 0; c < 3; c++) {
+        if (m->dof_kind[D * n + c] != WFF_DOF_FREE) {
+            m->reaction[D * n + c] -= j[c] / dt_mid;
+            continue;
+        }
+        double dv = j[c] / moving_mass(m, n, c);
+        m->v[D * n + c] += dv;
+        P->impulse[3 * n + c] += m->mass[D * n] * dv;
+        if (c == WFF_UZ && P->on_projectile[n] >= 0) {
+            m->projectile.velocity += dv;
+            P->projectile_dv += dv;
+        }
+    }
+    if (!P->touched[n]) {
+        P->touched[n] = 1;
+        P->touched_list[P->n_touched++] = n;
+    }
+}
+
+/* The inverse mass of node n along direction d (its free components). */
+static double inverse_mass(const wff_model *m, int n, const double d[3])
+{
+    double w = 0;
+    for (int c = 0; c < 3; c++)
+        if (m->dof_kind[D * n + c] == WFF_DOF_FREE)
+            w += d[c] * d[c] / moving_mass(m, n, c);
+    return w;
+}
+
+/* One pair: node i of ply `pair` (below, A) and of ply pair + 1 (above, B).
+ * Returns 1 if corrected, 0 if not; *rest the interpenetration h − d (m,
+ * before the correction). */
+static int correct_pair(wff_model *m, int pair, int i, double h, double dt, double dt_mid,
+                        int apply, double *rest)
+{
+    const struct wff_pack *P = m->pack;
+    const int A = pair * P->nodes + i, B = A + P->nodes;
+    double xa[3], xb[3], nrm[3], len = 0;
+    position(m, A, dt, xa);
+    position(m, B, dt, xb);
+    for (int c = 0; c < 3; c++) {
+        nrm[c] = P->normal[3 * A + c] + P->normal[3 * B + c];
+        len += nrm[c] * nrm[c];
+    }
+    len = sqrt(len);
+    if (!(len > 0))
+        return 0;
+    double dist = 0, closing = 0;
+    for (int c = 0; c < 3; c++) {
+        nrm[c] /= len;
+        dist += (xb[c] - xa[c]) * nrm[c];
+        closing += (m->v[D * A + c] - m->v[D * B + c]) * nrm[c];
+    }
+    double delta = h - dist; /* > 0: closer than h */
+    *rest = delta;
+    if (delta <= ROUND_OFF * h || !apply)
+        return 0;
+    /* closer than h now already: only RECOVERY of that per step, the rest of the
+     * correction stops the approach (pushing it all out at once would put energy in) */
+    double now = delta - dt * closing; /* h − distance now */
+    if (now > 0)
+        delta -= (1 - RECOVERY) * now;
+    if (delta <= ROUND_OFF * h)
+        return 0;
+    double w = inverse_mass(m, A, nrm) + inverse_mass(m, B, nrm);
+    if (!(w > 0))
+        return 0; /* neither can move along the normal */
+    double jn = delta / dt / w, j[3];
+    for (int c = 0; c < 3; c++)
+        j[c] = jn * nrm[c]; /* on B; −j on A */
+    if (P->mu > 0) { /* friction against the tangential relative velocity after jn */
+        double rel[3], along = 0, speed = 0, vt[3];
+        for (int c = 0; c < 3; c++) {
+            double dvb = m->dof_kind[D * B + c] == WFF_DOF_FREE ? j[c] / moving_mass(m, B, c) : 0;
+            double dva = m->dof_kind[D * A + c] == WFF_DOF_FREE ? j[c] / moving_mass(m, A, c) : 0;
+            rel[c] = (m->v[D * B + c] + dvb) - (m->v[D * A + c] - dva);
+            along += rel[c] * nrm[c];
+        }
+        for (int c = 0; c < 3; c++) {
+            vt[c] = rel[c] - along * nrm[c];
+            speed += vt[c] * vt[c];
+        }
+        speed = sqrt(speed);
+        if (speed > 0) {
+            double t[3] = {vt[0] / speed, vt[1] / speed, vt[2] / speed};
+            double wt = inverse_mass(m, A, t) + inverse_mass(m, B, t);
+            double jt = wt > 0 ? fmin(P->mu * jn, speed / wt) : 0; /* stick if the cone allows */
+            for (int c = 0; c < 3; c++)
+                j[c] -= jt * t[c];
+        }
+    }
+    double ja[3] = {-j[0], -j[1], -j[2]};
+    give(m, B, j, dt_mid);
+    give(m, A, ja, dt_mid);
+    return 1;
+}
+
+/* Every node's unit normal at the predicted positions: the area-weighted mean of its
+ * ply's facets' normals. */
+static void nodal_normals(wff_model *m, double dt)
+{
+    struct wff_pack *P = m->pack;
+    const int nf = facet_count(P);
+    memset(P->normal, 0, sizeof(double) * 3 * (size_t)m->n_nodes);
+    for (int q = 0; q < P->n; q++)
+        for (int f = 0; f < nf; f++) {
+            int a[3];
+            facet_nodes(m, f, a);
+            double x[3][3];
+            for (int k = 0; k < 3; k++)
+                position(m, a[k] + q * P->nodes, dt, x[k]);
+            double e1[3], e2[3];
+            for (int i = 0; i < 3; i++)
+                e1[i] = x[1][i] - x[0][i], e2[i] = x[2][i] - x[0][i];
+            double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                           e1[0] * e2[1] - e1[1] * e2[0]}; /* (twice the area) */
+            for (int k = 0; k < 3; k++)
+                for (int i = 0; i < 3; i++)
+                    P->normal[3 * (a[k] + q * P->nodes) + i] += n[i];
+        }
 }
 
 int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
 {
-    (void)m;
-    (void)dt;
-    (void)dt_mid;
-    (void)err;
+    struct wff_pack *P = m->pack;
+    if (!P || P->n < 2)
+        return 0;
+    if (!P->impulse && ensure_workspace(m, err))
+        return -1;
+    const int nn = P->nodes;
+    const double h = wff_pack_contact_distance(m);
+    nodal_normals(m, dt);
+    wff_projectile *pr = &m->projectile;
+    for (int c = 0; pr->active && c < pr->n_contact; c++)
+        P->on_projectile[pr->contact_node[c]] = c;
+    const double vp_before = pr->velocity;
+    P->projectile_dv = 0;
+    P->contacts = 0;
+    P->penetration = 0;
+    P->n_touched = 0;
+    P->n_active = 0;
+    /* sweep 0 over every pair, then sweeps over those corrected, then a
+     * measure of what is left over every pair */
+    for (int sweep = 0; sweep <= MAX_SWEEPS + 1; sweep++) {
+        const int measure = sweep == MAX_SWEEPS + 1, all = sweep == 0 || measure;
+        const int n = all ? (P->n - 1) * nn : P->n_active;
+        double worst = 0;
+        for (int k = 0; k < n; k++) {
+            /* later sweeps alternate direction (symmetric Gauss-Seidel) */
+            const int slot = all ? k : P->active[sweep % 2 ? P->n_active - 1 - k : k];
+            double rest = 0;
+            int r = correct_pair(m, slot / nn, slot % nn, h, dt, dt_mid, !measure, &rest);
+            if (measure) {
+                P->penetration = fmax(P->penetration, rest);
+            } else if (r > 0) {
+                worst = fmax(worst, rest);
+                if (sweep == 0) {
+                    P->active[P->n_active++] = slot;
+                    P->contacts++;
+                }
+            }
+        }
+        if (!measure && sweep > 0 && worst <= SWEEP_TOLERANCE * h)
+            sweep = MAX_SWEEPS; /* converged: the measure next */
+        if (P->n_active == 0 && sweep == 0)
+            sweep = MAX_SWEEPS;
+    }
+    /* forces and the work of the impulses at the integer-step velocities; a
+     * node the projectile pushed too: its impulse j1 worked at the integer-step
+     * velocity before this correction, which moved that by j / 2m (the work of
+     * j1 + j at the final one is j1·v + j·v) */
+    double work = 0;
+    for (int t = 0; t < P->n_touched; t++) {
+        int n = P->touched_list[t];
+        const int pc = P->on_projectile[n];
+        for (int c = 0; c < 3; c++) {
+            int k = D * n + c;
+            double j = P->impulse[3 * n + c];
+            if (j == 0)
+                continue;
+            m->f[k] += j / dt_mid;
+            double v_int = m->v[k] - 0.5 * dt_mid * m->f[k] / m->mass[k];
+            work += j * v_int;
+            if (pc >= 0)
+                work += pr->impulse[3 * pc + c] * 0.5 * j / m->mass[k];
+            P->impulse[3 * n + c] = 0;
+        }
+        P->touched[n] = 0;
+    }
+    for (int c = 0; pr->active && c < pr->n_contact; c++)
+        P->on_projectile[pr->contact_node[c]] = -1;
+    if (P->projectile_dv != 0) { /* the projectile's share: its momentum and energy */
+        const double dv = pr->velocity - vp_before;
+        pr->force -= pr->mass * dv / dt_mid;
+        pr->impulse_total -= pr->mass * dv;
+        work += 0.5 * pr->mass * (pr->velocity * pr->velocity - vp_before * vp_before);
+    }
+    P->n_touched = 0;
+    P->dissipated -= work;
     return 0;
 }

@@ -56,6 +56,7 @@ typedef struct wff_projectile {
     int *candidates;
     int search_all;       /* 1: every node is a candidate (the contact_search knob off) */
     int *contact_node;    /* nodes corrected in the last step (workspace, n_nodes) */
+    int n_contact;        /* how many (the ply contact of a pack reads them: pack.h) */
     double *impulse;      /* their contact impulses, 3 each, N·s (workspace) */
     double max_penetration;  /* largest penetration left after a contact correction, m */
     double force;         /* mean contact force on the projectile along −z over the last

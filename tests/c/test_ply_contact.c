@@ -1,0 +1,352 @@
+/* Ply-to-ply contact of a pack (plugin/ply_contact.c, include/wovenff/pack.h):
+ *   1. a free ply thrown at a free ply at rest: momentum conserved to
+ *      round-off, the collision inelastic (both plies move on at half the
+ *      speed), the energy dissipated = the kinetic energy lost, no
+ *      interpenetration beyond round-off, the energy balance closed;
+ *   2. two plies at zero gap, frictionless, pressed slowly by a projectile,
+ *      behave as one ply of twice the areal density and stiffness (a material
+ *      copy with rho_A and every stiffness key doubled) within 2 %;
+ *   3. a layup with ply 0 at 90 deg equals ply 0 at 0 with warp and weft
+ *      swapped (every _1 key's value exchanged with its _2 partner) to round-off;
+ *   4. an 8-ply impact on free edges: the projectile's impulse equals the
+ *      fabric's momentum, the energy balance within 1 % of the impact energy,
+ *      the penetration bounded (20 % of t); clamped edges: the balance too. */
+#include "check.h"
+#include "test_meshes.h"
+#include "test_tmp.h"
+#include "wovenff/material.h"
+#include "wovenff/pack.h"
+#include "wovenff/renumber.h"
+#include "wovenff/solver.h"
+#include "wovenff/text_io.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define KEVLAR "freefem_scripts/materials/kevlar_s706.txt"
+#define D WFF_DOFS_PER_NODE
+
+static char tmpdir[512];
+
+static int square(check_state *st, wff_model *m, int n, double half, const char *material)
+{
+    test_rect r = {-half, half, -half, half, n, n, TEST_MESH_TRI, 1, 0.2, 11};
+    wff_mesh mesh;
+    wff_error err;
+    if (test_mesh_rect(&r, &mesh) || wff_model_create_ordered(m, &mesh, material, 1, &err)) {
+        CHECK(st, 0, "model: %s", err.message);
+        return -1;
+    }
+    return 0;
+}
+
+static void momentum(const wff_model *m, double p[3])
+{
+    p[0] = p[1] = p[2] = 0;
+    for (int n = 0; n < m->n_nodes; n++)
+        for (int c = 0; c < 3; c++)
+            if (m->dof_kind[D * n + c] == WFF_DOF_FREE)
+                p[c] += m->mass[D * n + c] * m->v[D * n + c];
+}
+
+/* 1. */
+static void thrown_ply(check_state *st)
+{
+    wff_model m;
+    wff_error err;
+    const double gap = 1e-3, t = 0.5e-3, v0 = 10;
+    if (square(st, &m, 8, 0.025, KEVLAR))
+        return;
+    if (wff_model_set_plies(&m, 2, gap, &err) || wff_model_set_option(&m, "ply_thickness", t, &err) ||
+        wff_model_set_option(&m, "ply_mu", 0.3, &err)) {
+        CHECK(st, 0, "set-up: %s", err.message);
+        wff_model_free(&m);
+        return;
+    }
+    int half = m.n_nodes / 2;
+    for (int n = 0; n < half; n++) /* ply 0 at v0 towards ply 1 */
+        m.v[D * n + WFF_UZ] = v0;
+    double p0[3];
+    momentum(&m, p0);
+    wff_energies e0;
+    wff_model_energies(&m, &e0);
+    double worst_pen = 0;
+    for (int k = 1; k <= 20; k++) {
+        if (wff_model_advance(&m, k * 1e-5, 1000000, &err)) {
+            CHECK(st, 0, "advance: %s", err.message);
+            wff_model_free(&m);
+            return;
+        }
+        double pen;
+        wff_model_pack_value(&m, "ply_penetration", &pen, &err);
+        worst_pen = fmax(worst_pen, pen);
+    }
+    double p1[3];
+    momentum(&m, p1);
+    CHECK(st, fabs(p1[2] - p0[2]) <= 1e-12 * fabs(p0[2]) && fabs(p1[0]) <= 1e-12 * fabs(p0[2]) &&
+              fabs(p1[1]) <= 1e-12 * fabs(p0[2]),
+          "momentum %.15g %g %g, was %.15g", p1[2], p1[0], p1[1], p0[2]);
+    double vmin = INFINITY, vmax = -INFINITY, sep = INFINITY;
+    for (int n = 0; n < m.n_nodes; n++) {
+        vmin = fmin(vmin, m.v[D * n + WFF_UZ]);
+        vmax = fmax(vmax, m.v[D * n + WFF_UZ]);
+    }
+    for (int n = 0; n < half; n++)
+        sep = fmin(sep, m.u[D * (n + half) + WFF_UZ] + gap * 0 - m.u[D * n + WFF_UZ]);
+    printf("  thrown ply: v_z %.9f .. %.9f m/s (v0 / 2 = %g), separation %.6g mm (h %.3g mm), "
+           "worst penetration %.3g m\n", vmin, vmax, v0 / 2, 1e3 * sep, 1e3 * t, worst_pen);
+    CHECK(st, fabs(vmin - v0 / 2) <= 1e-12 * v0 && fabs(vmax - v0 / 2) <= 1e-12 * v0,
+          "inelastic: v_z %g .. %g", vmin, vmax);
+    CHECK(st, sep >= t - 1e-12 && sep <= t + 1e-6, "separation %g against h %g", sep, t);
+    CHECK(st, worst_pen <= 1e-12, "penetration %g m", worst_pen);
+    wff_energies e;
+    wff_model_energies(&m, &e);
+    double kin = e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude;
+    double lost = e0.kinetic_transverse - kin;
+    CHECK_CLOSE(st, e.dissipated_ply_contact, lost, 1e-9, 1e-30, "dissipated = kinetic lost");
+    CHECK_CLOSE(st, e.dissipated_ply_contact, 0.5 * e0.kinetic_transverse, 1e-9, 1e-30,
+                "half the kinetic energy");
+    CHECK(st, fabs(e.error) <= 1e-9, "energy balance %g", e.error);
+    wff_model_free(&m);
+}
+
+/* A copy of material `path` with keys[i] multiplied by factor[i] (swap: every
+ * _1 key's value exchanged with its _2 partner instead), at out. */
+static int material_copy(const char *path, const char *out, int swap, wff_error *err)
+{
+    char *text, *copy = NULL;
+    if (wff_read_text_file(path, "material", WFF_MATERIAL_FILE_MAX, &text, err))
+        return -1;
+    static const char *const doubled[] = {"k_1", "k_2", "kb_1", "kb_2", "K_I", "K_d", "K_s",
+                                          "M_0", "rho_A"};
+    const char *k[WFF_KV_MAX], *v[WFF_KV_MAX];
+    char names[WFF_KV_MAX][WFF_KV_KEY_MAX], values[WFF_KV_MAX][WFF_KV_VALUE_MAX];
+    int n = 0;
+    if (swap) {
+        char keys[2048];
+        wff_material_text_keys(text, keys, sizeof keys);
+        for (char *key = strtok(keys, ", "); key; key = strtok(NULL, ", ")) {
+            size_t len = strlen(key);
+            if (len < 3 || strcmp(key + len - 2, "_1") != 0 || n + 2 > WFF_KV_MAX)
+                continue;
+            char partner[WFF_KV_KEY_MAX];
+            snprintf(partner, sizeof partner, "%.*s_2", (int)(len - 2), key);
+            const char *b1, *e1, *b2, *e2;
+            int line;
+            if (!wff_material_text_find(text, key, &b1, &e1, &line) ||
+                !wff_material_text_find(text, partner, &b2, &e2, &line))
+                continue;
+            snprintf(names[n], sizeof names[n], "%s", key);
+            snprintf(values[n], sizeof values[n], "%.*s", (int)(e2 - b2), b2);
+            snprintf(names[n + 1], sizeof names[n + 1], "%s", partner);
+            snprintf(values[n + 1], sizeof values[n + 1], "%.*s", (int)(e1 - b1), b1);
+            n += 2;
+        }
+    } else {
+        for (size_t i = 0; i < sizeof doubled / sizeof doubled[0]; i++) {
+            const char *b, *e;
+            int line;
+            if (!wff_material_text_find(text, doubled[i], &b, &e, &line))
+                continue;
+            snprintf(names[n], sizeof names[n], "%s", doubled[i]);
+            snprintf(values[n], sizeof values[n], "%.17g", 2 * strtod(b, NULL));
+            n++;
+        }
+    }
+    for (int i = 0; i < n; i++)
+        k[i] = names[i], v[i] = values[i];
+    int rc = n < 8 ? wff_fail(err, "%s: only %d keys to change", path, n)
+                   : wff_material_text_replace(text, path, n, k, v, &copy, err);
+    if (rc == 0) {
+        FILE *fp = fopen(out, "w");
+        rc = !fp || fputs(copy, fp) < 0 || fclose(fp) != 0 ? wff_fail(err, "cannot write %s", out)
+                                                           : 0;
+    }
+    free(text);
+    free(copy);
+    return rc;
+}
+
+/* Edges fixed, a projectile (radius 2.5 mm, mass, speed); plies at gap (0: none). */
+static int struck(check_state *st, wff_model *m, const char *material, int plies, double gap,
+                  double mass, double speed, int n)
+{
+    wff_error err;
+    if (square(st, m, n, 0.03, material))
+        return -1;
+    int rc = plies > 0 && wff_model_set_plies(m, plies, gap, &err);
+    static const char *const edges[] = {"left", "right", "bottom", "top"};
+    for (int g = 0; g < 4 && rc == 0; g++)
+        for (int c = WFF_UX; c <= WFF_UZ && rc == 0; c++)
+            rc = wff_model_fix_group(m, edges[g], c, &err) < 0;
+    if (rc == 0)
+        rc = wff_model_set_projectile(m, 0.0025, mass, speed, 0.2, &err);
+    CHECK(st, rc == 0, "struck: %s", err.message);
+    return rc;
+}
+
+/* 2. */
+static void double_ply(check_state *st)
+{
+    char doubled[1024];
+    test_tmp_path(tmpdir, "kevlar_doubled.txt", doubled, sizeof doubled);
+    wff_error err;
+    if (material_copy(KEVLAR, doubled, 0, &err)) {
+        CHECK(st, 0, "doubled material: %s", err.message);
+        return;
+    }
+    wff_model a, b;
+    /* slow and heavy: pressed, a quasi-static indentation over the run */
+    if (struck(st, &a, KEVLAR, 2, 0, 0.2, 5, 16))
+        return;
+    if (wff_model_set_option(&a, "ply_mu", 0, &err) ||
+        wff_model_set_option(&a, "ply_thickness", 0.2e-3, &err) ||
+        struck(st, &b, doubled, 0, 0, 0.2, 5, 16)) {
+        wff_model_free(&a);
+        return;
+    }
+    double worst_apex = 0, worst_force = 0, worst_pen = 0;
+    for (int k = 1; k <= 8; k++) {
+        double t = k * 0.25e-3;
+        if (wff_model_advance(&a, t, 10000000, &err) || wff_model_advance(&b, t, 10000000, &err)) {
+            CHECK(st, 0, "advance: %s", err.message);
+            break;
+        }
+        double apex0, apex1, apex_b, pen;
+        wff_model_ply_value(&a, 0, "apex", &apex0, &err);
+        wff_model_ply_value(&a, 1, "apex", &apex1, &err);
+        wff_model_ply_value(&b, 0, "apex", &apex_b, &err);
+        wff_model_pack_value(&a, "ply_penetration", &pen, &err);
+        worst_pen = fmax(worst_pen, pen);
+        double fa = a.projectile.impulse_total, fb = b.projectile.impulse_total;
+        worst_apex = fmax(worst_apex, fabs(apex0 - apex_b) / apex_b);
+        worst_apex = fmax(worst_apex, fabs(apex1 - apex_b) / apex_b);
+        worst_force = fmax(worst_force, fabs(fa - fb) / fb);
+        if (k == 8)
+            printf("  two plies at zero gap against one doubled ply at %.2f ms: apex %.4f / %.4f "
+                   "/ %.4f mm, impulse %.6g / %.6g N s, penetration %.3g m\n", 1e3 * t,
+                   1e3 * apex0, 1e3 * apex1, 1e3 * apex_b, fa, fb, worst_pen);
+    }
+    printf("  two plies against the doubled ply: apex within %.3g %%, impulse within %.3g %%\n",
+           100 * worst_apex, 100 * worst_force);
+    CHECK(st, worst_apex <= 0.02, "apex: %.3g %% off", 100 * worst_apex);
+    CHECK(st, worst_force <= 0.02, "projectile impulse: %.3g %% off", 100 * worst_force);
+    wff_model_free(&a);
+    wff_model_free(&b);
+}
+
+/* 3. */
+static void quarter_turn(check_state *st)
+{
+    char swapped[1024];
+    test_tmp_path(tmpdir, "kevlar_swapped.txt", swapped, sizeof swapped);
+    wff_error err;
+    if (material_copy(KEVLAR, swapped, 1, &err)) {
+        CHECK(st, 0, "swapped material: %s", err.message);
+        return;
+    }
+    wff_model a, b;
+    if (struck(st, &a, KEVLAR, 2, 0.2e-3, 0.002, 60, 12))
+        return;
+    if (struck(st, &b, KEVLAR, 2, 0.2e-3, 0.002, 60, 12)) {
+        wff_model_free(&a);
+        return;
+    }
+    int rc = wff_model_ply_orientation(&a, 0, M_PI_2, &err) ||
+             wff_model_ply_material(&b, 0, swapped, &err) < 0 ||
+             wff_model_set_option(&a, "ply_thickness", 0.2e-3, &err) ||
+             wff_model_set_option(&b, "ply_thickness", 0.2e-3, &err);
+    /* (M_PI_2 is not exactly what "orientation" 90 maps to; the binding's 90 is k pi/2) */
+    CHECK(st, rc == 0, "layup: %s", err.message);
+    if (rc == 0 && (wff_model_advance(&a, 6e-5, 1000000, &err) ||
+                    wff_model_advance(&b, 6e-5, 1000000, &err)))
+        CHECK(st, 0, "advance: %s", err.message);
+    double scale = 0, diff = 0, contacts;
+    for (int n = 0; n < a.n_nodes; n++)
+        for (int c = 0; c < 3; c++) {
+            scale = fmax(scale, fabs(b.u[D * n + c]));
+            diff = fmax(diff, fabs(a.u[D * n + c] - b.u[D * n + c]));
+        }
+    wff_model_pack_value(&a, "ply_contacts", &contacts, &err);
+    printf("  ply 0 at 90 deg against ply 0 swapped: |du| / max|u| %.2e, %ld steps, %g "
+           "contacts\n", diff / scale, a.step, contacts);
+    CHECK(st, a.step == b.step && scale > 1e-4, "steps %ld %ld, apex %g", a.step, b.step, scale);
+    CHECK(st, diff <= 1e-9 * scale, "90 deg against swapped: %g of %g", diff, scale);
+    wff_model_free(&a);
+    wff_model_free(&b);
+}
+
+/* 4. */
+static void eight_plies(check_state *st, int clamped)
+{
+    wff_model m;
+    wff_error err;
+    const double t = 0.21e-3;
+    int rc = square(st, &m, 10, 0.03, KEVLAR);
+    if (rc)
+        return;
+    rc = wff_model_set_plies(&m, 8, t, &err) || wff_model_set_option(&m, "ply_thickness", t, &err);
+    static const char *const edges[] = {"left", "right", "bottom", "top"};
+    for (int g = 0; g < 4 && rc == 0 && clamped; g++)
+        for (int c = WFF_UX; c <= WFF_UZ && rc == 0; c++)
+            rc = wff_model_fix_group(&m, edges[g], c, &err) < 0;
+    if (rc == 0)
+        rc = wff_model_set_projectile(&m, 0.004, 0.004, 150, 0.2, &err);
+    CHECK(st, rc == 0, "8 plies: %s", err.message);
+    if (rc) {
+        wff_model_free(&m);
+        return;
+    }
+    const double impact = 0.5 * 0.004 * 150 * 150;
+    double worst = 0, worst_pen = 0;
+    for (int k = 1; k <= 10; k++) {
+        if (wff_model_advance(&m, k * 0.01e-3, 10000000, &err)) {
+            CHECK(st, 0, "advance: %s", err.message);
+            break;
+        }
+        wff_energies e;
+        wff_model_energies(&m, &e);
+        worst = fmax(worst, fabs(e.error) * e.reference / impact);
+        double pen;
+        wff_model_pack_value(&m, "ply_penetration", &pen, &err);
+        worst_pen = fmax(worst_pen, pen);
+    }
+    wff_energies e;
+    wff_model_energies(&m, &e);
+    double p[3], back, contacts;
+    momentum(&m, p);
+    wff_model_pack_value(&m, "back_face", &back, &err);
+    wff_model_pack_value(&m, "ply_contacts", &contacts, &err);
+    double impulse = m.projectile.impulse_total;
+    printf("  8 plies, %s edges, %ld steps: energy error %.3g %% of the impact energy, ply "
+           "contact dissipated %.4g J, back face %.4f mm, %g contacts, penetration %.3g m; "
+           "projectile impulse %.9g N s, fabric momentum %.9g N s\n",
+           clamped ? "clamped" : "free", m.step, 100 * worst, e.dissipated_ply_contact,
+           1e3 * back, contacts, worst_pen, impulse, p[2]);
+    CHECK(st, worst <= 0.01, "energy balance %.3g %% of the impact energy", 100 * worst);
+    CHECK(st, e.dissipated_ply_contact > 0 && back > 0 && contacts > 0,
+          "the pack works: dissipated %g, back face %g, contacts %g", e.dissipated_ply_contact,
+          back, contacts);
+    CHECK(st, worst_pen <= 0.2 * t, "penetration %g m (bound 20 %% of t)", worst_pen);
+    if (!clamped)
+        /* (along z: the nose's normal impulses have in-plane parts its guide takes) */
+        CHECK(st, fabs(impulse - p[2]) <= 1e-9 * impulse,
+              "momentum: impulse %.12g, fabric %.12g (%g, %g)", impulse, p[2], p[0], p[1]);
+    wff_model_free(&m);
+}
+
+int main(void)
+{
+    check_state st = {0, 0};
+    if (test_tmp_dir("ply_contact", tmpdir, sizeof tmpdir))
+        return 1;
+    thrown_ply(&st);
+    quarter_turn(&st);
+    eight_plies(&st, 0);
+    eight_plies(&st, 1);
+    double_ply(&st);
+    test_tmp_remove(tmpdir);
+    return check_summary(&st, "test_ply_contact");
+}
