@@ -193,8 +193,13 @@ pmesh ffMesh(Stack stack, const long &id)
     Mesh *th = new Mesh(g.n_nodes, nt, g.n_edges, v, t, b);
     R2 pmin, pmax;
     th->BoundingBox(pmin, pmax);
+    // A pack's N plies lie on one another in the plane: FreeFEM's quadtree splits a
+    // box of more than 4 vertices at one point without end (5 plies and more: out of
+    // memory). It holds ply 0's vertices only (the strike face: the user's nodes
+    // 0 .. n/N - 1), so that a point search finds ply 0's triangles.
+    int plies = wff_model_ply_count(m) > 1 ? wff_model_ply_count(m) : 1;
     if (!th->quadtree)
-        th->quadtree = new FQuadTree(th, pmin, pmax, th->nv);
+        th->quadtree = new FQuadTree(th, pmin, pmax, th->nv / plies);
     return Add2StackOfPtr2FreeRC(stack, th);
 }
 
