@@ -87,7 +87,9 @@ const StateQuantity kState[] = {
     {"eroded_energy", true},      {"eroded_elements", false},
     {"failure_energy", true},     {"plies", false},
     {"back_face", false},         {"ply_contact_dissipated", false},
-    {"ply_penetration", false},   {"ply_contacts", false}};
+    {"ply_penetration", false},   {"ply_contacts", false},
+    {"ply_mu", false},            {"ply_thickness", false},
+    {"ply_gap", false}};
 const int kStateSize = sizeof kState / sizeof kState[0];
 
 std::string state_names()
@@ -125,7 +127,9 @@ void state_values(const wff_model *m, bool with_energies, double values[kStateSi
                         s * m->projectile.impulse_total, e.dissipated_failure, e.eroded,
                         (double)m->n_eroded, e.dissipated_failure, pack_value(m, "plies"),
                         pack_value(m, "back_face"), pack_value(m, "ply_contact_dissipated"),
-                        pack_value(m, "ply_penetration"), pack_value(m, "ply_contacts")};
+                        pack_value(m, "ply_penetration"), pack_value(m, "ply_contacts"),
+                        pack_value(m, "ply_mu"), pack_value(m, "ply_thickness"),
+                        pack_value(m, "ply_gap")};
     static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
     for (int i = 0; i < kStateSize; i++)
         values[i] = v[i];
