@@ -66,6 +66,13 @@ run -tend 2e-5 -plies 2 -layup 0,45 -out "$dir" > "$dir.log" 2>&1 || { echo "-la
 grep -q "the full specimen" "$dir.log" && [ "$(num symmetry "$dir")" = 1 ] \
     || { echo "-layup 0,45: symmetry '$(num symmetry "$dir")', no 'the full specimen' line"; fail=1; }
 [ "$(list layup "$dir" | tr -d ' ')" = "0,45" ] || { echo "-layup 0,45: layup '$(list layup "$dir")'"; fail=1; }
+# -failure on: each ply material a copy with failure = 1 (lib/wff_failure.idp's rule)
+dir="$out-fail"
+rm -rf "$dir"
+run -tend 1e-5 -plies 2 -failure on -plymaterial freefem_scripts/materials/kevlar_s706.txt -out "$dir" > "$dir.log" 2>&1 \
+    || { echo "-failure on -plymaterial: exit $?"; tail -3 "$dir.log"; fail=1; }
+grep -q '^failure = 1' "$dir/material_ply_0.txt" 2>/dev/null \
+    || { echo "-failure on -plymaterial: no failure = 1 in material_ply_0.txt"; fail=1; }
 bad() {
     want=$1; shift
     rm -rf "$out-bad"
@@ -91,5 +98,7 @@ bad "-plymaterial 'README.md': entry 1 README.md cannot be read" -plies 2 -plyma
 bad "-layup 45 (ply 0 at 45 deg) with -mesh meshes/ballistic_quarter.geo" -plies 2 -layup 45 -mesh meshes/ballistic_quarter.geo
 bad "-plymu -1: must be >= 0" -plies 2 -plymu -1
 bad "-plies 2 with -checkpoint" -plies 2 -checkpoint 5
+grep -v -E '^(failure|fail_strain|rupture_strain)' freefem_scripts/materials/kevlar_s706.txt > "$tmp/pack_nofailure.txt"
+bad "-failure on: -plymaterial $tmp/pack_nofailure.txt holds no failure data" -plies 2 -failure on -plymaterial "$tmp/pack_nofailure.txt"
 bad "-plies 2 with -adapt" -plies 2 -adapt 5
 exit $fail
