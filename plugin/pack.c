@@ -413,6 +413,21 @@ int wff_model_ply_value(const wff_model *m, int ply, const char *key, double *va
     return 0;
 }
 
+/* The largest in-plane displacement of a node relative to its partner in the next
+ * ply (the ply contact pairs node i with node i: this must stay small against the
+ * element size), m. */
+static double ply_slip(const wff_model *m)
+{
+    const struct wff_pack *P = m->pack;
+    double slip = 0;
+    for (int p = 0; P && p + 1 < P->n; p++)
+        for (int i = 0; i < P->nodes; i++) {
+            const double *a = m->u + D * (p * P->nodes + i), *b = a + D * P->nodes;
+            slip = fmax(slip, hypot(b[0] - a[0], b[1] - a[1]));
+        }
+    return slip;
+}
+
 int wff_model_pack_value(const wff_model *m, const char *key, double *value, wff_error *err)
 {
     const struct wff_pack *P = m->pack;
@@ -432,9 +447,11 @@ int wff_model_pack_value(const wff_model *m, const char *key, double *value, wff
         *value = effective_thickness(m);
     else if (strcmp(key, "ply_gap") == 0)
         *value = P ? P->gap : 0;
+    else if (strcmp(key, "ply_slip") == 0)
+        *value = ply_slip(m);
     else
         return wff_fail(err, "unknown pack value '%s' (known: plies, back_face, "
                         "ply_contact_dissipated, ply_penetration, ply_contacts, ply_mu, "
-                        "ply_thickness, ply_gap)", key);
+                        "ply_thickness, ply_gap, ply_slip)", key);
     return 0;
 }

@@ -599,18 +599,29 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
     totals->bad_residual = 0;
     totals->bad_iterations = 0;
     totals->amplitude_iterations = 0;
+    /* a pack's plies share no node: with threads, plies at once (each ply's zones in
+     * order, one thread each), the totals summed in zone order below: the same bits */
+    const int plies = m->pack ? wff_pack_plies(m) : 1;
+    const int by_ply = plies > 1 && m->el.n_threads > 1;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(m->el.n_threads) if (by_ply)
+    for (int p = 0; p < (by_ply ? plies : 1); p++)
+        for (int k = 0; k < Z->n; k++) {
+            wff_zone *z = &Z->zone[k];
+            if (z->n_elements == 0 || (by_ply && z->ply != p))
+                continue;
+            wff_element_material em;
+            zone_material(m, k, &em);
+            z->el.n_threads = by_ply ? 1
+                              : m->el.n_threads <= z->el.max_threads ? m->el.n_threads : 1;
+            zone_state(m, k, state, 0);
+            wff_elements_forces(&z->el, &em, m->mesh.xy, u, z->state, dt, f, &z->pass);
+            zone_state(m, k, state, 1);
+        }
     for (int k = 0; k < Z->n; k++) {
-        wff_zone *z = &Z->zone[k];
+        const wff_zone *z = &Z->zone[k];
         if (z->n_elements == 0)
             continue;
-        wff_element_material em;
-        zone_material(m, k, &em);
-        z->el.n_threads = m->el.n_threads <= z->el.max_threads ? m->el.n_threads : 1;
-        zone_state(m, k, state, 0);
-        wff_force_totals t;
-        wff_elements_forces(&z->el, &em, m->mesh.xy, u, z->state, dt, f, &t);
-        zone_state(m, k, state, 1);
-        z->pass = t;
+        const wff_force_totals t = z->pass;
         totals->internal_energy += t.internal_energy;
         totals->dissipated += t.dissipated;
         totals->failure_dissipated += t.failure_dissipated;

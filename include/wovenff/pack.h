@@ -79,7 +79,10 @@ int wff_model_ply_value(const wff_model *m, int ply, const char *key, double *va
  * p·gap now, m), ply_contact_dissipated (J, whole specimen), ply_penetration
  * (largest ply-ply interpenetration left after the last step's correction,
  * m), ply_contacts (node-facet pairs corrected in the last step), ply_mu,
- * ply_thickness (m), ply_gap (m). -1 (err set) for another key. */
+ * ply_thickness (m), ply_gap (m), ply_slip (the largest in-plane displacement of
+ * a node relative to its partner in the next ply, m: the contact pairs node i
+ * with node i, so this must stay small against the element size). -1 (err set)
+ * for another key. */
 int wff_model_pack_value(const wff_model *m, const char *key, double *value, wff_error *err);
 
 #ifdef __cplusplus

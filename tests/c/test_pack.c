@@ -3,7 +3,9 @@
  *      states, energies) under a projectile impact;
  *   2. three plies far apart: the struck ply is the plain model to round-off,
  *      the others stay where they were; groups hold every ply's nodes;
- *   3. free flight keeps the plies' offsets; per-ply energies sum to the model's;
+ *   3. ply 0 at 30 deg through its zone is the plain model at 30 deg to round-off;
+ *      threads (the plies' force passes at once) give the same bits;
+ *      free flight keeps the plies' offsets; per-ply energies sum to the model's;
  *      the "ply" fields;
  *   4. bad input: plies <= 0, > 40, gap < 0, after boundary conditions, a ply
  *      index out of range, a ply material that cannot be read, checkpoints. */
@@ -144,6 +146,57 @@ static void far_plies(check_state *st)
     wff_model_free(&b);
 }
 
+/* Ply 0 of a pack at 30 deg (its zone's own orientation) against a plain model at
+ * 30 deg, the other ply far away: the same run to round-off. */
+static void rotated_ply(check_state *st)
+{
+    wff_model a, b;
+    wff_error err;
+    const double theta = 30 * (M_PI / 180); /* as the setting "orientation" maps 30 */
+    if (impact(st, &a, 0, 0) || impact(st, &b, 2, 0.05))
+        return;
+    int rc = wff_model_set_option(&a, "orientation", 30, &err) ||
+             wff_model_ply_orientation(&b, 0, theta, &err) ||
+             wff_model_set_option(&a, "dtinterval", 1e6, &err) ||
+             wff_model_set_option(&b, "dtinterval", 1e6, &err);
+    CHECK(st, rc == 0, "orientation: %s", err.message);
+    if (rc == 0 && (wff_model_advance(&a, 4e-5, 100000, &err) ||
+                    wff_model_advance(&b, 4e-5, 100000, &err)))
+        CHECK(st, 0, "advance: %s", err.message);
+    double big = 0, worst = 0;
+    for (int k = 0; k < a.n_nodes; k++) {
+        int na = wff_model_node_of_user(&a, k), nb = wff_model_node_of_user(&b, k);
+        for (int c = 0; c < D; c++) {
+            big = fmax(big, fabs(a.u[D * na + c]));
+            worst = fmax(worst, fabs(a.u[D * na + c] - b.u[D * nb + c]));
+        }
+    }
+    CHECK(st, big > 1e-4 && worst <= 1e-9 * big, "ply 0 at 30 deg against the plain model: %g "
+          "of %g", worst, big);
+    wff_model_free(&a);
+    wff_model_free(&b);
+}
+
+/* The force pass of a pack with threads runs its plies at once: the same bits. */
+static void threaded_plies(check_state *st)
+{
+    wff_model a, b;
+    wff_error err;
+    if (impact(st, &a, 4, 0.2e-3) || impact(st, &b, 4, 0.2e-3))
+        return;
+    int rc = wff_model_set_option(&b, "threads", 2, &err);
+    CHECK(st, rc == 0, "threads: %s", err.message);
+    if (rc == 0 && (wff_model_advance(&a, 3e-5, 100000, &err) ||
+                    wff_model_advance(&b, 3e-5, 100000, &err)))
+        CHECK(st, 0, "advance: %s", err.message);
+    size_t nd = sizeof(double) * (size_t)a.n_dofs;
+    CHECK(st, a.step == b.step && a.step > 10 && memcmp(a.u, b.u, nd) == 0 &&
+              memcmp(a.v, b.v, nd) == 0,
+          "4 plies, 1 and 2 threads: u, v differ (steps %ld %ld)", a.step, b.step);
+    wff_model_free(&a);
+    wff_model_free(&b);
+}
+
 static void free_flight(check_state *st)
 {
     wff_model m;
@@ -231,6 +284,8 @@ int main(void)
     check_state st = {0, 0};
     same_model(&st);
     far_plies(&st);
+    rotated_ply(&st);
+    threaded_plies(&st);
     free_flight(&st);
     bad_input(&st);
     return check_summary(&st, "test_pack");

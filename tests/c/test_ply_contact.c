@@ -30,9 +30,10 @@
 
 static char tmpdir[512];
 
-static int square(check_state *st, wff_model *m, int n, double half, const char *material)
+static int square_of(check_state *st, wff_model *m, int n, double half, const char *material,
+                     int type)
 {
-    test_rect r = {-half, half, -half, half, n, n, TEST_MESH_TRI, 1, 0.2, 11};
+    test_rect r = {-half, half, -half, half, n, n, type, 1, 0.2, 11};
     wff_mesh mesh;
     wff_error err;
     if (test_mesh_rect(&r, &mesh) || wff_model_create_ordered(m, &mesh, material, 1, &err)) {
@@ -40,6 +41,11 @@ static int square(check_state *st, wff_model *m, int n, double half, const char 
         return -1;
     }
     return 0;
+}
+
+static int square(check_state *st, wff_model *m, int n, double half, const char *material)
+{
+    return square_of(st, m, n, half, material, TEST_MESH_TRI);
 }
 
 static void momentum(const wff_model *m, double p[3])
@@ -52,12 +58,12 @@ static void momentum(const wff_model *m, double p[3])
 }
 
 /* 1. */
-static void thrown_ply(check_state *st)
+static void thrown_ply(check_state *st, int type)
 {
     wff_model m;
     wff_error err;
     const double gap = 1e-3, t = 0.5e-3, v0 = 10;
-    if (square(st, &m, 8, 0.025, KEVLAR))
+    if (square_of(st, &m, 8, 0.025, KEVLAR, type))
         return;
     if (wff_model_set_plies(&m, 2, gap, &err) || wff_model_set_option(&m, "ply_thickness", t, &err) ||
         wff_model_set_option(&m, "ply_mu", 0.3, &err)) {
@@ -95,8 +101,8 @@ static void thrown_ply(check_state *st)
     }
     for (int n = 0; n < half; n++)
         sep = fmin(sep, m.u[D * (n + half) + WFF_UZ] + gap * 0 - m.u[D * n + WFF_UZ]);
-    printf("  thrown ply: v_z %.9f .. %.9f m/s (v0 / 2 = %g), separation %.6g mm (h %.3g mm), "
-           "worst penetration %.3g m\n", vmin, vmax, v0 / 2, 1e3 * sep, 1e3 * t, worst_pen);
+    printf("  thrown ply (%s): v_z %.9f .. %.9f m/s (v0 / 2 = %g), separation %.6g mm (h %.3g mm), "
+           "worst penetration %.3g m\n", type ? "quads" : "triangles", vmin, vmax, v0 / 2, 1e3 * sep, 1e3 * t, worst_pen);
     CHECK(st, fabs(vmin - v0 / 2) <= 1e-12 * v0 && fabs(vmax - v0 / 2) <= 1e-12 * v0,
           "inelastic: v_z %g .. %g", vmin, vmax);
     CHECK(st, sep >= t - 1e-12 && sep <= t + 1e-6, "separation %g against h %g", sep, t);
@@ -315,21 +321,25 @@ static void eight_plies(check_state *st, int clamped)
     }
     wff_energies e;
     wff_model_energies(&m, &e);
-    double p[3], back, contacts;
+    double p[3], back, contacts, slip;
     momentum(&m, p);
+    wff_model_pack_value(&m, "ply_slip", &slip, &err);
     wff_model_pack_value(&m, "back_face", &back, &err);
     wff_model_pack_value(&m, "ply_contacts", &contacts, &err);
     double impulse = m.projectile.impulse_total;
     printf("  8 plies, %s edges, %ld steps: energy error %.3g %% of the impact energy, ply "
-           "contact dissipated %.4g J, back face %.4f mm, %g contacts, penetration %.3g m; "
-           "projectile impulse %.9g N s, fabric momentum %.9g N s\n",
-           clamped ? "clamped" : "free", m.step, 100 * worst, e.dissipated_ply_contact,
-           1e3 * back, contacts, worst_pen, impulse, p[2]);
+           "contact dissipated %.4g J, back face %.4f mm, %g contacts, penetration %.3g m, "
+           "slip %.3g mm (element %.3g mm); projectile impulse %.9g N s, fabric momentum "
+           "%.9g N s\n", clamped ? "clamped" : "free", m.step, 100 * worst,
+           e.dissipated_ply_contact, 1e3 * back, contacts, worst_pen, 1e3 * slip, 1e3 * m.el.size[0],
+           impulse, p[2]);
     CHECK(st, worst <= 0.01, "energy balance %.3g %% of the impact energy", 100 * worst);
     CHECK(st, e.dissipated_ply_contact > 0 && back > 0 && contacts > 0,
           "the pack works: dissipated %g, back face %g, contacts %g", e.dissipated_ply_contact,
           back, contacts);
     CHECK(st, worst_pen <= 0.2 * t, "penetration %g m (bound 20 %% of t)", worst_pen);
+    CHECK(st, slip <= 0.1 * m.el.size[0], "ply slip %g m against the element size %g m: the "
+          "node-to-node pairing needs it small", slip, m.el.size[0]);
     if (!clamped)
         /* (along z: the nose's normal impulses have in-plane parts its guide takes) */
         CHECK(st, fabs(impulse - p[2]) <= 1e-9 * impulse,
@@ -342,7 +352,8 @@ int main(void)
     check_state st = {0, 0};
     if (test_tmp_dir("ply_contact", tmpdir, sizeof tmpdir))
         return 1;
-    thrown_ply(&st);
+    thrown_ply(&st, TEST_MESH_TRI);
+    thrown_ply(&st, TEST_MESH_QUAD);
     quarter_turn(&st);
     eight_plies(&st, 0);
     eight_plies(&st, 1);
