@@ -9,8 +9,9 @@
 # Each N: tools/ff.sh freefem_scripts/ballistic_limit.edp -mesh M -plies N -jobs J
 #         -overwrite 1 -out OUT/pN $args (the sweep's defaults otherwise: -vmin 10
 #         -vmax 100 -runs 16 -tend 10e-3). V50: the fit's (the bracket's when the fit
-#         failed); the back-face deformation (BFD): summary.json "back_face_deformation"
-#         of the fastest stopped run (the one nearest the limit that holds).
+#         failed or its V_bl sits at the bracket's bound); the back-face deformation (BFD):
+#         summary.json "back_face_deformation" of the fastest stopped run (the one nearest
+#         the limit that holds), left out when that run's back ply lost elements.
 # Writes OUT/study.md (the table), OUT/study.csv (tools/cunniff.sh's columns and the
 # fit/bracket V50), OUT/study.png (two panels: V50 and BFD against areal density;
 # V50/U*^(1/3) against A_D A_p/m_p), each sweep's files in OUT/pN.
@@ -68,17 +69,24 @@ for n in $plies; do
     bv=${best%%,*} bdir=${best#*,}
     bfd=""
     [ -n "$best" ] && [ -s "$bdir/summary.json" ] && bfd=$(num "$bdir/summary.json" back_face_deformation)
+    # a back ply that lost elements has free nodes that fly off: its largest u_z is a
+    # fragment's, not the back face's (left out, said in the table)
+    lasteroded=$(sed -n 's/^  "ply_eroded": \[\(.*\)\],*$/\1/p' "$bdir/summary.json" 2>/dev/null | awk -F, '{ print $NF + 0 }')
+    bfdnote=""
+    if [ -n "$bfd" ] && [ "${lasteroded:-0}" -gt 0 ]; then bfdnote="(back ply eroded: $lasteroded elements)"; bfd=""; fi
     if [ -n "$best" ] && [ "$n" -gt 1 ] && [ "$(num "$bdir/summary.json" plies)" != "$n" ]; then
         echo "error: pack_study: $bdir/summary.json has plies '$(num "$bdir/summary.json" plies)', not $n (-plies not passed?)"; exit 1
     fi
-    v50=$fit
+    v50=$fit atbound=$(num "$j" v_bl at_bound)
     case "$fit" in ''|null) v50=$br ;; esac
+    [ "$atbound" = true ] && v50=$br   # (a fit at the bracket's bound: the bracket's mid-point)
     case "$v50" in ''|null) ;; *) rows="$rows
 $n,$v50,$bfd" ;; esac
-    row=$(awk -v n="$n" -v f="$fit" -v fs="$fse" -v b="$br" -v bh="$bh" -v bfd="$bfd" -v bv="$bv" -v r="$runs" -v w="$((t1 - t0))" 'BEGIN {
-        fs_ = (f == "null" || f == "") ? "no fit" : sprintf("%.2f +- %.2f", f, fs)
+    row=$(awk -v n="$n" -v f="$fit" -v fs="$fse" -v b="$br" -v bh="$bh" -v bfd="$bfd" -v bv="$bv" -v r="$runs" -v w="$((t1 - t0))" \
+              -v ab="$atbound" -v note="$bfdnote" 'BEGIN {
+        fs_ = (f == "null" || f == "") ? "no fit" : sprintf("%.2f +- %.2f%s", f, fs, (ab == "true" ? " (at the bracket bound)" : ""))
         bs_ = (b == "null" || b == "") ? "" : sprintf("%.2f +- %.2f", b, bh)
-        bf_ = (bfd == "" || bfd == "null") ? "" : sprintf("%.1f at %s", 1e3 * bfd, bv)
+        bf_ = (bfd == "" || bfd == "null") ? note : sprintf("%.1f at %s", 1e3 * bfd, bv)
         printf "| %d | AD | %s | %s | %s | %s | %s |", n, fs_, bs_, bf_, r, w }')
     table="$table
 $row"
