@@ -9,6 +9,8 @@
 #      elements, and the µs per call of each loop operator (bench/loop.sh);
 #   3. the ballistic scene with every knob against a reference run (finest
 #      mesh, small step factor, full physics): accuracy and cost.
+#   2e. a pack of 8 plies on the default mesh to 3 ms: wall, ns per element-step,
+#      ply contact's share, threads' speed-up (bench/pack_bench.sh, pack.md);
 #   2d. the rest of issue 12's speed table: the strip scene at its defaults,
 #      -amplitudes static against dynamic per step.
 # Writes results/bench/: speed.json, speed.md, kernel.jsonl, scenes.txt,
@@ -99,6 +101,9 @@ if [ "$quick" = 1 ]; then
 fi
 
 if [ "$quick" != 1 ]; then
+echo "== 2e. a pack: 8 plies on the default mesh to 3 ms, 1 and 2 threads (bench/pack_bench.sh)"
+sh bench/pack_bench.sh || echo "bench/pack_bench.sh failed"
+
 echo "== 2c. the scripted explicit loop against the built-in one (bench/loop.sh)"
 sh bench/loop.sh || echo "bench/loop.sh failed"
 

@@ -88,7 +88,8 @@ const StateQuantity kState[] = {
     {"failure_energy", true},     {"plies", false},
     {"back_face", false},         {"ply_contact_dissipated", false},
     {"ply_penetration", false},   {"ply_contacts", false},
-    {"ply_slip", false}};
+    {"ply_slip", false},          {"ply_mu", false},
+    {"ply_thickness", false},     {"ply_gap", false}};
 const int kStateSize = sizeof kState / sizeof kState[0];
 
 std::string state_names()
@@ -127,7 +128,8 @@ void state_values(const wff_model *m, bool with_energies, double values[kStateSi
                         (double)m->n_eroded, e.dissipated_failure, pack_value(m, "plies"),
                         pack_value(m, "back_face"), pack_value(m, "ply_contact_dissipated"),
                         pack_value(m, "ply_penetration"), pack_value(m, "ply_contacts"),
-                        pack_value(m, "ply_slip")};
+                        pack_value(m, "ply_slip"), pack_value(m, "ply_mu"),
+                        pack_value(m, "ply_thickness"), pack_value(m, "ply_gap")};
     static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
     for (int i = 0; i < kStateSize; i++)
         values[i] = v[i];
@@ -195,8 +197,13 @@ pmesh ffMesh(Stack stack, const long &id)
     Mesh *th = new Mesh(g.n_nodes, nt, g.n_edges, v, t, b);
     R2 pmin, pmax;
     th->BoundingBox(pmin, pmax);
+    // A pack's N plies lie on one another in the plane: FreeFEM's quadtree splits a
+    // box of more than 4 vertices at one point without end (5 plies and more: out of
+    // memory). It holds ply 0's vertices only (the strike face: the user's nodes
+    // 0 .. n/N - 1), so that a point search finds ply 0's triangles.
+    int plies = wff_model_ply_count(m) > 1 ? wff_model_ply_count(m) : 1;
     if (!th->quadtree)
-        th->quadtree = new FQuadTree(th, pmin, pmax, th->nv);
+        th->quadtree = new FQuadTree(th, pmin, pmax, th->nv / plies);
     return Add2StackOfPtr2FreeRC(stack, th);
 }
 

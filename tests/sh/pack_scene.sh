@@ -1,0 +1,104 @@
+#!/bin/sh
+# The ballistic scene's pack options (issue 14; lib/wff_pack.idp): -plies 1 gives
+# the summary numbers of a run without -plies; -plies 2 on the coarse mesh runs,
+# writes the per-ply history columns, back_face, section.csv, the VTK ply field
+# and summary.json's pack entries (back_face_deformation > 0, not lagging the
+# strike face's apex by more than the ply penetration; the energy balance within
+# 1 %) with the default -gap (the module's ply thickness); a layup off 90 at the
+# centre builds the full specimen and says so; every bad input exits 2 naming
+# the option with nothing written.
+set -u
+tmp="${WFF_TEST_TMP:-/tmp}"
+out="$tmp/pack_scene"
+fail=0
+run() { sh tools/ff.sh freefem_scripts/ballistic_impact.edp -mesh coarse -plots 0 -vtkdt 2e-4 "$@"; }
+num() { sed -n "s/^  \"$1\": \([^,]*\),*$/\1/p" "$2/summary.json" | head -1; }
+list() { sed -n "s/^  \"$1\": \[\(.*\)\],*$/\1/p" "$2/summary.json" | head -1; }
+# -plies 1 against no -plies: the same numbers
+rm -rf "$out-none" "$out-one"
+run -tend 0.3e-3 -out "$out-none" > "$out-none.log" 2>&1 || { echo "no -plies: exit $?"; tail -3 "$out-none.log"; fail=1; }
+run -tend 0.3e-3 -plies 1 -out "$out-one" > "$out-one.log" 2>&1 || { echo "-plies 1: exit $?"; tail -3 "$out-one.log"; fail=1; }
+for key in steps peak_displacement peak_time max_energy_error max_penetration final_projectile_velocity dt_min; do
+    a=$(num "$key" "$out-none") b=$(num "$key" "$out-one")
+    if [ -z "$a" ] || [ "$a" != "$b" ]; then echo "-plies 1: $key '$b', without -plies '$a'"; fail=1; fi
+done
+a=$(sed -n 's/^  "final_energy_split": \(.*\),*$/\1/p' "$out-none/summary.json")
+b=$(sed -n 's/^  "final_energy_split": \(.*\),*$/\1/p' "$out-one/summary.json")
+[ -n "$a" ] && [ "$a" = "$b" ] || { echo "-plies 1: final_energy_split '$b', without -plies '$a'"; fail=1; }
+echo "-plies 1: peak $(num peak_displacement "$out-one") m, as without -plies $(num peak_displacement "$out-none") m"
+# two plies on the coarse mesh
+dir="$out-two"
+rm -rf "$dir"
+run -tend 0.5e-3 -plies 2 -out "$dir" > "$dir.log" 2>&1
+rc=$?
+grep -E '^pack:' "$dir.log"
+if [ $rc -ne 0 ]; then
+    echo "-plies 2: exit $rc"; tail -5 "$dir.log"; fail=1
+else
+    head -1 "$dir/history.csv" | tr ',' '\n' > "$dir.cols"
+    for c in apex_0 apex_1 absorbed_0 absorbed_1 back_face ply_contact_dissipated ply_penetration; do
+        grep -qx "$c" "$dir.cols" || { echo "-plies 2: no history column $c"; fail=1; }
+    done
+    [ "$(num plies "$dir")" = 2 ] || { echo "-plies 2: summary plies '$(num plies "$dir")'"; fail=1; }
+    [ "$(list layup "$dir" | tr -d ' ')" = "0,0" ] || { echo "-plies 2: layup '$(list layup "$dir")'"; fail=1; }
+    bfd=$(num back_face_deformation "$dir") apex0=$(list ply_apex "$dir" | cut -d, -f1) err=$(num max_energy_error "$dir")
+    pen=$(num max_ply_penetration "$dir")
+    echo "-plies 2: back-face deformation $bfd m, strike-face apex $apex0 m, ply penetration $pen m, largest energy error $err"
+    # ply contact keeps the back ply at least the contact distance behind the strike
+    # face, less the interpenetration: its peak cannot lag the strike face's by more
+    awk -v b="$bfd" -v a="$apex0" -v p="$pen" 'BEGIN { exit !(b > 0 && b >= a - p - 1e-12) }' \
+        || { echo "-plies 2: back_face_deformation $bfd lags the strike face's apex $apex0 by more than the ply penetration $pen"; fail=1; }
+    awk -v e="$err" 'BEGIN { exit !(e < 0.01 && e > -0.01) }' || { echo "-plies 2: energy error $err above 1 %"; fail=1; }
+    for key in ply_absorbed ply_failed ply_eroded; do
+        [ "$(list "$key" "$dir" | awk -F, '{ print NF }')" = 2 ] || { echo "-plies 2: $key '$(list "$key" "$dir")'"; fail=1; }
+    done
+    [ -n "$(num ply_contact_dissipated "$dir")" ] && [ -n "$(num max_ply_penetration "$dir")" ] \
+        || { echo "-plies 2: no ply_contact_dissipated / max_ply_penetration"; fail=1; }
+    plies=$(awk -F, 'NR > 1 { print $2 }' "$dir/section.csv" | sort -u | tr '\n' ' ')
+    [ "$plies" = "0 1 " ] || { echo "-plies 2: section.csv plies '$plies'"; fail=1; }
+    grep -q 'Name="ply"' "$dir/vtk/frame_1.vtu" || { echo "-plies 2: no ply field in vtk/frame_1.vtu"; fail=1; }
+    grep -q 'pack: back face' "$dir.log" || { echo "-plies 2: no pack progress line"; fail=1; }
+fi
+# a layup at 45 struck at the centre: the full specimen, said
+dir="$out-45"
+rm -rf "$dir"
+run -tend 2e-5 -plies 2 -layup 0,45 -out "$dir" > "$dir.log" 2>&1 || { echo "-layup 0,45: exit $?"; tail -3 "$dir.log"; fail=1; }
+grep -q "the full specimen" "$dir.log" && [ "$(num symmetry "$dir")" = 1 ] \
+    || { echo "-layup 0,45: symmetry '$(num symmetry "$dir")', no 'the full specimen' line"; fail=1; }
+[ "$(list layup "$dir" | tr -d ' ')" = "0,45" ] || { echo "-layup 0,45: layup '$(list layup "$dir")'"; fail=1; }
+# -failure on: each ply material a copy with failure = 1 (lib/wff_failure.idp's rule)
+dir="$out-fail"
+rm -rf "$dir"
+run -tend 1e-5 -plies 2 -failure on -plymaterial freefem_scripts/materials/kevlar_s706.txt -out "$dir" > "$dir.log" 2>&1 \
+    || { echo "-failure on -plymaterial: exit $?"; tail -3 "$dir.log"; fail=1; }
+grep -q '^failure = 1' "$dir/material_ply_0.txt" 2>/dev/null \
+    || { echo "-failure on -plymaterial: no failure = 1 in material_ply_0.txt"; fail=1; }
+bad() {
+    want=$1; shift
+    rm -rf "$out-bad"
+    sh tools/ff.sh freefem_scripts/ballistic_impact.edp -plots 0 -tend 1e-5 -out "$out-bad" "$@" > "$out-bad.log" 2>&1
+    rc=$?
+    if [ $rc -ne 2 ] || ! grep -q -- "$want" "$out-bad.log"; then
+        echo "'$*': exit $rc, wanted 2 and '$want':"; tail -3 "$out-bad.log"; fail=1
+    elif [ -e "$out-bad" ] && [ -n "$(ls -A "$out-bad")" ]; then
+        echo "'$*': exit 2 but wrote $(ls "$out-bad")"; fail=1
+    else
+        grep -m1 -- "$want" "$out-bad.log"
+    fi
+}
+bad "-plies 0: a pack holds 1 to 40" -plies 0
+bad "-plies 41: a pack holds 1 to 40" -plies 41
+bad "-plies" -plies two
+bad "-layup '0,45,90' has 3 entries, more than -plies 2" -plies 2 -layup 0,45,90
+bad "-layup '0,45,90' has 3 entries, which do not divide -plies 4" -plies 4 -layup 0,45,90
+bad "-layup '0,x': entry 2 'x' is not an angle" -plies 2 -layup 0,x
+bad "-gap -0.001: must be >= 0" -plies 2 -gap -0.001
+bad "-plymaterial 'no_such.txt': entry 1 'no_such.txt': no such file" -plies 2 -plymaterial no_such.txt
+bad "-plymaterial 'README.md': entry 1 README.md cannot be read" -plies 2 -plymaterial README.md
+bad "-layup 45 (ply 0 at 45 deg) with -mesh meshes/ballistic_quarter.geo" -plies 2 -layup 45 -mesh meshes/ballistic_quarter.geo
+bad "-plymu -1: must be >= 0" -plies 2 -plymu -1
+bad "-plies 2 with -checkpoint" -plies 2 -checkpoint 5
+grep -v -E '^(failure|fail_strain|rupture_strain)' freefem_scripts/materials/kevlar_s706.txt > "$tmp/pack_nofailure.txt"
+bad "-failure on: -plymaterial $tmp/pack_nofailure.txt holds no failure data" -plies 2 -failure on -plymaterial "$tmp/pack_nofailure.txt"
+bad "-plies 2 with -adapt" -plies 2 -adapt 5
+exit $fail
