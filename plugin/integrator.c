@@ -244,9 +244,7 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     /* initial + external work = kinetic + internal + shear + friction + failure + eroded */
     double total = k[0] + k[1] + k[2] + k[3] + m->internal_energy +
                    m->dissipated_shear + m->dissipated_friction + m->dissipated_failure +
-                   m->eroded_energy - m->external_work - m->transfer_energy;
-    if (ply_contact != 0)
-        total += ply_contact;
+                   m->eroded_energy - m->external_work - m->transfer_energy + ply_contact;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
      * boundaries) the work done on it or the energy it now holds */
     double stored = m->internal_energy - (m->initial_total - m->initial_kinetic);
