@@ -340,13 +340,28 @@ static void ply_nodes(const wff_model *m, int p, int *first, int *end)
     *end = *first + per;
 }
 
+/* Ply p's largest u_z (less its plane's p gap) over the nodes of its elements
+ * not eroded: a fragment (a node whose elements have all eroded) flies on with
+ * the projectile or away from it and is not the ply's deflection. */
 static double ply_apex(const wff_model *m, int p)
 {
     int first, end;
     ply_nodes(m, p, &first, &end);
     double base = m->pack && m->pack->n > 1 ? p * m->pack->gap : 0, apex = -INFINITY;
-    for (int n = first; n < end; n++)
-        apex = fmax(apex, m->u[D * n + WFF_UZ] - base);
+    const unsigned char *eroded = m->el.eroded;
+    if (!eroded || m->n_eroded == 0) {
+        for (int n = first; n < end; n++)
+            apex = fmax(apex, m->u[D * n + WFF_UZ] - base);
+        return apex;
+    }
+    const int nt = m->el.n_tris, n_el = nt + m->el.n_quads;
+    for (int e = 0; e < n_el; e++) {
+        if (eroded[e] || wff_pack_element_ply(m, e) != p)
+            continue;
+        const int k = e < nt ? 3 : 4, *c = e < nt ? m->el.tri + 3 * e : m->el.quad + 4 * (e - nt);
+        for (int j = 0; j < k; j++)
+            apex = fmax(apex, m->u[D * c[j] + WFF_UZ] - base);
+    }
     return apex;
 }
 

@@ -32,6 +32,8 @@ struct wff_pack {
     int *on_projectile;       /* per node: its index in the projectile's contacts this step,
                                  -1 if none (such a node moves with the projectile along z) */
     double *normal;           /* per node: its ply's normal at the predicted positions (3) */
+    unsigned char *live;      /* per node: 1 if an element of it has not eroded */
+    double *reach;            /* per specimen node: its shortest reference edge, m */
     double projectile_dv;     /* the projectile's velocity change by the ply contact, m/s */
     double *facet_x;          /* workspace */
 };
