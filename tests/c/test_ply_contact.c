@@ -10,7 +10,16 @@
  *      swapped (every _1 key's value exchanged with its _2 partner) to round-off;
  *   4. an 8-ply impact on free edges: the projectile's impulse equals the
  *      fabric's momentum, the energy balance within 1 % of the impact energy,
- *      the penetration bounded (20 % of t); clamped edges: the balance too. */
+ *      the penetration bounded (20 % of t); clamped edges: the balance too;
+ *   5. a pair found deep inside (half the contact distance: a jump of the
+ *      pair's geometry, not this step's approach) is only stopped, not pushed
+ *      apart: at rest it stays at rest (no energy put in), closing it stops
+ *      (energy only taken out);
+ *   6. a 4-ply pack with yarn failure perforated at 600 m/s: the run goes
+ *      through (no node flung: none faster than 5 v0), every ply erodes, the
+ *      balance within 1 % of the impact energy, the ply penetration below the
+ *      contact distance, each ply's apex that of its nodes with an element left
+ *      (a fragment ahead of the ply is not its deflection). */
 #include "check.h"
 #include "test_meshes.h"
 #include "test_tmp.h"
@@ -347,6 +356,153 @@ static void eight_plies(check_state *st, int clamped)
     wff_model_free(&m);
 }
 
+/* 5. */
+static void deep_pair(check_state *st)
+{
+    const double gap = 1e-3, t = 1e-3;
+    for (int closing = 0; closing <= 1; closing++) {
+        wff_model m;
+        wff_error err;
+        if (square(st, &m, 6, 0.02, KEVLAR))
+            return;
+        if (wff_model_set_plies(&m, 2, gap, &err) ||
+            wff_model_set_option(&m, "ply_thickness", t, &err)) {
+            CHECK(st, 0, "set-up: %s", err.message);
+            wff_model_free(&m);
+            return;
+        }
+        /* ply 1 moved half the contact distance towards ply 0, as one piece */
+        const int half = m.n_nodes / 2;
+        for (int n = half; n < m.n_nodes; n++)
+            m.u[D * n + WFF_UZ] -= 0.5 * t; /* (its plane at z = gap) */
+        if (closing)
+            for (int n = 0; n < half; n++)
+                m.v[D * n + WFF_UZ] = 1; /* ply 0 closing at 1 m/s */
+        wff_energies e0, e;
+        wff_model_energies(&m, &e0);
+        if (wff_model_advance(&m, 1, 1, &err)) {
+            CHECK(st, 0, "advance: %s", err.message);
+            wff_model_free(&m);
+            return;
+        }
+        wff_model_energies(&m, &e);
+        double kin0 = e0.kinetic_inplane + e0.kinetic_transverse + e0.kinetic_amplitude;
+        double kin = e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude;
+        double vmin = INFINITY, vmax = -INFINITY;
+        for (int n = 0; n < m.n_nodes; n++) {
+            vmin = fmin(vmin, m.v[D * n + WFF_UZ]);
+            vmax = fmax(vmax, m.v[D * n + WFF_UZ]);
+        }
+        printf("  a pair half the contact distance deep, %s: kinetic %.6g -> %.6g J, v_z %.6g .. "
+               "%.6g m/s, ply contact dissipated %.3g J\n", closing ? "closing at 1 m/s" : "at rest",
+               kin0, kin, vmin, vmax, e.dissipated_ply_contact);
+        if (!closing)
+            CHECK(st, kin <= 1e-20 && vmax - vmin <= 1e-12,
+                  "at rest, deep: not pushed apart (kinetic %g J, v_z %g .. %g)", kin, vmin, vmax);
+        else
+            CHECK(st, kin < kin0 && fabs(vmax - vmin) <= 1e-9 && e.dissipated_ply_contact > 0,
+                  "closing, deep: the approach stopped (v_z %g .. %g), energy taken out (%g -> %g "
+                  "J, dissipated %g)", vmin, vmax, kin0, kin, e.dissipated_ply_contact);
+        wff_model_free(&m);
+    }
+}
+
+/* A copy of Kevlar with failure = 1 at path. */
+static int kevlar_failure(const char *path)
+{
+    FILE *in = fopen(KEVLAR, "r"), *out = fopen(path, "w");
+    char line[1024];
+    int switched = 0;
+    while (in && out && fgets(line, sizeof line, in)) {
+        if (strncmp(line, "failure = 0", 11) == 0) {
+            fputs("failure = 1\n", out);
+            switched = 1;
+        } else
+            fputs(line, out);
+    }
+    if (in)
+        fclose(in);
+    if (out && fclose(out))
+        switched = 0;
+    return switched ? 0 : -1;
+}
+
+/* 6. */
+static void perforated_pack(check_state *st)
+{
+    char path[1024];
+    test_tmp_path(tmpdir, "kevlar_failure.txt", path, sizeof path);
+    CHECK(st, kevlar_failure(path) == 0, "%s has a line 'failure = 0'", KEVLAR);
+    wff_model m;
+    wff_error err;
+    const int plies = 4;
+    const double v0 = 600, mass = 0.002, impact = 0.5 * mass * v0 * v0;
+    if (struck(st, &m, path, plies, 0, mass, v0, 24))
+        return;
+    if (wff_model_set_option(&m, "dtfactor", 0.5, &err)) {
+        CHECK(st, 0, "dtfactor: %s", err.message);
+        wff_model_free(&m);
+        return;
+    }
+    double h = 0, gap = 0, worst = 0, worst_pen = 0, fastest = 0;
+    wff_model_pack_value(&m, "ply_thickness", &h, &err);
+    wff_model_pack_value(&m, "ply_gap", &gap, &err);
+    int rc = 0;
+    for (int k = 1; k <= 60 && rc == 0; k++) {
+        rc = wff_model_advance(&m, k * 2.5e-6, 10000000, &err);
+        wff_energies e;
+        wff_model_energies(&m, &e);
+        worst = fmax(worst, fabs(e.error) * e.reference / impact);
+        double pen;
+        wff_model_pack_value(&m, "ply_penetration", &pen, &err);
+        worst_pen = fmax(worst_pen, pen);
+        for (int n = 0; n < m.n_nodes; n++)
+            fastest = fmax(fastest, sqrt(m.v[D * n] * m.v[D * n] + m.v[D * n + 1] * m.v[D * n + 1] +
+                                         m.v[D * n + 2] * m.v[D * n + 2]));
+    }
+    CHECK(st, rc == 0, "a perforating pack runs: %s", rc ? err.message : "");
+    printf("  perforated pack: %ld steps to %.3g ms, projectile %.4g m/s at tip %.4g mm, energy "
+           "error %.3g %% of the impact energy, ply penetration %.3g mm (contact distance %.3g "
+           "mm), fastest node %.4g m/s\n", m.step, 1e3 * m.time, m.projectile.velocity,
+           1e3 * m.projectile.tip, 100 * worst, 1e3 * worst_pen, 1e3 * h, fastest);
+    const int nt = m.el.n_tris, per_tris = nt / plies, per = m.n_nodes / plies;
+    int all_eroded = 1;
+    double back = -INFINITY, tip_ahead = INFINITY;
+    for (int p = 0; p < plies; p++) {
+        int eroded = 0;
+        for (int e = p * per_tris; e < (p + 1) * per_tris; e++)
+            eroded += m.el.eroded && m.el.eroded[e];
+        all_eroded = all_eroded && eroded > 0;
+        double apex;
+        wff_model_ply_value(&m, p, "apex", &apex, &err);
+        tip_ahead = fmin(tip_ahead, m.projectile.tip - (apex + p * gap));
+        printf("  perforated pack, ply %d: %d elements eroded, apex %.4f mm\n", p, eroded, 1e3 * apex);
+    }
+    CHECK(st, all_eroded, "every ply of the pack erodes");
+    CHECK(st, m.projectile.velocity > 0 && tip_ahead > 0.01,
+          "the projectile goes through every ply (%g m/s, %g m ahead of the nearest)",
+          m.projectile.velocity, tip_ahead);
+    CHECK(st, fastest <= 5 * v0, "no node flung (fastest %g m/s, bound 5 v0)", fastest);
+    CHECK(st, worst <= 0.01, "energy balance %.3g %% of the impact energy", 100 * worst);
+    CHECK(st, worst_pen < h, "ply penetration %g m below the contact distance %g m", worst_pen, h);
+    /* a fragment made by hand: the back ply's node nearest its corner with every
+     * element of it eroded, moved 10 mm ahead: not the ply's apex */
+    wff_model_ply_value(&m, plies - 1, "apex", &back, &err);
+    const int node = (plies - 1) * per; /* (a corner node of the test rectangle) */
+    for (int e = (plies - 1) * per_tris; e < plies * per_tris; e++)
+        for (int j = 0; j < 3; j++)
+            if (m.el.tri[3 * e + j] == node && !m.el.eroded[e])
+                m.el.eroded[e] = 1, m.n_eroded++;
+    m.u[D * node + WFF_UZ] = back + (plies - 1) * gap + 0.01;
+    double after;
+    wff_model_ply_value(&m, plies - 1, "apex", &after, &err);
+    printf("  a fragment of the back ply 10 mm ahead of it: its apex %.6g -> %.6g mm\n", 1e3 * back,
+           1e3 * after);
+    CHECK(st, after <= back && after > back - 0.01,
+          "a fragment is not the ply's apex (%g -> %g m)", back, after);
+    wff_model_free(&m);
+}
+
 int main(void)
 {
     check_state st = {0, 0};
@@ -358,6 +514,8 @@ int main(void)
     eight_plies(&st, 0);
     eight_plies(&st, 1);
     double_ply(&st);
+    deep_pair(&st);
+    perforated_pack(&st);
     test_tmp_remove(tmpdir);
     return check_summary(&st, "test_ply_contact");
 }
