@@ -464,9 +464,11 @@ int wff_model_pack_value(const wff_model *m, const char *key, double *value, wff
         *value = P ? P->gap : 0;
     else if (strcmp(key, "ply_slip") == 0)
         *value = ply_slip(m);
+    else if (strcmp(key, "ply_contact_seconds") == 0)
+        *value = P ? P->seconds : 0;
     else
         return wff_fail(err, "unknown pack value '%s' (known: plies, back_face, "
                         "ply_contact_dissipated, ply_penetration, ply_contacts, ply_mu, "
-                        "ply_thickness, ply_gap, ply_slip)", key);
+                        "ply_thickness, ply_gap, ply_slip, ply_contact_seconds)", key);
     return 0;
 }

@@ -35,7 +35,9 @@ struct wff_pack {
     unsigned char *live;      /* per node: 1 if an element of it has not eroded */
     double *reach;            /* per specimen node: its shortest reference edge, m */
     double projectile_dv;     /* the projectile's velocity change by the ply contact, m/s */
-    double *facet_x;          /* workspace */
+    double seconds;           /* wall time spent in the ply contact so far, s */
+    double *predicted;        /* per node: its position at t + dt before the correction (3) */
+    int *facet;               /* per facet of a ply: its specimen nodes, counter-clockwise (3) */
 };
 
 static inline int wff_pack_plies(const wff_model *m)

@@ -30,6 +30,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 void wff_ply_contact_free(struct wff_pack *P)
 {
@@ -44,9 +45,10 @@ void wff_ply_contact_free(struct wff_pack *P)
     P->normal = P->reach = NULL;
     P->live = NULL;
     P->active = P->on_projectile = NULL;
-    free(P->facet_x);
-    P->touched_list = NULL;
-    P->impulse = P->facet_x = NULL;
+    free(P->predicted);
+    free(P->facet);
+    P->facet = P->touched_list = NULL;
+    P->impulse = P->predicted = NULL;
     P->touched = NULL;
 }
 
@@ -111,11 +113,13 @@ static int ensure_workspace(wff_model *m, wff_error *err)
     P->normal = malloc(sizeof(double) * 3 * (size_t)m->n_nodes);
     P->live = malloc((size_t)m->n_nodes);
     P->reach = malloc(sizeof(double) * (size_t)P->nodes);
+    P->predicted = malloc(sizeof(double) * 3 * (size_t)m->n_nodes);
+    P->facet = malloc(sizeof(int) * 3 * (size_t)facet_count(P));
     if (P->on_projectile)
         for (int n = 0; n < m->n_nodes; n++)
             P->on_projectile[n] = -1;
     if (!P->impulse || !P->touched || !P->touched_list || !P->active ||
-        !P->on_projectile || !P->normal || !P->live || !P->reach) {
+        !P->on_projectile || !P->normal || !P->live || !P->reach || !P->predicted || !P->facet) {
         wff_ply_contact_free(P);
         return wff_fail(err, "ply contact: out of memory for %zu node pairs", slots);
     }
@@ -123,7 +127,7 @@ static int ensure_workspace(wff_model *m, wff_error *err)
     for (int i = 0; i < P->nodes; i++)
         P->reach[i] = INFINITY;
     for (int f = 0; f < facet_count(P); f++) {
-        int a[3];
+        int *a = P->facet + 3 * f;
         facet_nodes(m, f, a);
         for (int k = 0; k < 3; k++) {
             const double *p0 = m->mesh.xy + 2 * a[k], *p1 = m->mesh.xy + 2 * a[(k + 1) % 3];
@@ -211,6 +215,8 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
     const struct wff_pack *P = m->pack;
     const int A = pair * P->nodes + i, B = A + P->nodes;
     double xa[3], xb[3], nrm[3], len = 0;
+    if (!P->live[A] || !P->live[B])
+        return 0;
     position(m, A, dt, xa);
     position(m, B, dt, xb);
     for (int c = 0; c < 3; c++) {
@@ -226,6 +232,11 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
         dist += (xb[c] - xa[c]) * nrm[c];
         closing += (m->v[D * A + c] - m->v[D * B + c]) * nrm[c];
     }
+    double delta = h - dist; /* > 0: closer than h */
+    if (delta <= ROUND_OFF * h) {
+        *rest = delta;
+        return 0;
+    }
     for (int c = 0; c < 3; c++) {
         double t = xb[c] - xa[c] - dist * nrm[c];
         slip += t * t;
@@ -233,12 +244,10 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
     /* left out: a node with no element left (a fragment), a pair slid apart (a
      * torn ply's node beside the shank and the next ply's under the nose), a
      * pair that has crossed (B behind A's side: no facet of one faces the other) */
-    if (!P->live[A] || !P->live[B] || slip > SLIP_LIMIT * SLIP_LIMIT * P->reach[i] * P->reach[i] ||
-        dist < 0)
+    if (slip > SLIP_LIMIT * SLIP_LIMIT * P->reach[i] * P->reach[i] || dist < 0)
         return 0;
-    double delta = h - dist; /* > 0: closer than h */
     *rest = delta;
-    if (delta <= ROUND_OFF * h || !apply)
+    if (!apply)
         return 0;
     /* closer than h now already: only RECOVERY of that per step, the rest of the
      * correction stops the approach (pushing it all out at once would put energy in);
@@ -293,15 +302,16 @@ static void nodal_normals(wff_model *m, double dt)
     const unsigned char *eroded = m->el.eroded;
     memset(P->normal, 0, sizeof(double) * 3 * (size_t)m->n_nodes);
     memset(P->live, 0, (size_t)m->n_nodes);
+    for (int n = 0; n < m->n_nodes; n++)
+        position(m, n, dt, P->predicted + 3 * n);
     for (int q = 0; q < P->n; q++)
         for (int f = 0; f < nf; f++) {
             if (eroded && eroded[facet_element(P, q, f)])
                 continue;
-            int a[3];
-            facet_nodes(m, f, a);
-            double x[3][3];
+            const int *a = P->facet + 3 * f;
+            const double *x[3];
             for (int k = 0; k < 3; k++)
-                position(m, a[k] + q * P->nodes, dt, x[k]);
+                x[k] = P->predicted + 3 * (a[k] + q * P->nodes);
             double e1[3], e2[3];
             for (int i = 0; i < 3; i++)
                 e1[i] = x[1][i] - x[0][i], e2[i] = x[2][i] - x[0][i];
@@ -315,11 +325,19 @@ static void nodal_normals(wff_model *m, double dt)
         }
 }
 
+static double wall_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
 {
     struct wff_pack *P = m->pack;
     if (!P || P->n < 2)
         return 0;
+    const double started = wall_now();
     if (!P->impulse && ensure_workspace(m, err))
         return -1;
     const int nn = P->nodes;
@@ -335,19 +353,20 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
     P->n_touched = 0;
     P->n_active = 0;
     /* sweep 0 over every pair, then sweeps over those corrected, then a
-     * measure of what is left over every pair */
-    for (int sweep = 0; sweep <= MAX_SWEEPS + 1; sweep++) {
-        const int measure = sweep == MAX_SWEEPS + 1, all = sweep == 0 || measure;
-        const int n = all ? (P->n - 1) * nn : P->n_active;
+     * measure of what is left: over the pairs of the nodes an impulse moved
+     * (the others are as sweep 0 left them, their rest kept from it) */
+    double untouched = 0;
+    for (int sweep = 0; sweep <= MAX_SWEEPS; sweep++) {
+        const int n = sweep == 0 ? (P->n - 1) * nn : P->n_active;
         double worst = 0;
         for (int k = 0; k < n; k++) {
             /* later sweeps alternate direction (symmetric Gauss-Seidel) */
-            const int slot = all ? k : P->active[sweep % 2 ? P->n_active - 1 - k : k];
+            const int slot = sweep == 0 ? k : P->active[sweep % 2 ? P->n_active - 1 - k : k];
             double rest = 0;
-            int r = correct_pair(m, slot / nn, slot % nn, h, dt, dt_mid, !measure, &rest);
-            if (measure) {
-                P->penetration = fmax(P->penetration, rest);
-            } else if (r > 0) {
+            int r = correct_pair(m, slot / nn, slot % nn, h, dt, dt_mid, 1, &rest);
+            if (sweep == 0 && r == 0)
+                untouched = fmax(untouched, rest);
+            if (r > 0) {
                 worst = fmax(worst, rest);
                 if (sweep == 0) {
                     P->active[P->n_active++] = slot;
@@ -355,10 +374,21 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
                 }
             }
         }
-        if (!measure && sweep > 0 && worst <= SWEEP_TOLERANCE * h)
-            sweep = MAX_SWEEPS; /* converged: the measure next */
+        if (sweep > 0 && worst <= SWEEP_TOLERANCE * h)
+            break; /* converged */
         if (P->n_active == 0 && sweep == 0)
-            sweep = MAX_SWEEPS;
+            break;
+    }
+    P->penetration = untouched;
+    for (int t = 0; t < P->n_touched; t++) {
+        const int node = P->touched_list[t], q = node / nn, i = node % nn;
+        for (int pair = q - 1; pair <= q; pair++) {
+            if (pair < 0 || pair >= P->n - 1)
+                continue;
+            double rest = 0;
+            correct_pair(m, pair, i, h, dt, dt_mid, 0, &rest);
+            P->penetration = fmax(P->penetration, rest);
+        }
     }
     /* forces and the work of the impulses at the integer-step velocities; a
      * node the projectile pushed too: its impulse j1 worked at the integer-step
@@ -392,5 +422,6 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
     }
     P->n_touched = 0;
     P->dissipated -= work;
+    P->seconds += wall_now() - started;
     return 0;
 }

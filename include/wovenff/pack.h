@@ -81,8 +81,9 @@ int wff_model_ply_value(const wff_model *m, int ply, const char *key, double *va
  * m), ply_contacts (node-facet pairs corrected in the last step), ply_mu,
  * ply_thickness (m), ply_gap (m), ply_slip (the largest in-plane displacement of
  * a node relative to its partner in the next ply, m: the contact pairs node i
- * with node i, so this must stay small against the element size). -1 (err set)
- * for another key. */
+ * with node i, so this must stay small against the element size),
+ * ply_contact_seconds (wall time spent in the ply contact so far, s: its share
+ * of the step). -1 (err set) for another key. */
 int wff_model_pack_value(const wff_model *m, const char *key, double *value, wff_error *err);
 
 #ifdef __cplusplus

@@ -89,7 +89,8 @@ const StateQuantity kState[] = {
     {"back_face", false},         {"ply_contact_dissipated", false},
     {"ply_penetration", false},   {"ply_contacts", false},
     {"ply_slip", false},          {"ply_mu", false},
-    {"ply_thickness", false},     {"ply_gap", false}};
+    {"ply_thickness", false},     {"ply_gap", false},
+    {"ply_contact_seconds", false}};
 const int kStateSize = sizeof kState / sizeof kState[0];
 
 std::string state_names()
@@ -129,7 +130,8 @@ void state_values(const wff_model *m, bool with_energies, double values[kStateSi
                         pack_value(m, "back_face"), pack_value(m, "ply_contact_dissipated"),
                         pack_value(m, "ply_penetration"), pack_value(m, "ply_contacts"),
                         pack_value(m, "ply_slip"), pack_value(m, "ply_mu"),
-                        pack_value(m, "ply_thickness"), pack_value(m, "ply_gap")};
+                        pack_value(m, "ply_thickness"), pack_value(m, "ply_gap"),
+                        pack_value(m, "ply_contact_seconds")};
     static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
     for (int i = 0; i < kStateSize; i++)
         values[i] = v[i];
