@@ -678,20 +678,7 @@ static void check_king_impact(check_state *st)
         return;
     }
     test_tmp_path(dir, "kevlar_failure.txt", path, sizeof path);
-    FILE *in = fopen(KEVLAR, "r"), *out = fopen(path, "w");
-    char line[1024];
-    int switched = 0;
-    while (in && out && fgets(line, sizeof line, in)) {
-        if (strncmp(line, "failure = 0", 11) == 0) {
-            fputs("failure = 1\n", out);
-            switched = 1;
-        } else
-            fputs(line, out);
-    }
-    if (in)
-        fclose(in);
-    if (out)
-        fclose(out);
+    int switched = test_tmp_copy_replacing(KEVLAR, path, "failure = 0", "failure = 1\n") == 1;
     CHECK(st, switched, "%s has a line 'failure = 0'", KEVLAR);
     wff_model m;
     wff_error err;

@@ -407,32 +407,13 @@ static void deep_pair(check_state *st)
     }
 }
 
-/* A copy of Kevlar with failure = 1 at path. */
-static int kevlar_failure(const char *path)
-{
-    FILE *in = fopen(KEVLAR, "r"), *out = fopen(path, "w");
-    char line[1024];
-    int switched = 0;
-    while (in && out && fgets(line, sizeof line, in)) {
-        if (strncmp(line, "failure = 0", 11) == 0) {
-            fputs("failure = 1\n", out);
-            switched = 1;
-        } else
-            fputs(line, out);
-    }
-    if (in)
-        fclose(in);
-    if (out && fclose(out))
-        switched = 0;
-    return switched ? 0 : -1;
-}
-
 /* 6. */
 static void perforated_pack(check_state *st)
 {
     char path[1024];
     test_tmp_path(tmpdir, "kevlar_failure.txt", path, sizeof path);
-    CHECK(st, kevlar_failure(path) == 0, "%s has a line 'failure = 0'", KEVLAR);
+    CHECK(st, test_tmp_copy_replacing(KEVLAR, path, "failure = 0", "failure = 1\n") == 1,
+          "%s has a line 'failure = 0'", KEVLAR);
     wff_model m;
     wff_error err;
     const int plies = 4;

@@ -5,6 +5,7 @@
 #include <ftw.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <unistd.h>
 
 int test_tmp_dir(const char *name, char *dir, size_t size)
@@ -38,4 +39,30 @@ static int remove_entry(const char *path, const struct stat *sb, int flag, struc
 void test_tmp_remove(const char *dir)
 {
     nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+int test_tmp_copy_replacing(const char *src, const char *dst, const char *prefix,
+                            const char *line)
+{
+    FILE *in = fopen(src, "r"), *out = in ? fopen(dst, "w") : NULL;
+    if (!in || !out) {
+        if (in)
+            fclose(in);
+        return -1;
+    }
+    char text[4096];
+    int replaced = 0;
+    const size_t n = strlen(prefix);
+    while (fgets(text, sizeof text, in)) {
+        if (strncmp(text, prefix, n) == 0) {
+            fputs(line, out);
+            replaced++;
+        } else
+            fputs(text, out);
+    }
+    int bad = ferror(in);
+    fclose(in);
+    if (fclose(out) || bad)
+        return -1;
+    return replaced;
 }
