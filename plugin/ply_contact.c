@@ -158,6 +158,9 @@ static int ensure_workspace(wff_model *m, wff_error *err)
 /* A pair whose nodes have slid apart in plane by more than SLIP_LIMIT of the
  * node's shortest reference edge no longer faces each other: it is left out. */
 #define SLIP_LIMIT 0.5
+/* Fewest DOFs for which the normals take a team (as the step's passes,
+ * step_threads.c: a team's start costs ~10 µs) */
+#define PLY_TEAM_MIN_DOFS 16384
 
 /* The mass component c of node n moves with: its own, and the projectile's
  * along z while the projectile pushes it (this step's projectile contact): a
@@ -298,31 +301,38 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
 static void nodal_normals(wff_model *m, double dt)
 {
     struct wff_pack *P = m->pack;
-    const int nf = facet_count(P);
+    const int nf = facet_count(P), nn = P->nodes;
     const unsigned char *eroded = m->el.eroded;
-    memset(P->normal, 0, sizeof(double) * 3 * (size_t)m->n_nodes);
-    memset(P->live, 0, (size_t)m->n_nodes);
-    for (int n = 0; n < m->n_nodes; n++)
-        position(m, n, dt, P->predicted + 3 * n);
-    for (int q = 0; q < P->n; q++)
+    /* one ply a thread's item: a ply's facets write its own nodes only, in the
+     * same order whatever the threads (the same bits) */
+    int team = m->n_dofs < PLY_TEAM_MIN_DOFS ? 1 : wff_elements_team(&m->el);
+    team = team > P->n ? P->n : team < 1 ? 1 : team;
+#pragma omp parallel for schedule(static) num_threads(team) if (team > 1)
+    for (int q = 0; q < P->n; q++) {
+        double *normal = P->normal + 3 * (size_t)q * nn, *predicted = P->predicted + 3 * (size_t)q * nn;
+        unsigned char *live = P->live + (size_t)q * nn;
+        memset(normal, 0, sizeof(double) * 3 * (size_t)nn);
+        memset(live, 0, (size_t)nn);
+        for (int i = 0; i < nn; i++)
+            position(m, q * nn + i, dt, predicted + 3 * i);
         for (int f = 0; f < nf; f++) {
             if (eroded && eroded[facet_element(P, q, f)])
                 continue;
             const int *a = P->facet + 3 * f;
-            const double *x[3];
-            for (int k = 0; k < 3; k++)
-                x[k] = P->predicted + 3 * (a[k] + q * P->nodes);
+            const double *x0 = predicted + 3 * a[0], *x1 = predicted + 3 * a[1],
+                         *x2 = predicted + 3 * a[2];
             double e1[3], e2[3];
             for (int i = 0; i < 3; i++)
-                e1[i] = x[1][i] - x[0][i], e2[i] = x[2][i] - x[0][i];
+                e1[i] = x1[i] - x0[i], e2[i] = x2[i] - x0[i];
             double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
                            e1[0] * e2[1] - e1[1] * e2[0]}; /* (twice the area) */
             for (int k = 0; k < 3; k++) {
                 for (int i = 0; i < 3; i++)
-                    P->normal[3 * (a[k] + q * P->nodes) + i] += n[i];
-                P->live[a[k] + q * P->nodes] = 1;
+                    normal[3 * a[k] + i] += n[i];
+                live[a[k]] = 1;
             }
         }
+    }
 }
 
 static double wall_now(void)
