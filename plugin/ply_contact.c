@@ -12,7 +12,11 @@
  * exactly), then Coulomb friction μ against the tangential relative velocity,
  * |j_t| <= μ j_n (stick if the cone allows). A pair already closer than h now
  * has only RECOVERY of that removed per step (pushing it all out at once would
- * put energy in). The pairs corrected are swept again (symmetric Gauss-Seidel)
+ * put energy in), and one deeper than RECOVERY_SPAN h is only stopped from
+ * closing. Left out: a pair with a fragment (a node whose facets have all
+ * eroded; the normals are of the facets left), one slid apart in plane by more
+ * than SLIP_LIMIT of the node's shortest edge, one that has crossed (a torn
+ * ply's nodes dragged away from their partners). The pairs corrected are swept again (symmetric Gauss-Seidel)
  * until what is left is below SWEEP_TOLERANCE h (a pack pushed as a chain). A
  * component held by a boundary condition takes no impulse: its support's
  * reaction does; a node the projectile pushed this step moves with it along z
@@ -24,7 +28,8 @@
  * size (the inter-ply friction keeps it so near the impact; a ply that slides
  * by more meets its neighbour's node i still, not the node now below it);
  * plies pair with their neighbours only (enough while plies cannot pass each
- * other, which the contact keeps). Plain serial code. */
+ * other, which the contact keeps). The normals pass runs one ply a thread; the
+ * sweeps are serial. */
 #include "pack.h"
 
 #include <math.h>

@@ -11,7 +11,7 @@
 //   real a = wovenffPlyGet(md, p, "apex");   // apex kinetic stored dissipated absorbed
 //                                            // failed eroded (J whole specimen, m)
 //   wovenffGet(md, "back_face"), "plies", "ply_contact_dissipated", "ply_penetration",
-//   "ply_contacts" (ff_solver.cpp's state list); wovenffField(md, "ply", v).
+//   "ply_contacts", "ply_contact_seconds" (ff_solver.cpp's state list); wovenffField(md, "ply", v).
 // Failures name the function, the ply and the key. Knows the public API only.
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
