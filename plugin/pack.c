@@ -340,9 +340,80 @@ static void ply_nodes(const wff_model *m, int p, int *first, int *end)
     *end = *first + per;
 }
 
-/* Ply p's largest u_z (less its plane's p gap) over the nodes of its elements
- * not eroded: a fragment (a node whose elements have all eroded) flies on with
- * the projectile or away from it and is not the ply's deflection. */
+/* Ply p's element e's nodes (k of them) into c. */
+static int element_nodes(const wff_model *m, int e, const int **c)
+{
+    const int nt = m->el.n_tris;
+    *c = e < nt ? m->el.tri + 3 * e : m->el.quad + 4 * (e - nt);
+    return e < nt ? 3 : 4;
+}
+
+/* The largest u_z − base over the nodes reached from a node whose u_z is held
+ * (an edge, the clamp) through ply p's elements not eroded; -1 if it cannot
+ * tell (no such node, out of memory). */
+static int attached_apex(const wff_model *m, int p, int first, int end, double base, double *apex)
+{
+    const int nt = m->el.n_tris, n_el = nt + m->el.n_quads, nn = end - first;
+    const unsigned char *eroded = m->el.eroded;
+    int *offset = calloc((size_t)nn + 1, sizeof(int)), *queue = malloc(sizeof(int) * (size_t)nn);
+    unsigned char *seen = calloc((size_t)nn, 1);
+    int *incident = NULL, rc = -1;
+    if (!offset || !queue || !seen)
+        goto done;
+    for (int e = 0; e < n_el; e++) { /* node -> live elements (CSR) */
+        if (eroded[e] || wff_pack_element_ply(m, e) != p)
+            continue;
+        const int *c;
+        for (int j = 0, k = element_nodes(m, e, &c); j < k; j++)
+            offset[c[j] - first + 1]++;
+    }
+    for (int i = 0; i < nn; i++)
+        offset[i + 1] += offset[i];
+    incident = malloc(sizeof(int) * (size_t)(offset[nn] > 0 ? offset[nn] : 1));
+    int *fill = queue; /* (the queue's room, as fill counters first) */
+    if (!incident)
+        goto done;
+    memcpy(fill, offset, sizeof(int) * (size_t)nn);
+    for (int e = 0; e < n_el; e++) {
+        if (eroded[e] || wff_pack_element_ply(m, e) != p)
+            continue;
+        const int *c;
+        for (int j = 0, k = element_nodes(m, e, &c); j < k; j++)
+            incident[fill[c[j] - first]++] = e;
+    }
+    int head = 0, tail = 0;
+    for (int i = 0; i < nn; i++)
+        if (offset[i + 1] > offset[i] && m->dof_kind[D * (first + i) + WFF_UZ] != WFF_DOF_FREE)
+            seen[i] = 1, queue[tail++] = i;
+    if (tail == 0)
+        goto done; /* nothing held: every element not eroded counts */
+    double top = -INFINITY;
+    while (head < tail) {
+        const int i = queue[head++];
+        top = fmax(top, m->u[D * (first + i) + WFF_UZ] - base);
+        for (int k = offset[i]; k < offset[i + 1]; k++) {
+            const int *c;
+            for (int j = 0, kn = element_nodes(m, incident[k], &c); j < kn; j++)
+                if (!seen[c[j] - first])
+                    seen[c[j] - first] = 1, queue[tail++] = c[j] - first;
+        }
+    }
+    *apex = top;
+    rc = 0;
+done:
+    free(offset);
+    free(queue);
+    free(seen);
+    free(incident);
+    return rc;
+}
+
+/* Ply p's largest u_z (less its plane's p gap). Once elements have eroded,
+ * over the part of the ply still attached: the nodes reached from the held
+ * edge through elements not eroded (or, with no held node, of any element not
+ * eroded). A fragment (a node whose elements have all eroded, or a piece torn
+ * off whole) flies on with the projectile or away from it and is not the ply's
+ * deflection. */
 static double ply_apex(const wff_model *m, int p)
 {
     int first, end;
@@ -354,12 +425,14 @@ static double ply_apex(const wff_model *m, int p)
             apex = fmax(apex, m->u[D * n + WFF_UZ] - base);
         return apex;
     }
-    const int nt = m->el.n_tris, n_el = nt + m->el.n_quads;
+    if (attached_apex(m, p, first, end, base, &apex) == 0)
+        return apex;
+    const int n_el = m->el.n_tris + m->el.n_quads;
     for (int e = 0; e < n_el; e++) {
         if (eroded[e] || wff_pack_element_ply(m, e) != p)
             continue;
-        const int k = e < nt ? 3 : 4, *c = e < nt ? m->el.tri + 3 * e : m->el.quad + 4 * (e - nt);
-        for (int j = 0; j < k; j++)
+        const int *c;
+        for (int j = 0, k = element_nodes(m, e, &c); j < k; j++)
             apex = fmax(apex, m->u[D * c[j] + WFF_UZ] - base);
     }
     return apex;
