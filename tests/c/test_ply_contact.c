@@ -294,6 +294,18 @@ static void quarter_turn(check_state *st)
     wff_model_free(&b);
 }
 
+/* The largest energy error (a share of the impact energy) and ply penetration so far. */
+static void track_worst(const wff_model *m, double impact, double *worst, double *worst_pen)
+{
+    wff_energies e;
+    wff_error err;
+    double pen = 0;
+    wff_model_energies(m, &e);
+    *worst = fmax(*worst, fabs(e.error) * e.reference / impact);
+    wff_model_pack_value(m, "ply_penetration", &pen, &err);
+    *worst_pen = fmax(*worst_pen, pen);
+}
+
 /* 4. */
 static void eight_plies(check_state *st, int clamped)
 {
@@ -322,12 +334,7 @@ static void eight_plies(check_state *st, int clamped)
             CHECK(st, 0, "advance: %s", err.message);
             break;
         }
-        wff_energies e;
-        wff_model_energies(&m, &e);
-        worst = fmax(worst, fabs(e.error) * e.reference / impact);
-        double pen;
-        wff_model_pack_value(&m, "ply_penetration", &pen, &err);
-        worst_pen = fmax(worst_pen, pen);
+        track_worst(&m, impact, &worst, &worst_pen);
     }
     wff_energies e;
     wff_model_energies(&m, &e);
@@ -432,12 +439,7 @@ static void perforated_pack(check_state *st)
     int rc = 0;
     for (int k = 1; k <= 60 && rc == 0; k++) {
         rc = wff_model_advance(&m, k * 2.5e-6, 10000000, &err);
-        wff_energies e;
-        wff_model_energies(&m, &e);
-        worst = fmax(worst, fabs(e.error) * e.reference / impact);
-        double pen;
-        wff_model_pack_value(&m, "ply_penetration", &pen, &err);
-        worst_pen = fmax(worst_pen, pen);
+        track_worst(&m, impact, &worst, &worst_pen);
         for (int n = 0; n < m.n_nodes; n++)
             fastest = fmax(fastest, sqrt(m.v[D * n] * m.v[D * n] + m.v[D * n + 1] * m.v[D * n + 1] +
                                          m.v[D * n + 2] * m.v[D * n + 2]));
