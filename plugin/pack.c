@@ -427,13 +427,15 @@ static double ply_apex(const wff_model *m, int p)
     }
     if (attached_apex(m, p, first, end, base, &apex) == 0)
         return apex;
+    apex = 0; /* (every element eroded: 0) */
     const int n_el = m->el.n_tris + m->el.n_quads;
+    int any = 0;
     for (int e = 0; e < n_el; e++) {
         if (eroded[e] || wff_pack_element_ply(m, e) != p)
             continue;
         const int *c;
         for (int j = 0, k = element_nodes(m, e, &c); j < k; j++)
-            apex = fmax(apex, m->u[D * c[j] + WFF_UZ] - base);
+            apex = any++ ? fmax(apex, m->u[D * c[j] + WFF_UZ] - base) : m->u[D * c[j] + WFF_UZ] - base;
     }
     return apex;
 }
@@ -539,9 +541,12 @@ int wff_model_pack_value(const wff_model *m, const char *key, double *value, wff
         *value = ply_slip(m);
     else if (strcmp(key, "ply_contact_seconds") == 0)
         *value = P ? P->seconds : 0;
+    else if (strcmp(key, "ply_left_out") == 0)
+        *value = P ? P->left_out : 0;
     else
         return wff_fail(err, "unknown pack value '%s' (known: plies, back_face, "
                         "ply_contact_dissipated, ply_penetration, ply_contacts, ply_mu, "
-                        "ply_thickness, ply_gap, ply_slip, ply_contact_seconds)", key);
+                        "ply_thickness, ply_gap, ply_slip, ply_contact_seconds, ply_left_out)",
+                        key);
     return 0;
 }

@@ -38,6 +38,8 @@ struct wff_pack {
     double seconds;           /* wall time spent in the ply contact so far, s */
     double *predicted;        /* per node: its position at t + dt before the correction (3) */
     int *facet;               /* per facet of a ply: its specimen nodes, counter-clockwise (3) */
+    double *rest;             /* per pair: h − distance after sweep 0, m (the measure's) */
+    int left_out;             /* pairs left out in the last step (fragment, slid apart, crossed) */
 };
 
 static inline int wff_pack_plies(const wff_model *m)

@@ -52,6 +52,8 @@ void wff_ply_contact_free(struct wff_pack *P)
     P->active = P->on_projectile = NULL;
     free(P->predicted);
     free(P->facet);
+    free(P->rest);
+    P->rest = NULL;
     P->facet = P->touched_list = NULL;
     P->impulse = P->predicted = NULL;
     P->touched = NULL;
@@ -120,11 +122,12 @@ static int ensure_workspace(wff_model *m, wff_error *err)
     P->reach = malloc(sizeof(double) * (size_t)P->nodes);
     P->predicted = malloc(sizeof(double) * 3 * (size_t)m->n_nodes);
     P->facet = malloc(sizeof(int) * 3 * (size_t)facet_count(P));
+    P->rest = malloc(sizeof(double) * (slots + 1));
     if (P->on_projectile)
         for (int n = 0; n < m->n_nodes; n++)
             P->on_projectile[n] = -1;
     if (!P->impulse || !P->touched || !P->touched_list || !P->active ||
-        !P->on_projectile || !P->normal || !P->live || !P->reach || !P->predicted || !P->facet) {
+        !P->on_projectile || !P->normal || !P->live || !P->reach || !P->predicted || !P->facet || !P->rest) {
         wff_ply_contact_free(P);
         return wff_fail(err, "ply contact: out of memory for %zu node pairs", slots);
     }
@@ -160,6 +163,11 @@ static int ensure_workspace(wff_model *m, wff_error *err)
  * pair apart at RECOVERY of it per step would fling its nodes at km/s (seen: a
  * torn 4-ply pack, 2 mm at 0.2 per 5e-8 s step, 6 km/s). */
 #define RECOVERY_SPAN 0.05
+/* A pair whose nodes are now on each other's far side by more than
+ * CROSS_LIMIT of the node's shortest reference edge has crossed (a torn ply's
+ * node dragged past its partner): left out. (Measured at the positions now, so
+ * a pair that would cross in this step is corrected, at any gap, 0 too.) */
+#define CROSS_LIMIT 0.01
 /* A pair whose nodes have slid apart in plane by more than SLIP_LIMIT of the
  * node's shortest reference edge no longer faces each other: it is left out. */
 #define SLIP_LIMIT 0.5
@@ -215,7 +223,8 @@ static double inverse_mass(const wff_model *m, int n, const double d[3])
 }
 
 /* One pair: node i of ply `pair` (below, A) and of ply pair + 1 (above, B).
- * Returns 1 if corrected, 0 if not; *rest the interpenetration h − d (m,
+ * Returns 1 if corrected, 0 if not in contact, -1 if left out (a fragment, slid
+ * apart, crossed); *rest the interpenetration h − d (m,
  * before the correction). */
 static int correct_pair(wff_model *m, int pair, int i, double h, double dt, double dt_mid,
                         int apply, double *rest)
@@ -224,7 +233,7 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
     const int A = pair * P->nodes + i, B = A + P->nodes;
     double xa[3], xb[3], nrm[3], len = 0;
     if (!P->live[A] || !P->live[B])
-        return 0;
+        return -1; /* a fragment: left out */
     position(m, A, dt, xa);
     position(m, B, dt, xb);
     for (int c = 0; c < 3; c++) {
@@ -249,18 +258,18 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
         double t = xb[c] - xa[c] - dist * nrm[c];
         slip += t * t;
     }
-    /* left out: a node with no element left (a fragment), a pair slid apart (a
-     * torn ply's node beside the shank and the next ply's under the nose), a
-     * pair that has crossed (B behind A's side: no facet of one faces the other) */
-    if (slip > SLIP_LIMIT * SLIP_LIMIT * P->reach[i] * P->reach[i] || dist < 0)
-        return 0;
+    /* left out: a pair slid apart (a torn ply's node beside the shank and the
+     * next ply's under the nose), a pair that has crossed */
+    const double reach = SLIP_LIMIT * P->reach[i], now = delta - dt * closing; /* h − distance now */
+    if (slip > reach * reach || h - now < -CROSS_LIMIT * P->reach[i])
+        return -1;
     *rest = delta;
     if (!apply)
         return 0;
     /* closer than h now already: only RECOVERY of that per step, the rest of the
-     * correction stops the approach (pushing it all out at once would put energy in);
+     * correction stops the approach (pushing it all out at once would put energy
+     * in: the push-out parts the pair at up to RECOVERY RECOVERY_SPAN h / dt);
      * above RECOVERY_SPAN h, only the approach is stopped */
-    double now = delta - dt * closing; /* h − distance now */
     if (now > RECOVERY_SPAN * h)
         delta -= now;
     else if (now > 0)
@@ -370,7 +379,7 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
     /* sweep 0 over every pair, then sweeps over those corrected, then a
      * measure of what is left: over the pairs of the nodes an impulse moved
      * (the others are as sweep 0 left them, their rest kept from it) */
-    double untouched = 0;
+    P->left_out = 0;
     for (int sweep = 0; sweep <= MAX_SWEEPS; sweep++) {
         const int n = sweep == 0 ? (P->n - 1) * nn : P->n_active;
         double worst = 0;
@@ -379,8 +388,10 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
             const int slot = sweep == 0 ? k : P->active[sweep % 2 ? P->n_active - 1 - k : k];
             double rest = 0;
             int r = correct_pair(m, slot / nn, slot % nn, h, dt, dt_mid, 1, &rest);
-            if (sweep == 0 && r == 0)
-                untouched = fmax(untouched, rest);
+            if (sweep == 0) {
+                P->rest[slot] = rest;
+                P->left_out += r < 0;
+            }
             if (r > 0) {
                 worst = fmax(worst, rest);
                 if (sweep == 0) {
@@ -394,6 +405,11 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
         if (P->n_active == 0 && sweep == 0)
             break;
     }
+    /* the pairs no impulse moved: as sweep 0 measured them */
+    double untouched = 0;
+    for (int slot = 0; slot < (P->n - 1) * nn; slot++)
+        if (!P->touched[slot] && !P->touched[slot + nn])
+            untouched = fmax(untouched, P->rest[slot]);
     P->penetration = untouched;
     for (int t = 0; t < P->n_touched; t++) {
         const int node = P->touched_list[t], q = node / nn, i = node % nn;

@@ -90,7 +90,7 @@ const StateQuantity kState[] = {
     {"ply_penetration", false},   {"ply_contacts", false},
     {"ply_slip", false},          {"ply_mu", false},
     {"ply_thickness", false},     {"ply_gap", false},
-    {"ply_contact_seconds", false}};
+    {"ply_contact_seconds", false}, {"ply_left_out", false}};
 const int kStateSize = sizeof kState / sizeof kState[0];
 
 std::string state_names()
@@ -110,13 +110,21 @@ double pack_value(const wff_model *m, const char *key)
     return v;
 }
 
-// Every state quantity in kState order; the energies only if with_energies
-// (else 0).
-void state_values(const wff_model *m, bool with_energies, double values[kStateSize])
+// A pack's key (plies, back_face, ply_*): include/wovenff/pack.h's values.
+static bool is_pack_key(const std::string &name)
+{
+    return name == "plies" || name == "back_face" || name.compare(0, 4, "ply_") == 0;
+}
+
+// Every state quantity in kState order; the energies only if with_energies,
+// the pack's values only if with_pack (else 0: some pass over the plies).
+void state_values(const wff_model *m, bool with_energies, bool with_pack,
+                  double values[kStateSize])
 {
     wff_energies e = {};
     if (with_energies)
         wff_model_energies(m, &e);
+    auto pack = [m, with_pack](const char *key) { return with_pack ? pack_value(m, key) : 0.0; };
     double s = m->symmetry_factor;
     const double v[] = {m->time, (double)m->step, m->dt, m->dt_stable, m->projectile.tip,
                         m->projectile.velocity, s * m->projectile.force,
@@ -126,12 +134,12 @@ void state_values(const wff_model *m, bool with_energies, double values[kStateSi
                         (double)(m->el.n_tris + m->el.n_quads), (double)m->n_nodes,
                         (double)(wff_model_user_element(m, m->dt_worst_element) + 1), e.transfer,
                         s * m->projectile.impulse_total, e.dissipated_failure, e.eroded,
-                        (double)m->n_eroded, e.dissipated_failure, pack_value(m, "plies"),
-                        pack_value(m, "back_face"), pack_value(m, "ply_contact_dissipated"),
-                        pack_value(m, "ply_penetration"), pack_value(m, "ply_contacts"),
-                        pack_value(m, "ply_slip"), pack_value(m, "ply_mu"),
-                        pack_value(m, "ply_thickness"), pack_value(m, "ply_gap"),
-                        pack_value(m, "ply_contact_seconds")};
+                        (double)m->n_eroded, e.dissipated_failure, pack("plies"),
+                        pack("back_face"), pack("ply_contact_dissipated"),
+                        pack("ply_penetration"), pack("ply_contacts"),
+                        pack("ply_slip"), pack("ply_mu"),
+                        pack("ply_thickness"), pack("ply_gap"),
+                        pack("ply_contact_seconds"), pack("ply_left_out")};
     static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
     for (int i = 0; i < kStateSize; i++)
         values[i] = v[i];
@@ -298,7 +306,7 @@ long ffState(const long &id, KN<double> *const &out)
 {
     const wff_model *m = model_of(id, "wovenffState");
     double values[kStateSize];
-    state_values(m, true, values);
+    state_values(m, true, true, values);
     out->resize(kStateSize);
     for (int i = 0; i < kStateSize; i++)
         (*out)[i] = values[i];
@@ -310,8 +318,10 @@ double ffGet(const long &id, string *const &name)
     const wff_model *m = model_of(id, "wovenffGet");
     for (int i = 0; i < kStateSize; i++)
         if (*name == kState[i].name) {
+            if (is_pack_key(*name))
+                return pack_value(m, name->c_str()); /* (that one alone) */
             double values[kStateSize];
-            state_values(m, kState[i].energy, values);
+            state_values(m, kState[i].energy, false, values);
             return values[i];
         }
     fail("wovenffGet", "unknown state quantity '" + *name + "' (known: " + state_names() + ")",
