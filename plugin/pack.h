@@ -24,7 +24,7 @@ struct wff_pack {
     /* ply contact (ply_contact.c) */
     double dissipated;        /* kinetic energy the ply contact removed, J (model part) */
     double penetration;       /* largest interpenetration left after the last correction, m */
-    int contacts;             /* node-facet pairs corrected in the last step */
+    int contacts;             /* node pairs corrected in the last step */
     double *impulse;          /* per DOF (3 per node), this step's contact impulses, N·s */
     unsigned char *touched;   /* per node: an impulse this step */
     int *touched_list, n_touched;

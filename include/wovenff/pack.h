@@ -67,7 +67,10 @@ int wff_model_ply_orientation(wff_model *m, int ply, double theta, wff_error *er
 int wff_model_node_ply(const wff_model *m, int user_node);
 int wff_model_element_ply(const wff_model *m, int user_element);
 
-/* One value of ply p by key: apex (largest u_z − p·gap over its nodes, m),
+/* One value of ply p by key: apex (largest u_z − p·gap over its nodes, m; once
+ * elements have eroded, over the part still attached to a node whose u_z is held,
+ * through elements not eroded: every element not eroded if none is held, 0 if
+ * none is left),
  * kinetic, stored, dissipated (shear + failure + eroded energy of its
  * elements; the ply contact's friction is the pack's), absorbed (the sum of
  * the three), J, whole specimen (× symmetry); failed (elements with yarn
@@ -78,12 +81,13 @@ int wff_model_ply_value(const wff_model *m, int ply, const char *key, double *va
 /* The pack's values by key: plies, back_face (the last ply's largest u_z −
  * p·gap now, m), ply_contact_dissipated (J, whole specimen), ply_penetration
  * (largest ply-ply interpenetration left after the last step's correction,
- * m), ply_contacts (node-facet pairs corrected in the last step), ply_mu,
+ * m), ply_contacts (node pairs corrected in the last step), ply_mu,
  * ply_thickness (m), ply_gap (m), ply_slip (the largest in-plane displacement of
  * a node relative to its partner in the next ply, m: the contact pairs node i
  * with node i, so this must stay small against the element size),
  * ply_contact_seconds (wall time spent in the ply contact so far, s: its share
- * of the step). -1 (err set) for another key. */
+ * of the step), ply_left_out (pairs left out in the last step: a fragment, slid
+ * apart, crossed). -1 (err set) for another key. */
 int wff_model_pack_value(const wff_model *m, const char *key, double *value, wff_error *err);
 
 #ifdef __cplusplus
