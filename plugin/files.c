@@ -5,6 +5,7 @@
  * and .png files), nothing of models or scenes. */
 #define _GNU_SOURCE
 #include "wovenff/files.h"
+#include "wall_clock.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -528,13 +529,6 @@ int wff_run_logged(char *const argv[], const char *log, int *status, wff_error *
     return 0;
 }
 
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 int wff_run_jobs(const char *list, int jobs, int *status, long max, long *count, wff_error *err)
 {
     *count = 0;
@@ -597,7 +591,7 @@ int wff_run_jobs(const char *list, int jobs, int *status, long max, long *count,
     while (done < n) {
         while (running < jobs && next < n) {
             char **job_fields = fields + start[next];
-            t0[next] = now_seconds();
+            t0[next] = wff_wall_seconds();
             pid_t pid = fork();
             if (pid < 0) {
                 status[next] = 127;
@@ -628,7 +622,7 @@ int wff_run_jobs(const char *list, int jobs, int *status, long max, long *count,
                 status[j] = wait_status(ws);
                 running--;
                 printf("  [%ld/%ld] %s: %s (exit %d), %.1f s\n", ++done, n, fields[start[j]],
-                       status[j] == 0 ? "ok" : "failed", status[j], now_seconds() - t0[j]);
+                       status[j] == 0 ? "ok" : "failed", status[j], wff_wall_seconds() - t0[j]);
                 fflush(stdout);
             }
     }

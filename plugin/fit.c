@@ -13,6 +13,7 @@
  * fit fails only if the final point cannot be evaluated. Knows nothing of
  * files (fit_report.c writes them), meshes or the solver. */
 #include "wovenff/fit.h"
+#include "wall_clock.h"
 
 #include "wovenff/text_io.h"
 
@@ -359,13 +360,6 @@ static int gsl_residuals(const gsl_vector *z, void *params, gsl_vector *f)
     return GSL_SUCCESS;
 }
 
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Set up c from the inputs: resolved bounds and starts, grouping, scales. */
 static int ctx_init(fit_ctx *c, const char *text, const char *source, const wff_fit_data *data,
                     const wff_fit_param *params, int p, int weighting, wff_fit_result *res,
@@ -563,7 +557,7 @@ int wff_fit_run(const char *material_text, const char *source_name, const wff_fi
                 const wff_fit_param *params, int n_params, const wff_fit_options *opt,
                 wff_fit_result *res, wff_error *err)
 {
-    double t0 = now_seconds();
+    double t0 = wff_wall_seconds();
     wff_fit_options defaults;
     if (!opt) {
         wff_fit_options_default(&defaults);
@@ -665,6 +659,6 @@ int wff_fit_run(const char *material_text, const char *source_name, const wff_fi
     gsl_set_error_handler(old);
     free(r);
     ctx_free(&c);
-    res->wall_seconds = now_seconds() - t0;
+    res->wall_seconds = wff_wall_seconds() - t0;
     return rc;
 }

@@ -31,11 +31,11 @@
  * other, which the contact keeps). The normals pass runs one ply a thread; the
  * sweeps are serial. */
 #include "pack.h"
+#include "wall_clock.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 void wff_ply_contact_free(struct wff_pack *P)
 {
@@ -349,19 +349,12 @@ static void nodal_normals(wff_model *m, double dt)
     }
 }
 
-static double wall_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
 {
     struct wff_pack *P = m->pack;
     if (!P || P->n < 2)
         return 0;
-    const double started = wall_now();
+    const double started = wff_wall_seconds();
     if (!P->impulse && ensure_workspace(m, err))
         return -1;
     const int nn = P->nodes;
@@ -453,6 +446,6 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
     }
     P->n_touched = 0;
     P->dissipated -= work;
-    P->seconds += wall_now() - started;
+    P->seconds += wff_wall_seconds() - started;
     return 0;
 }
