@@ -34,6 +34,9 @@ typedef struct wff_zone {
     wff_elements el;
     double *state;            /* the zone's points' states (3 points per tri, then 4 per
                                  quad; the zone material's n_state each) */
+    int consecutive;          /* built: its elements are consecutive in the model's
+                                 numbering (a pack's ply of one element kind): its
+                                 points' states are a run of the model's array */
     int ply;                  /* the ply of a pack its elements are all in (pack.h: a
                                  pack's zones are split by ply), 0 outside a pack */
     wff_force_totals pass;    /* the zone's totals at the last force pass (per-ply sums) */
@@ -57,7 +60,7 @@ static void zone_unbuild(wff_zone *z)
     wff_elements_free(&z->el);
     z->element = z->tri = z->quad = NULL;
     z->state = NULL;
-    z->n_elements = z->n_tris = 0;
+    z->n_elements = z->n_tris = z->consecutive = 0;
 }
 
 void wff_zones_free(wff_model *m)
@@ -120,6 +123,32 @@ static void zone_state(const wff_model *m, int k, double *state, int to_model)
                     local[nz * q + j] = global[ns * q + j];
             }
     }
+}
+
+/* The states zone k's element pass reads and writes: the model's array itself
+ * where the zone's points are a run of it with the same layout (consecutive
+ * elements, the model's n_state: a pack's plies), else z->state filled from it
+ * (zone_state; zone_states_back writes them back). The same numbers either way:
+ * the copy is exact. */
+int wff_zones_in_place(const wff_model *m, int k)
+{
+    const wff_zone *z = m->zones && k >= 0 && k < m->zones->n ? &m->zones->zone[k] : NULL;
+    return z && z->n_elements > 0 && z->consecutive && zone_mat(m, k)->n_state == m->n_state;
+}
+
+static double *zone_states(const wff_model *m, int k, double *state)
+{
+    wff_zone *z = &m->zones->zone[k];
+    if (wff_zones_in_place(m, k))
+        return state + (size_t)m->n_state * wff_element_first_point(m->el.n_tris, z->element[0]);
+    zone_state(m, k, state, 0);
+    return z->state;
+}
+
+static void zone_states_back(const wff_model *m, int k, double *state)
+{
+    if (!wff_zones_in_place(m, k))
+        zone_state(m, k, state, 1);
 }
 
 /* The material whose state_names name the model's states: the one with the
@@ -212,6 +241,7 @@ static int build(wff_model *m, wff_error *err)
         }
         z->n_elements = count;
         z->n_tris = tris;
+        z->consecutive = z->element[count - 1] - z->element[0] == count - 1; /* (ascending) */
         if (wff_elements_init(&z->el, m->mesh.xy, tris, z->tri, quads, z->quad, err)) {
             zone_unbuild(z);
             return -1;
@@ -638,9 +668,9 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
             zone_material(m, k, &em);
             z->el.n_threads = by_ply ? 1
                               : m->el.n_threads <= z->el.max_threads ? m->el.n_threads : 1;
-            zone_state(m, k, state, 0);
-            wff_elements_forces(&z->el, &em, m->mesh.xy, u, z->state, dt, f, &z->pass);
-            zone_state(m, k, state, 1);
+            double *points = zone_states(m, k, state);
+            wff_elements_forces(&z->el, &em, m->mesh.xy, u, points, dt, f, &z->pass);
+            zone_states_back(m, k, state);
         }
     for (int k = 0; k < Z->n; k++) {
         const wff_zone *z = &Z->zone[k];
@@ -723,9 +753,9 @@ void wff_zones_energy_split(const wff_model *m, const double *u, const double *s
             continue;
         wff_element_material em;
         zone_material(m, k, &em);
-        zone_state(m, k, (double *)state, 0);
+        const double *points = zone_states(m, k, (double *)state); /* (read only) */
         double part[WFF_MECH_MAX] = {0};
-        wff_elements_energy_split(&z->el, &em, m->mesh.xy, u, z->state, part);
+        wff_elements_energy_split(&z->el, &em, m->mesh.xy, u, points, part);
         const wff_cell_type *cell = em.mat->cell;
         for (int i = 0; i < cell->n_mech && i < WFF_MECH_MAX; i++)
             for (int j = 0; j < base->n_mech && j < WFF_MECH_MAX; j++)

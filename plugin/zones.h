@@ -28,6 +28,9 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
  * flags allocated or freed (they follow the model's at every pass); -1 (err
  * set) if out of memory. */
 int wff_zones_erosion_changed(wff_model *m, wff_error *err);
+/* 1 if zone k's element pass works on the model's states in place (its
+ * elements consecutive, its material's layout the model's), 0 if on a copy. */
+int wff_zones_in_place(const wff_model *m, int k);
 /* Lumped masses of every zone into m->mass (zeroed first). */
 void wff_zones_masses(wff_model *m);
 /* The smallest stable step over the zones; *worst the model's element. */

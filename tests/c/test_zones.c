@@ -17,6 +17,7 @@
 #include "wovenff/material.h"
 #include "wovenff/solver.h"
 #include "wovenff/state.h"
+#include "zones.h" /* wff_zones_in_place */
 
 #include <math.h>
 #include <stdio.h>
@@ -93,16 +94,43 @@ static double max_abs(const double *a, int n)
     return x;
 }
 
-/* 1. */
-static void same_material(check_state *st, int type, const char *what)
+/* Model b's zone 1 of KEVLAR: the first half of its elements in the model's
+ * numbering (both zones consecutive: their passes work on the model's states
+ * in place, zones.c), checked to be so; -1 if it fails. */
+static int zone_halves(check_state *st, wff_model *b, const char *what)
+{
+    wff_error err;
+    const int n_el = b->el.n_tris + b->el.n_quads;
+    unsigned char *sel = calloc((size_t)n_el, 1);
+    if (!sel)
+        return -1;
+    for (int e = 0; e < n_el / 2; e++)
+        sel[b->element_user ? b->element_user[e] : e] = 1; /* (NULL: the caller's order) */
+    int n = wff_model_zone_elements(b, sel, KEVLAR, WFF_ZONE_PRELOAD_SHARED, &err);
+    free(sel);
+    CHECK(st, n == n_el / 2, "%s: zone of the first %d elements: %d (%s)", what, n_el / 2, n,
+          n < 0 ? err.message : "");
+    CHECK(st, wff_zones_in_place(b, 0) && wff_zones_in_place(b, 1),
+          "%s: both halves work in place (%d, %d)", what, wff_zones_in_place(b, 0),
+          wff_zones_in_place(b, 1));
+    return n == n_el / 2 ? 0 : -1;
+}
+
+/* 1. The one-material model against the same material in two zones: a disc
+ * (halves 0; its states copied in and out of the zone, zones.c's plain path)
+ * or the two halves of the element numbering (halves 1: in place). */
+static void same_material(check_state *st, int type, int halves, const char *what)
 {
     wff_model a, b;
     if (make(st, &a, type, NULL, 0, 1))
         return;
-    if (make(st, &b, type, KEVLAR, WFF_ZONE_PRELOAD_SHARED, 1)) {
+    if (make(st, &b, type, halves ? NULL : KEVLAR, WFF_ZONE_PRELOAD_SHARED, 1) ||
+        (halves && zone_halves(st, &b, what))) {
         wff_model_free(&a);
         return;
     }
+    if (!halves)
+        CHECK(st, !wff_zones_in_place(&b, 1), "%s: the disc zone works on a copy", what);
     wff_error err;
     int nd = a.n_dofs;
     double mass_diff = 0;
@@ -325,8 +353,10 @@ static void refusals(check_state *st)
 int main(void)
 {
     check_state st = {0, 0};
-    same_material(&st, TEST_MESH_TRI, "triangles");
-    same_material(&st, TEST_MESH_QUAD, "quadrilaterals");
+    same_material(&st, TEST_MESH_TRI, 0, "triangles");
+    same_material(&st, TEST_MESH_QUAD, 0, "quadrilaterals");
+    same_material(&st, TEST_MESH_TRI, 1, "triangles, halves in place");
+    same_material(&st, TEST_MESH_QUAD, 1, "quadrilaterals, halves in place");
     matched_preload(&st);
     two_materials_energy(&st);
     refusals(&st);
