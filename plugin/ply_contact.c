@@ -150,6 +150,10 @@ static int ensure_workspace(wff_model *m, wff_error *err)
 /* Interpenetration below ROUND_OFF h is round-off of the flat pack's
  * coordinates (z = p gap), not contact. */
 #define ROUND_OFF 1e-9
+/* A pair clear of contact by (1 − FILTER_SHARE ROUND_OFF) h takes the squared
+ * test; between that and (1 − ROUND_OFF) h, the exact one. */
+#define FILTER_SHARE 0.5
+#define FILTER_SQUARED ((1 - FILTER_SHARE * ROUND_OFF) * (1 - FILTER_SHARE * ROUND_OFF))
 /* Sweeps over the slots in contact after the first (Gauss-Seidel), until what
  * is left is below SWEEP_TOLERANCE h. */
 #define MAX_SWEEPS 20
@@ -225,38 +229,47 @@ static double inverse_mass(const wff_model *m, int n, const double d[3])
 /* One pair: node i of ply `pair` (below, A) and of ply pair + 1 (above, B).
  * Returns 1 if corrected, 0 if not in contact, -1 if left out (a fragment, slid
  * apart, crossed); *rest the interpenetration h − d (m,
- * before the correction). */
+ * before the correction); *moved (when corrected) the part of it this
+ * correction removes (m: the push-out's share of one already there only). */
 static int correct_pair(wff_model *m, int pair, int i, double h, double dt, double dt_mid,
-                        int apply, double *rest)
+                        int apply, double *rest, double *moved)
 {
     const struct wff_pack *P = m->pack;
     const int A = pair * P->nodes + i, B = A + P->nodes;
-    double xa[3], xb[3], nrm[3], len = 0;
     if (!P->live[A] || !P->live[B])
         return -1; /* a fragment: left out */
-    position(m, A, dt, xa);
-    position(m, B, dt, xb);
-    for (int c = 0; c < 3; c++) {
-        nrm[c] = P->normal[3 * A + c] + P->normal[3 * B + c];
-        len += nrm[c] * nrm[c];
+    /* (the test every pair takes in scalars: small arrays written one by one
+     * and read as pairs stalled the store forwarding) */
+    const double *xy_a = m->mesh.xy + 2 * A, *xy_b = m->mesh.xy + 2 * B;
+    const double *ua = m->u + D * A, *ub = m->u + D * B, *va = m->v + D * A, *vb = m->v + D * B;
+    const double gap_x = (xy_b[0] + ub[0] + dt * vb[0]) - (xy_a[0] + ua[0] + dt * va[0]),
+                 gap_y = (xy_b[1] + ub[1] + dt * vb[1]) - (xy_a[1] + ua[1] + dt * va[1]),
+                 gap_z = (ub[2] + dt * vb[2]) - (ua[2] + dt * va[2]); /* x_B − x_A predicted */
+    const double *na = P->normal + 3 * A, *nb = P->normal + 3 * B;
+    double nx = na[0] + nb[0], ny = na[1] + nb[1], nz = na[2] + nb[2];
+    const double len2 = nx * nx + ny * ny + nz * nz, along = gap_x * nx + gap_y * ny + gap_z * nz;
+    /* clear by more than FILTER_SHARE of ROUND_OFF h (compared squared, no root
+     * and no division: most pairs of a pack are clear): the test below would
+     * say so too, its rounding being ~1e-16 of what is compared */
+    if (along > 0 && along * along >= FILTER_SQUARED * h * h * len2) {
+        *rest = 0; /* (a clear pair's rest counts as 0 in the penetration measure) */
+        return 0;
     }
-    len = sqrt(len);
+    double len = sqrt(len2);
     if (!(len > 0))
         return 0;
-    double dist = 0, closing = 0, slip = 0;
-    for (int c = 0; c < 3; c++) {
-        nrm[c] /= len;
-        dist += (xb[c] - xa[c]) * nrm[c];
-        closing += (m->v[D * A + c] - m->v[D * B + c]) * nrm[c];
-    }
+    nx /= len, ny /= len, nz /= len;
+    const double dist = gap_x * nx + gap_y * ny + gap_z * nz;
     double delta = h - dist; /* > 0: closer than h */
     if (delta <= ROUND_OFF * h) {
         *rest = delta;
         return 0;
     }
-    for (int c = 0; c < 3; c++) {
-        double t = xb[c] - xa[c] - dist * nrm[c];
-        slip += t * t;
+    const double closing = (va[0] - vb[0]) * nx + (va[1] - vb[1]) * ny + (va[2] - vb[2]) * nz;
+    double nrm[3] = {nx, ny, nz}, slip = 0;
+    {
+        const double tx = gap_x - dist * nx, ty = gap_y - dist * ny, tz = gap_z - dist * nz;
+        slip = tx * tx + ty * ty + tz * tz;
     }
     /* left out: a pair slid apart (a torn ply's node beside the shank and the
      * next ply's under the nose), a pair that has crossed */
@@ -276,6 +289,7 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
         delta -= (1 - RECOVERY) * now;
     if (delta <= ROUND_OFF * h)
         return 0;
+    *moved = delta;
     double w = inverse_mass(m, A, nrm) + inverse_mass(m, B, nrm);
     if (!(w > 0))
         return 0; /* neither can move along the normal */
@@ -335,14 +349,15 @@ static void nodal_normals(wff_model *m, double dt)
             const int *a = P->facet + 3 * f;
             const double *x0 = predicted + 3 * a[0], *x1 = predicted + 3 * a[1],
                          *x2 = predicted + 3 * a[2];
-            double e1[3], e2[3];
-            for (int i = 0; i < 3; i++)
-                e1[i] = x1[i] - x0[i], e2[i] = x2[i] - x0[i];
-            double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                           e1[0] * e2[1] - e1[1] * e2[0]}; /* (twice the area) */
+            /* (scalars, not small arrays: stored one by one and loaded as pairs,
+             * those stalled the store forwarding, 30 % of this loop) */
+            const double e1x = x1[0] - x0[0], e1y = x1[1] - x0[1], e1z = x1[2] - x0[2];
+            const double e2x = x2[0] - x0[0], e2y = x2[1] - x0[1], e2z = x2[2] - x0[2];
+            const double nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z,
+                         nz = e1x * e2y - e1y * e2x; /* (twice the area) */
             for (int k = 0; k < 3; k++) {
-                for (int i = 0; i < 3; i++)
-                    normal[3 * a[k] + i] += n[i];
+                double *out = normal + 3 * a[k];
+                out[0] += nx, out[1] += ny, out[2] += nz;
                 live[a[k]] = 1;
             }
         }
@@ -379,14 +394,15 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
         for (int k = 0; k < n; k++) {
             /* later sweeps alternate direction (symmetric Gauss-Seidel) */
             const int slot = sweep == 0 ? k : P->active[sweep % 2 ? P->n_active - 1 - k : k];
-            double rest = 0;
-            int r = correct_pair(m, slot / nn, slot % nn, h, dt, dt_mid, 1, &rest);
+            double rest = 0, moved = 0;
+            int r = correct_pair(m, slot / nn, slot % nn, h, dt, dt_mid, 1, &rest, &moved);
             if (sweep == 0) {
                 P->rest[slot] = rest;
                 P->left_out += r < 0;
             }
             if (r > 0) {
-                worst = fmax(worst, rest);
+                worst = fmax(worst, moved); /* (not rest: a pair already in keeps
+                                               most of that, sweep after sweep) */
                 if (sweep == 0) {
                     P->active[P->n_active++] = slot;
                     P->contacts++;
@@ -409,8 +425,8 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
         for (int pair = q - 1; pair <= q; pair++) {
             if (pair < 0 || pair >= P->n - 1)
                 continue;
-            double rest = 0;
-            correct_pair(m, pair, i, h, dt, dt_mid, 0, &rest);
+            double rest = 0, moved = 0;
+            correct_pair(m, pair, i, h, dt, dt_mid, 0, &rest, &moved);
             P->penetration = fmax(P->penetration, rest);
         }
     }
