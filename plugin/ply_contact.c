@@ -16,10 +16,11 @@
  * closing. Left out: a pair with a fragment (a node whose facets have all
  * eroded; the normals are of the facets left), one slid apart in plane by more
  * than SLIP_LIMIT of the node's shortest edge, one that has crossed (a torn
- * ply's nodes dragged away from their partners). The pairs corrected are swept again (symmetric Gauss-Seidel)
- * until what is left is below SWEEP_TOLERANCE h (a pack pushed as a chain). A
- * component held by a boundary condition takes no impulse: its support's
- * reaction does; a node the projectile pushed this step moves with it along z
+ * ply's nodes dragged away from their partners). The pairs corrected are
+ * swept again (symmetric Gauss-Seidel) until the largest correction a sweep
+ * makes is below SWEEP_TOLERANCE h (a pack pushed as a chain). A component
+ * held by a boundary condition takes no impulse: its support's reaction does;
+ * a node the projectile pushed this step moves with it along z
  * (the projectile's mass added, its velocity and impulse updated). The impulses
  * enter f as forces j / Δt_mid; their work at the integer-step velocities,
  * negated, is the ply contact dissipation (a term of the energy balance). No
