@@ -16,6 +16,28 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* zones.h: every point whose material carries WFF_ELEMENT_LENGTH_STATE gets its
+ * element's band length (the material looked up again only where it changes). */
+void wff_model_set_element_lengths(wff_model *m)
+{
+    const int nt = m->el.n_tris, n_el = nt + m->el.n_quads, ns = m->n_state;
+    const wff_material *last = NULL;
+    int slot = -1;
+    for (int e = 0; e < n_el; e++) {
+        wff_element_material scratch;
+        const wff_material *mat = wff_zones_element_material(m, e, &scratch)->mat;
+        if (mat != last)
+            slot = wff_material_state_index(mat, WFF_ELEMENT_LENGTH_STATE), last = mat;
+        if (slot < 0)
+            continue;
+        const int np = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
+        const double h = wff_element_band_length(&m->el, e);
+        double *state = m->state + (size_t)ns * wff_element_first_point(nt, e);
+        for (int q = 0; q < np; q++)
+            state[ns * q + slot] = h;
+    }
+}
+
 void wff_model_free(wff_model *m)
 {
     free(m->u);

@@ -267,11 +267,9 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
         return 0;
     }
     const double closing = (va[0] - vb[0]) * nx + (va[1] - vb[1]) * ny + (va[2] - vb[2]) * nz;
-    double nrm[3] = {nx, ny, nz}, slip = 0;
-    {
-        const double tx = gap_x - dist * nx, ty = gap_y - dist * ny, tz = gap_z - dist * nz;
-        slip = tx * tx + ty * ty + tz * tz;
-    }
+    double nrm[3] = {nx, ny, nz};
+    const double tx = gap_x - dist * nx, ty = gap_y - dist * ny, tz = gap_z - dist * nz;
+    const double slip = tx * tx + ty * ty + tz * tz; /* (squared, in plane) */
     /* left out: a pair slid apart (a torn ply's node beside the shank and the
      * next ply's under the nose), a pair that has crossed */
     const double reach = SLIP_LIMIT * P->reach[i], now = delta - dt * closing; /* h − distance now */

@@ -34,9 +34,8 @@ typedef struct wff_zone {
     wff_elements el;
     double *state;            /* the zone's points' states (3 points per tri, then 4 per
                                  quad; the zone material's n_state each) */
-    int consecutive;          /* built: its elements are consecutive in the model's
-                                 numbering (a pack's ply of one element kind): its
-                                 points' states are a run of the model's array */
+    int consecutive;          /* built: its elements consecutive in the model's numbering
+                                 (a pack's ply): its points' states a run of the model's */
     int ply;                  /* the ply of a pack its elements are all in (pack.h: a
                                  pack's zones are split by ply), 0 outside a pack */
     wff_force_totals pass;    /* the zone's totals at the last force pass (per-ply sums) */
@@ -102,14 +101,20 @@ static const wff_material *zone_mat(const wff_model *m, int k)
     return k == 0 ? &m->mat : &m->zones->zone[k].mat;
 }
 
+int wff_zones_in_place(const wff_model *m, int k)
+{
+    const wff_zone *z = m->zones && k >= 0 && k < m->zones->n ? &m->zones->zone[k] : NULL;
+    return z && z->n_elements > 0 && z->consecutive && zone_mat(m, k)->n_state == m->n_state;
+}
+
 /* The states of zone k's points from (to_model 0) or into (1) the model's
  * array state (m->n_state per point): the zone's n_state first of each. */
 static void zone_state(const wff_model *m, int k, double *state, int to_model)
 {
     wff_zone *z = &m->zones->zone[k];
     const int nt = m->el.n_tris, ns = m->n_state, nz = zone_mat(m, k)->n_state;
-    if (nz == 0)
-        return;
+    if (nz == 0 || wff_zones_in_place(m, k))
+        return; /* nothing to copy: the pass works on the model's (zone_points) */
     for (int i = 0; i < z->n_elements; i++) {
         int e = z->element[i];
         int np = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
@@ -125,30 +130,15 @@ static void zone_state(const wff_model *m, int k, double *state, int to_model)
     }
 }
 
-/* The states zone k's element pass reads and writes: the model's array itself
- * where the zone's points are a run of it with the same layout (consecutive
- * elements, the model's n_state: a pack's plies), else z->state filled from it
- * (zone_state; zone_states_back writes them back). The same numbers either way:
- * the copy is exact. */
-int wff_zones_in_place(const wff_model *m, int k)
+/* The states zone k's element pass works on: the model's array itself where
+ * the zone's points are a run of it in its layout (wff_zones_in_place), else
+ * z->state (zone_state copies it in and out; the same numbers either way). */
+static double *zone_points(const wff_model *m, int k, double *state)
 {
-    const wff_zone *z = m->zones && k >= 0 && k < m->zones->n ? &m->zones->zone[k] : NULL;
-    return z && z->n_elements > 0 && z->consecutive && zone_mat(m, k)->n_state == m->n_state;
-}
-
-static double *zone_states(const wff_model *m, int k, double *state)
-{
-    wff_zone *z = &m->zones->zone[k];
-    if (wff_zones_in_place(m, k))
-        return state + (size_t)m->n_state * wff_element_first_point(m->el.n_tris, z->element[0]);
-    zone_state(m, k, state, 0);
-    return z->state;
-}
-
-static void zone_states_back(const wff_model *m, int k, double *state)
-{
-    if (!wff_zones_in_place(m, k))
-        zone_state(m, k, state, 1);
+    const wff_zone *z = &m->zones->zone[k];
+    return wff_zones_in_place(m, k) ? state + (size_t)m->n_state * wff_element_first_point(
+                                                  m->el.n_tris, z->element[0])
+                                    : z->state;
 }
 
 /* The material whose state_names name the model's states: the one with the
@@ -580,29 +570,6 @@ int wff_model_zone_disc(wff_model *m, double x, double y, double radius, int out
     return n;
 }
 
-void wff_model_set_element_lengths(wff_model *m)
-{
-    const int nt = m->el.n_tris, n_el = nt + m->el.n_quads, ns = m->n_state;
-    const int n_zones = m->zones ? m->zones->n : 1;
-    int slot[WFF_ZONES_MAX], any = 0;
-    for (int k = 0; k < n_zones; k++) {
-        slot[k] = wff_material_state_index(zone_mat(m, k), WFF_ELEMENT_LENGTH_STATE);
-        any |= slot[k] >= 0;
-    }
-    if (!any)
-        return;
-    for (int e = 0; e < n_el; e++) {
-        int i = slot[m->zones ? m->zones->element_zone[e] : 0];
-        if (i < 0)
-            continue;
-        const int np = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
-        const double h = wff_element_band_length(&m->el, e);
-        double *state = m->state + (size_t)ns * wff_element_first_point(nt, e);
-        for (int q = 0; q < np; q++)
-            state[ns * q + i] = h;
-    }
-}
-
 int wff_model_zone_count(const wff_model *m)
 {
     return m->zones ? m->zones->n : 1;
@@ -668,9 +635,10 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
             zone_material(m, k, &em);
             z->el.n_threads = by_ply ? 1
                               : m->el.n_threads <= z->el.max_threads ? m->el.n_threads : 1;
-            double *points = zone_states(m, k, state);
-            wff_elements_forces(&z->el, &em, m->mesh.xy, u, points, dt, f, &z->pass);
-            zone_states_back(m, k, state);
+            zone_state(m, k, state, 0);
+            wff_elements_forces(&z->el, &em, m->mesh.xy, u, zone_points(m, k, state), dt, f,
+                                &z->pass);
+            zone_state(m, k, state, 1);
         }
     for (int k = 0; k < Z->n; k++) {
         const wff_zone *z = &Z->zone[k];
@@ -753,9 +721,10 @@ void wff_zones_energy_split(const wff_model *m, const double *u, const double *s
             continue;
         wff_element_material em;
         zone_material(m, k, &em);
-        const double *points = zone_states(m, k, (double *)state); /* (read only) */
+        zone_state(m, k, (double *)state, 0);
         double part[WFF_MECH_MAX] = {0};
-        wff_elements_energy_split(&z->el, &em, m->mesh.xy, u, points, part);
+        wff_elements_energy_split(&z->el, &em, m->mesh.xy, u, zone_points(m, k, (double *)state),
+                                  part);
         const wff_cell_type *cell = em.mat->cell;
         for (int i = 0; i < cell->n_mech && i < WFF_MECH_MAX; i++)
             for (int j = 0; j < base->n_mech && j < WFF_MECH_MAX; j++)
