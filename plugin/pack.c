@@ -543,10 +543,13 @@ int wff_model_pack_value(const wff_model *m, const char *key, double *value, wff
         *value = P ? P->seconds : 0;
     else if (strcmp(key, "ply_left_out") == 0)
         *value = P ? P->left_out : 0;
+    else if (strcmp(key, "ply_penetration_bound") == 0)
+        *value = wff_ply_penetration_bound(m);
     else
         return wff_fail(err, "unknown pack value '%s' (known: plies, back_face, "
                         "ply_contact_dissipated, ply_penetration, ply_contacts, ply_mu, "
-                        "ply_thickness, ply_gap, ply_slip, ply_contact_seconds, ply_left_out)",
+                        "ply_thickness, ply_gap, ply_slip, ply_contact_seconds, ply_left_out, "
+                        "ply_penetration_bound)",
                         key);
     return 0;
 }

@@ -84,6 +84,10 @@ int wff_pack_set_option(wff_model *m, const char *key, double value, int *rc, wf
  * impulses on v, forces impulse/dt_mid into f, the dissipation counted; -1 (err
  * set) if out of memory. */
 int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
+/* The interpenetration's bound, m: h + the crossing allowance of the node with
+ * the longest shortest edge (a pair deeper is left out as crossed); h before
+ * the first step. */
+double wff_ply_penetration_bound(const wff_model *m);
 void wff_ply_contact_free(struct wff_pack *P);
 
 #endif

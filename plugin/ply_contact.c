@@ -5,7 +5,8 @@
  * node to node: node i of ply p against node i of ply p + 1 (a symmetric rule,
  * no facet search), along n, the mean of the two plies' nodal normals (area-
  * weighted facet normals at the predicted positions, continuous as the pack
- * deflects). Each step, after the projectile's correction, the pairs whose
+ * deflects; on a symmetry plane of a symmetric model, none across the
+ * plane). Each step, after the projectile's correction, the pairs whose
  * predicted distance x_B − x_A (x = X + u + Δt v) along n is below h get an
  * inelastic normal impulse j_n = δ / (Δt w) (w: the pair's inverse mass along
  * n), +j_n n on the upper node and −j_n n on the lower (momentum conserved
@@ -322,6 +323,16 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
     return 1;
 }
 
+double wff_ply_penetration_bound(const wff_model *m)
+{
+    const struct wff_pack *P = m->pack;
+    const double h = wff_pack_contact_distance(m);
+    double reach = 0;
+    for (int i = 0; P && P->reach && i < P->nodes; i++)
+        reach = fmax(reach, P->reach[i]);
+    return h + CROSS_LIMIT * reach;
+}
+
 /* Every node's unit normal at the predicted positions: the area-weighted mean of its
  * ply's facets' normals, eroded facets left out; live[n] 1 if node n has a facet
  * left. */
@@ -360,6 +371,21 @@ static void nodal_normals(wff_model *m, double dt)
                 live[a[k]] = 1;
             }
         }
+        /* a node on a symmetry plane (x = 0 or y = 0 of a symmetric model, its
+         * component across the plane held, uz free): its facets are one side's
+         * only, the mirrored ones would cancel the normal's component across
+         * the plane, so it has none (a tilted normal at the apex of a quarter
+         * model coupled the pairs' distance to the nodes around it: 8 plies
+         * went unstable at 0.8 of the stable step there) */
+        if (m->symmetry_factor > 1)
+            for (int i = 0; i < nn; i++) {
+                const int node = q * nn + i;
+                if (m->dof_kind[D * node + WFF_UZ] != WFF_DOF_FREE)
+                    continue;
+                for (int c = 0; c < 2; c++)
+                    if (m->dof_kind[D * node + c] != WFF_DOF_FREE && m->mesh.xy[2 * node + c] == 0)
+                        normal[3 * i + c] = 0;
+            }
     }
 }
 

@@ -90,7 +90,8 @@ const StateQuantity kState[] = {
     {"ply_penetration", false},   {"ply_contacts", false},
     {"ply_slip", false},          {"ply_mu", false},
     {"ply_thickness", false},     {"ply_gap", false},
-    {"ply_contact_seconds", false}, {"ply_left_out", false}};
+    {"ply_contact_seconds", false}, {"ply_left_out", false},
+    {"ply_penetration_bound", false}};
 const int kStateSize = sizeof kState / sizeof kState[0];
 
 std::string state_names()
@@ -139,7 +140,8 @@ void state_values(const wff_model *m, bool with_energies, bool with_pack,
                         pack("ply_penetration"), pack("ply_contacts"),
                         pack("ply_slip"), pack("ply_mu"),
                         pack("ply_thickness"), pack("ply_gap"),
-                        pack("ply_contact_seconds"), pack("ply_left_out")};
+                        pack("ply_contact_seconds"), pack("ply_left_out"),
+                        pack("ply_penetration_bound")};
     static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
     for (int i = 0; i < kStateSize; i++)
         values[i] = v[i];
