@@ -5,8 +5,7 @@
  * node to node: node i of ply p against node i of ply p + 1 (a symmetric rule,
  * no facet search), along n, the mean of the two plies' nodal normals (area-
  * weighted facet normals at the predicted positions, continuous as the pack
- * deflects; on a symmetry plane of a symmetric model, none across the
- * plane). Each step, after the projectile's correction, the pairs whose
+ * deflects). Each step, after the projectile's correction, the pairs whose
  * predicted distance x_B − x_A (x = X + u + Δt v) along n is below h get an
  * inelastic normal impulse j_n = δ / (Δt w) (w: the pair's inverse mass along
  * n), +j_n n on the upper node and −j_n n on the lower (momentum conserved
@@ -371,21 +370,6 @@ static void nodal_normals(wff_model *m, double dt)
                 live[a[k]] = 1;
             }
         }
-        /* a node on a symmetry plane (x = 0 or y = 0 of a symmetric model, its
-         * component across the plane held, uz free): its facets are one side's
-         * only, the mirrored ones would cancel the normal's component across
-         * the plane, so it has none (a tilted normal at the apex of a quarter
-         * model coupled the pairs' distance to the nodes around it: 8 plies
-         * went unstable at 0.8 of the stable step there) */
-        if (m->symmetry_factor > 1)
-            for (int i = 0; i < nn; i++) {
-                const int node = q * nn + i;
-                if (m->dof_kind[D * node + WFF_UZ] != WFF_DOF_FREE)
-                    continue;
-                for (int c = 0; c < 2; c++)
-                    if (m->dof_kind[D * node + c] != WFF_DOF_FREE && m->mesh.xy[2 * node + c] == 0)
-                        normal[3 * i + c] = 0;
-            }
     }
 }
 

@@ -21,13 +21,7 @@
  *      0.01 of an edge, no energy put in by the ply contact, the plies' order kept
  *      away from the tear; a ply's apex is of the part still attached to its held
  *      edge (a fragment or a piece torn off whole ahead of it is not its
- *      deflection);
- *   7. a quarter model (symmetry 4, ux held on x = 0, uy on y = 0): two plies
- *      bent into a dome, ply 1 h (1 + 1e-7) from ply 0 along its normal at the
- *      apex (more away from it): no pair is in contact, the ply contact
- *      dissipates nothing in a step (a normal from the quadrant's facets alone tilts, measures
- *      h cos tilt and pushes the pair apart at m/s); the same mesh without the
- *      symmetry (its corner a real corner) does push them. */
+ *      deflection). */
 #include "check.h"
 #include "test_meshes.h"
 #include "test_tmp.h"
@@ -571,65 +565,6 @@ static void perforated_pack(check_state *st)
     wff_model_free(&m);
 }
 
-/* 7. */
-static void mirrored_apex(check_state *st)
-{
-    const double t = 1e-3, half = 0.01, curvature = 40; /* m, m, 1/m */
-    for (int mirrored = 1; mirrored >= 0; mirrored--) {
-        wff_model m;
-        wff_error err;
-        test_rect r = {0, half, 0, half, 8, 8, TEST_MESH_TRI, 1, 0.2, 11};
-        wff_mesh mesh;
-        if (test_mesh_rect(&r, &mesh) || wff_model_create_ordered(&m, &mesh, KEVLAR, 1, &err)) {
-            CHECK(st, 0, "model: %s", err.message);
-            return;
-        }
-        int rc = wff_model_set_plies(&m, 2, t, &err) ||
-                 wff_model_set_option(&m, "ply_thickness", t, &err) ||
-                 wff_model_fix_group(&m, "left", WFF_UX, &err) < 0 ||
-                 wff_model_fix_group(&m, "bottom", WFF_UY, &err) < 0;
-        if (rc == 0 && mirrored)
-            rc = wff_model_set_option(&m, "symmetry", 4, &err);
-        CHECK(st, rc == 0, "set-up: %s", err.message);
-        if (rc) {
-            wff_model_free(&m);
-            return;
-        }
-        const int nn = m.n_nodes / 2;
-        int apex = -1;
-        for (int n = 0; n < m.n_nodes; n++) {
-            const double x = m.mesh.xy[2 * n], y = m.mesh.xy[2 * n + 1];
-            /* ply 1 along the dome's normal from ply 0 by h, times 1 + 1e-7 at the
-             * apex and a margin growing away from it (the nodal normals' error), so
-             * that every pair is clear of contact but a tilted one at the apex */
-            const double slope2 = curvature * curvature * (x * x + y * y);
-            m.u[D * n + WFF_UZ] += -0.5 * curvature * (x * x + y * y) +
-                                   (n >= nn ? t * (sqrt(1 + slope2) * (1 + 1e-7 + 0.5 * slope2) - 1) : 0);
-            if (n < nn && x == 0 && y == 0)
-                apex = n;
-        }
-        if (apex < 0 || wff_model_advance(&m, 1, 1, &err)) {
-            CHECK(st, 0, "apex %d, advance: %s", apex, apex < 0 ? "no node at (0, 0)" : err.message);
-            wff_model_free(&m);
-            return;
-        }
-        const double va = m.v[D * apex + WFF_UZ], vb = m.v[D * (apex + nn) + WFF_UZ];
-        wff_energies e;
-        wff_model_energies(&m, &e);
-        printf("  a dome, %s: ply contact dissipated %.6g J in one step (the apex pair's v_z "
-               "%.9g and %.9g m/s)\n", mirrored ? "quarter model" : "no symmetry",
-               e.dissipated_ply_contact, va, vb);
-        if (mirrored)
-            CHECK(st, e.dissipated_ply_contact == 0,
-                  "quarter model: a pair was pushed (%g J dissipated)", e.dissipated_ply_contact);
-        else
-            CHECK(st, e.dissipated_ply_contact != 0 && vb - va > 1e-3,
-                  "no symmetry: the corner pair, closer than h along its normal, was not pushed "
-                  "(%g J, v_z %.12g, %.12g)", e.dissipated_ply_contact, va, vb);
-        wff_model_free(&m);
-    }
-}
-
 int main(void)
 {
     check_state st = {0, 0};
@@ -643,7 +578,6 @@ int main(void)
     double_ply(&st);
     deep_pair(&st);
     perforated_pack(&st);
-    mirrored_apex(&st);
     test_tmp_remove(tmpdir);
     return check_summary(&st, "test_ply_contact");
 }
