@@ -513,6 +513,15 @@ static void perforated_pack(check_state *st)
         }
     CHECK(st, worst_pen <= h + 0.01 * longest,
           "ply penetration %g m within the bound h + 0.01 edge = %g m", worst_pen, h + 0.01 * longest);
+    /* the bound the module states (ply_penetration_bound): above h, within that
+     * estimate (its edges are each node's shortest), above what was measured */
+    double stated = 0;
+    wff_model_pack_value(&m, "ply_penetration_bound", &stated, &err);
+    printf("  perforated pack: ply_penetration_bound %.6g m (h %.6g m, h + 0.01 longest edge %.6g "
+           "m), largest ply penetration %.6g m\n", stated, h, h + 0.01 * longest, worst_pen);
+    CHECK(st, stated > h && stated <= h + 0.01 * longest && worst_pen <= stated,
+          "ply_penetration_bound %g m: not in (h %g, %g] or below the penetration %g m", stated, h,
+          h + 0.01 * longest, worst_pen);
     /* a fragment made by hand: the back ply's node nearest its corner with every
      * element of it eroded, moved 10 mm ahead: not the ply's apex */
     wff_model_ply_value(&m, plies - 1, "apex", &back, &err);
