@@ -13,8 +13,12 @@
  * |j_t| <= μ j_n (stick if the cone allows). A pair already closer than h now
  * has only RECOVERY of that removed per step (pushing it all out at once would
  * put energy in), and one deeper than RECOVERY_SPAN h is only stopped from
- * closing. Left out: a pair with a fragment (a node whose facets have all
- * eroded; the normals are of the facets left), one slid apart in plane by more
+ * closing. Through a hole: a node whose facets have all eroded has no pair;
+ * node i of the ply below it pairs with node i of the first ply above it that
+ * has a facet left (plies p − 1 and p + 1 through ply p's hole, the same
+ * contact distance h: the eroded ply is not there). Left out: a pair with a
+ * fragment (a dead node with no live ply above it; the normals are of the
+ * facets left), one slid apart in plane by more
  * than SLIP_LIMIT of the node's shortest edge, one that has crossed (a torn
  * ply's nodes dragged away from their partners). The pairs corrected are
  * swept again (symmetric Gauss-Seidel) until the largest correction a sweep
@@ -28,8 +32,8 @@
  * in-plane slip of neighbouring plies must stay small against the element
  * size (the inter-ply friction keeps it so near the impact; a ply that slides
  * by more meets its neighbour's node i still, not the node now below it);
- * plies pair with their neighbours only (enough while plies cannot pass each
- * other, which the contact keeps). The normals pass runs one ply a thread; the
+ * plies pair with their neighbours only, or with the next live one through a
+ * hole (enough while plies cannot pass each other, which the contact keeps). The normals pass runs one ply a thread; the
  * sweeps are serial. */
 #include "pack.h"
 #include "wall_clock.h"
@@ -227,18 +231,45 @@ static double inverse_mass(const wff_model *m, int n, const double d[3])
     return w;
 }
 
-/* One pair: node i of ply `pair` (below, A) and of ply pair + 1 (above, B).
- * Returns 1 if corrected, 0 if not in contact, -1 if left out (a fragment, slid
- * apart, crossed); *rest the interpenetration h − d (m,
+/* The first ply above ply p with a facet left at node i (p + 1 unless its
+ * node i is dead: through its hole), or -1. */
+static inline int partner_above(const struct wff_pack *P, int p, int i)
+{
+    for (int q = p + 1; q < P->n; q++)
+        if (P->live[(size_t)q * P->nodes + i])
+            return q;
+    return -1;
+}
+
+/* The first ply below ply p with a facet left at node i, or -1. */
+static inline int partner_below(const struct wff_pack *P, int p, int i)
+{
+    for (int q = p - 1; q >= 0; q--)
+        if (P->live[(size_t)q * P->nodes + i])
+            return q;
+    return -1;
+}
+
+/* One pair: node i of ply `pair` (below, A) and of the first ply above it with
+ * a facet left there (B: ply pair + 1, or one further up through a hole).
+ * Returns 1 if corrected, 0 if not in contact, -1 if left out (a dead node A
+ * or none above, slid apart, crossed); *rest the interpenetration h − d (m,
  * before the correction); *moved (when corrected) the part of it this
  * correction removes (m: the push-out's share of one already there only). */
 static int correct_pair(wff_model *m, int pair, int i, double h, double dt, double dt_mid,
                         int apply, double *rest, double *moved)
 {
     const struct wff_pack *P = m->pack;
-    const int A = pair * P->nodes + i, B = A + P->nodes;
-    if (!P->live[A] || !P->live[B])
-        return -1; /* a fragment: left out */
+    const int A = pair * P->nodes + i;
+    int B = A + P->nodes;
+    if (!P->live[A])
+        return -1; /* a dead node: no pair (the live ply below pairs through it) */
+    if (!P->live[B]) { /* through ply pair + 1's hole */
+        const int above = partner_above(P, pair + 1, i);
+        if (above < 0)
+            return -1; /* a fragment, or nothing above: left out */
+        B = above * P->nodes + i;
+    }
     /* (the test every pair takes in scalars: small arrays written one by one
      * and read as pairs stalled the store forwarding) */
     const double *xy_a = m->mesh.xy + 2 * A, *xy_b = m->mesh.xy + 2 * B;
@@ -425,17 +456,28 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
     }
     /* the pairs no impulse moved: as sweep 0 measured them */
     double untouched = 0;
-    for (int slot = 0; slot < (P->n - 1) * nn; slot++)
-        if (!P->touched[slot] && !P->touched[slot + nn])
+    for (int slot = 0; slot < (P->n - 1) * nn; slot++) {
+        if (P->rest[slot] <= 0 || P->touched[slot])
+            continue; /* (clear, or measured again below) */
+        int upper = slot + nn;
+        if (!P->live[upper]) { /* its pair through a hole */
+            const int above = partner_above(P, slot / nn + 1, slot % nn);
+            upper = above < 0 ? upper : above * nn + slot % nn;
+        }
+        if (!P->touched[upper])
             untouched = fmax(untouched, P->rest[slot]);
+    }
     P->penetration = untouched;
     for (int t = 0; t < P->n_touched; t++) {
+        /* a touched node's pairs: as the lower node, and as the upper node of the
+         * first live ply below it */
         const int node = P->touched_list[t], q = node / nn, i = node % nn;
-        for (int pair = q - 1; pair <= q; pair++) {
-            if (pair < 0 || pair >= P->n - 1)
+        const int pairs[2] = {partner_below(P, q, i), q};
+        for (int k = 0; k < 2; k++) {
+            if (pairs[k] < 0 || pairs[k] >= P->n - 1)
                 continue;
             double rest = 0, moved = 0;
-            correct_pair(m, pair, i, h, dt, dt_mid, 0, &rest, &moved);
+            correct_pair(m, pairs[k], i, h, dt, dt_mid, 0, &rest, &moved);
             P->penetration = fmax(P->penetration, rest);
         }
     }

@@ -21,7 +21,12 @@
  *      0.01 of an edge, no energy put in by the ply contact, the plies' order kept
  *      away from the tear; a ply's apex is of the part still attached to its held
  *      edge (a fragment or a piece torn off whole ahead of it is not its
- *      deflection). */
+ *      deflection);
+ *   7. through a hole: three free plies, the middle one eroded whole (its
+ *      nodes have no facet left); ply 0 thrown at ply 2 meets it, as a ply
+ *      thrown at its neighbour does in 1: momentum to round-off, both on at
+ *      half the speed, h apart, the energy dissipated = the kinetic energy
+ *      lost. */
 #include "check.h"
 #include "test_meshes.h"
 #include "test_tmp.h"
@@ -574,6 +579,78 @@ static void perforated_pack(check_state *st)
     wff_model_free(&m);
 }
 
+/* 7. */
+static void through_hole(check_state *st)
+{
+    char path[1024];
+    test_tmp_path(tmpdir, "kevlar_failure_hole.txt", path, sizeof path);
+    CHECK(st, test_tmp_copy_replacing(KEVLAR, path, "failure = 0", "failure = 1\n") == 1,
+          "%s has a line 'failure = 0'", KEVLAR);
+    wff_model m;
+    wff_error err;
+    const double gap = 1e-3, t = 0.5e-3, v0 = 10;
+    if (square(st, &m, 8, 0.025, path))
+        return;
+    if (wff_model_set_plies(&m, 3, gap, &err) || wff_model_set_option(&m, "ply_thickness", t, &err) ||
+        wff_model_set_option(&m, "ply_mu", 0.3, &err) || wff_model_set_option(&m, "erosion", 1, &err) ||
+        !m.el.eroded) {
+        CHECK(st, 0, "set-up: %s", m.el.eroded ? err.message : "no erosion flags");
+        wff_model_free(&m);
+        return;
+    }
+    const int per = m.n_nodes / 3, per_el = (m.el.n_tris + m.el.n_quads) / 3;
+    for (int e = per_el; e < 2 * per_el; e++) /* ply 1 eroded whole (at rest, unstrained) */
+        m.el.eroded[e] = 1, m.n_eroded++;
+    for (int n = 0; n < per; n++) /* ply 0 at v0 towards ply 2, through ply 1 */
+        m.v[D * n + WFF_UZ] = v0;
+    double p0[3];
+    momentum(&m, p0);
+    wff_energies e0;
+    wff_model_energies(&m, &e0);
+    double worst_pen = 0;
+    for (int k = 1; k <= 40; k++) {
+        if (wff_model_advance(&m, k * 1e-5, 1000000, &err)) {
+            CHECK(st, 0, "advance: %s", err.message);
+            wff_model_free(&m);
+            return;
+        }
+        double pen;
+        wff_model_pack_value(&m, "ply_penetration", &pen, &err);
+        worst_pen = fmax(worst_pen, pen);
+    }
+    double p1[3];
+    momentum(&m, p1);
+    CHECK(st, fabs(p1[2] - p0[2]) <= 1e-12 * fabs(p0[2]) && fabs(p1[0]) <= 1e-12 * fabs(p0[2]) &&
+              fabs(p1[1]) <= 1e-12 * fabs(p0[2]),
+          "through a hole: momentum %.15g %g %g, was %.15g", p1[2], p1[0], p1[1], p0[2]);
+    double vmin = INFINITY, vmax = -INFINITY, sep = INFINITY, middle = 0;
+    for (int n = 0; n < per; n++) {
+        for (int q = 0; q < 3; q += 2) {
+            vmin = fmin(vmin, m.v[D * (q * per + n) + WFF_UZ]);
+            vmax = fmax(vmax, m.v[D * (q * per + n) + WFF_UZ]);
+        }
+        middle = fmax(middle, fabs(m.v[D * (per + n) + WFF_UZ]));
+        sep = fmin(sep, m.u[D * (n + 2 * per) + WFF_UZ] - m.u[D * n + WFF_UZ]);
+    }
+    printf("  through a hole: plies 0 and 2 at v_z %.9f .. %.9f m/s (v0 / 2 = %g), separation %.6g mm "
+           "(h %.3g mm), the eroded ply at %g m/s, worst penetration %.3g m\n",
+           vmin, vmax, v0 / 2, 1e3 * sep, 1e3 * t, middle, worst_pen);
+    CHECK(st, fabs(vmin - v0 / 2) <= 1e-12 * v0 && fabs(vmax - v0 / 2) <= 1e-12 * v0,
+          "through a hole, inelastic: v_z %g .. %g", vmin, vmax);
+    CHECK(st, sep >= t - 1e-12 && sep <= t + 1e-6, "through a hole: separation %g against h %g", sep, t);
+    CHECK(st, worst_pen <= 1e-12, "through a hole: penetration %g m", worst_pen);
+    CHECK(st, middle == 0, "the eroded ply takes no impulse (%g m/s)", middle);
+    wff_energies e;
+    wff_model_energies(&m, &e);
+    double kin = e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude;
+    double lost = e0.kinetic_transverse - kin;
+    CHECK_CLOSE(st, e.dissipated_ply_contact, lost, 1e-9, 1e-30, "through a hole: dissipated = kinetic lost");
+    CHECK_CLOSE(st, e.dissipated_ply_contact, 0.5 * e0.kinetic_transverse, 1e-9, 1e-30,
+                "through a hole: half the kinetic energy");
+    CHECK(st, fabs(e.error) <= 1e-9, "through a hole: energy balance %g", e.error);
+    wff_model_free(&m);
+}
+
 int main(void)
 {
     check_state st = {0, 0};
@@ -587,6 +664,7 @@ int main(void)
     double_ply(&st);
     deep_pair(&st);
     perforated_pack(&st);
+    through_hole(&st);
     test_tmp_remove(tmpdir);
     return check_summary(&st, "test_ply_contact");
 }
