@@ -33,8 +33,8 @@
  * size (the inter-ply friction keeps it so near the impact; a ply that slides
  * by more meets its neighbour's node i still, not the node now below it);
  * plies pair with their neighbours only, or with the next live one through a
- * hole (enough while plies cannot pass each other, which the contact keeps). The normals pass runs one ply a thread; the
- * sweeps are serial. */
+ * hole (enough while plies cannot pass each other, which the contact keeps).
+ * The normals pass runs one ply a thread; the sweeps are serial. */
 #include "pack.h"
 #include "wall_clock.h"
 
@@ -241,6 +241,17 @@ static inline int partner_above(const struct wff_pack *P, int p, int i)
     return -1;
 }
 
+/* The upper node of slot (pair, i): node i of ply pair + 1, or of the first
+ * live ply above it through its hole; -1 if none. */
+static inline int upper_node(const struct wff_pack *P, int pair, int i)
+{
+    const int B = (pair + 1) * P->nodes + i;
+    if (P->live[B])
+        return B;
+    const int above = partner_above(P, pair + 1, i);
+    return above < 0 ? -1 : above * P->nodes + i;
+}
+
 /* The first ply below ply p with a facet left at node i, or -1. */
 static inline int partner_below(const struct wff_pack *P, int p, int i)
 {
@@ -261,15 +272,11 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
 {
     const struct wff_pack *P = m->pack;
     const int A = pair * P->nodes + i;
-    int B = A + P->nodes;
     if (!P->live[A])
         return -1; /* a dead node: no pair (the live ply below pairs through it) */
-    if (!P->live[B]) { /* through ply pair + 1's hole */
-        const int above = partner_above(P, pair + 1, i);
-        if (above < 0)
-            return -1; /* a fragment, or nothing above: left out */
-        B = above * P->nodes + i;
-    }
+    const int B = upper_node(P, pair, i);
+    if (B < 0)
+        return -1; /* a fragment, or nothing above: left out */
     /* (the test every pair takes in scalars: small arrays written one by one
      * and read as pairs stalled the store forwarding) */
     const double *xy_a = m->mesh.xy + 2 * A, *xy_b = m->mesh.xy + 2 * B;
@@ -459,11 +466,7 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
     for (int slot = 0; slot < (P->n - 1) * nn; slot++) {
         if (P->rest[slot] <= 0 || P->touched[slot])
             continue; /* (clear, or measured again below) */
-        int upper = slot + nn;
-        if (!P->live[upper]) { /* its pair through a hole */
-            const int above = partner_above(P, slot / nn + 1, slot % nn);
-            upper = above < 0 ? upper : above * nn + slot % nn;
-        }
+        const int upper = upper_node(P, slot / nn, slot % nn); /* (>= 0: its rest is > 0) */
         if (!P->touched[upper])
             untouched = fmax(untouched, P->rest[slot]);
     }
