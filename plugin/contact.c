@@ -5,7 +5,7 @@
  * for nodes that may touch it, and the kinematic (hard, inelastic) contact
  * with Coulomb friction as velocity impulses each step. Knows the model's
  * arrays; nothing of cells, elements, the friction clamp or FreeFEM. */
-#include "solver_internal.h"
+#include "contact.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -423,3 +423,17 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
     m->dissipated_friction -= work;
     return 0;
 }
+
+/* The candidates follow the stable step's refresh (the nodes the projectile can
+ * reach before the next). */
+static void contact_refresh(wff_model *m)
+{
+    if (m->projectile.active)
+        wff_contact_refresh_candidates(m);
+}
+
+const wff_part_ops wff_projectile_contact_part = {
+    .name = "projectile_contact",
+    .refresh = contact_refresh,
+    .correct = wff_contact_correct,
+};

@@ -8,7 +8,6 @@
 #include "erosion.h"
 #include "membrane_geometry.h"
 #include "zones.h"
-#include "pack.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -41,7 +40,17 @@ static int materials_damage(const wff_model *m, const wff_cell_type **lacking)
     return carry;
 }
 
-static int flags_on(wff_model *m, int rule, wff_error *err)
+/* The part's allocations: the list of a pass's eroded elements. */
+static void erosion_free(wff_model *m)
+{
+    free(m->eroded_now);
+    free(m->eroded_now_energy);
+    m->eroded_now = NULL;
+    m->eroded_now_energy = NULL;
+    m->n_eroded_now = 0;
+}
+
+int wff_erosion_on(wff_model *m, int rule, wff_error *err)
 {
     int n_el = m->el.n_tris + m->el.n_quads;
     if (!m->el.eroded) {
@@ -49,6 +58,13 @@ static int flags_on(wff_model *m, int rule, wff_error *err)
         if (!m->el.eroded)
             return wff_fail(err, "erosion: out of memory for %d elements' flags", n_el);
     }
+    if (!m->eroded_now) { /* the list of a pass's eroded elements (at most all of them) */
+        m->eroded_now = malloc(sizeof(int) * (size_t)(n_el ? n_el : 1));
+        m->eroded_now_energy = malloc(sizeof(double) * (size_t)(n_el ? n_el : 1));
+        if (!m->eroded_now || !m->eroded_now_energy)
+            return wff_fail(err, "erosion: out of memory for %d elements' list", n_el);
+    }
+    m->n_eroded_now = 0;
     m->el.erosion = rule;
     return wff_zones_erosion_changed(m, err);
 }
@@ -67,6 +83,7 @@ int wff_erosion_set(wff_model *m, double value, wff_error *err)
         free(m->el.eroded);
         m->el.eroded = NULL;
         m->el.erosion = WFF_EROSION_OFF;
+        erosion_free(m);
         return wff_zones_erosion_changed(m, err);
     }
     const wff_cell_type *lacking;
@@ -79,14 +96,14 @@ int wff_erosion_set(wff_model *m, double value, wff_error *err)
         return wff_fail(err, "erosion = %d: the material (%s, cell '%s') has yarn failure "
                         "off (failure = 0): its points carry no damage; set failure = 1 in "
                         "the material file", rule, m->mat.source, m->mat.cell->name);
-    return flags_on(m, rule, err);
+    return wff_erosion_on(m, rule, err);
 }
 
 int wff_erosion_default(wff_model *m, wff_error *err)
 {
     if (damage_index(&m->mat, 0) < 0 || damage_index(&m->mat, 1) < 0)
         return 0;
-    return flags_on(m, WFF_EROSION_BOTH, err);
+    return wff_erosion_on(m, WFF_EROSION_BOTH, err);
 }
 
 double wff_element_stored_energy(const wff_elements *el, const wff_element_material *em,
@@ -140,10 +157,16 @@ static int ruptured(const wff_model *m, const wff_material *mat, const double *s
     return rule == WFF_EROSION_BOTH ? all[0] && all[1] : all[0] || all[1];
 }
 
-double wff_erosion_scan(wff_model *m, const double *u, const double *state)
+/* After an accumulating force pass that advanced the states (dt_flow > 0):
+ * the elements whose yarns have ruptured go (the part's after_forces). */
+static double erosion_after_forces(wff_model *m, const double *u, const double *state,
+                                   double dt_flow)
 {
     unsigned char *eroded = m->el.eroded;
-    if (!eroded || m->el.erosion == WFF_EROSION_OFF)
+    if (!eroded)
+        return 0;
+    m->n_eroded_now = 0;
+    if (!(dt_flow > 0) || m->el.erosion == WFF_EROSION_OFF)
         return 0;
     const int nt = m->el.n_tris, n_el = nt + m->el.n_quads;
     double removed = 0;
@@ -159,7 +182,8 @@ double wff_erosion_scan(wff_model *m, const double *u, const double *state)
             continue;
         double stored = wff_element_stored_energy(&m->el, em, m->mesh.xy, u, state, m->n_state, e);
         removed += stored;
-        wff_pack_eroded(m, e, stored); /* the ply's share (pack.h) */
+        m->eroded_now[m->n_eroded_now] = e; /* (a pack's ply accounts read them) */
+        m->eroded_now_energy[m->n_eroded_now++] = stored;
         eroded[e] = 1;
         m->n_eroded++;
         any = 1;
@@ -195,3 +219,19 @@ int wff_model_damaged(const wff_model *m)
                 return 1;
     return 0;
 }
+
+/* The setting erosion. */
+static int erosion_set(wff_model *m, const char *key, double value, int *rc, wff_error *err)
+{
+    if (strcmp(key, "erosion") != 0)
+        return 0;
+    *rc = wff_erosion_set(m, value, err);
+    return 1;
+}
+
+const wff_part_ops wff_erosion_part = {
+    .name = "erosion",
+    .after_forces = erosion_after_forces,
+    .set = erosion_set,
+    .free = erosion_free,
+};

@@ -11,7 +11,7 @@
 #ifndef WFF_EROSION_H
 #define WFF_EROSION_H
 
-#include "solver_internal.h"
+#include "part.h"
 
 /* The setting erosion (wff_model_set_option): 0 off, 1 both families
  * ruptured, 2 either. Refused for a cell without yarn failure (damage_state
@@ -22,12 +22,19 @@ int wff_erosion_set(wff_model *m, double rule, wff_error *err);
 /* At model creation: rule 1 when the material's points carry both damage
  * states (failure = 1), off otherwise. -1 (err set) if out of memory. */
 int wff_erosion_default(wff_model *m, wff_error *err);
-/* After a force pass that advanced the states (dt > 0) at displacement u,
- * states `state` (m->n_state per point): erode the elements the rule
- * selects; their stored energy then (their points evaluated at dt = 0, J,
- * model part) is added to m->eroded_energy and returned; m->n_eroded counts
- * them. Nothing without erosion (m->el.eroded NULL). */
-double wff_erosion_scan(wff_model *m, const double *u, const double *state);
+/* The part (part.h): after an accumulating force pass that advanced the
+ * states (dt > 0) at displacement u, states `state` (m->n_state per point):
+ * the elements the rule selects erode; their stored energy then (their points
+ * evaluated at dt = 0, J, model part) is added to m->eroded_energy and taken
+ * out of the pass's; m->n_eroded counts them, and the pass's list of them
+ * (m->eroded_now, in element order, with their energies) is there for the
+ * parts after it. The setting erosion. Nothing without erosion (m->el.eroded
+ * NULL). */
+extern const wff_part_ops wff_erosion_part;
+/* Erosion switched on with `rule` (WFF_EROSION_BOTH or _EITHER): the flags and
+ * the pass's list allocated (kept if they are); -1 (err set) if out of
+ * memory. */
+int wff_erosion_on(wff_model *m, int rule, wff_error *err);
 /* Stored energy of element e (J, model part: Σ w W / J_pre, every point at
  * dt = 0 with its own state, n_state per point in state), as the force pass
  * integrates it. */

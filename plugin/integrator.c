@@ -1,14 +1,14 @@
 /* integrator.c: the explicit central-difference integrator
  * (docs/model.md §12, §14): the force pass, the velocity update with the
- * boundary conditions and the friction clamp's Coulomb correction
- * (docs/model.md §15), the stable step, the advance loop, the energies and
- * the instability detector. Calls the elements for forces and the stable
- * step and contact.c once a step; knows nothing of cells by name, of output
+ * boundary conditions (the friction clamp's Coulomb correction inside it,
+ * clamp.c), the stable step, the advance loop, the energies and the
+ * instability detector. The step's other participants are parts (part.h)
+ * run from the list in parts.c: after the force pass, after the velocity
+ * update, at each stable-step refresh, and their terms of the balance; the
+ * integrator names none of them. Knows nothing of cells by name, of output
  * fields, of checkpoints or of FreeFEM. */
-#include "solver_internal.h"
-#include "erosion.h"
+#include "part.h"
 #include "zones.h"
-#include "pack.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -97,17 +97,17 @@ static int force_pass_added(wff_model *m, const double *u, double *f, double *st
         return wff_fail(err, "t = %.6g s (step %ld): %s, quadrature point %d: %s%s", m->time,
                         m->step, name, t.bad_point + 1, quantity, hint);
     }
-    /* erosion (erosion.c): after a pass that advanced the states, elements whose yarns
-     * have ruptured go; their stored energy moves to the eroded energy */
-    if (accumulate && dt_flow > 0 && m->el.eroded)
-        t.internal_energy -= wff_erosion_scan(m, u, state);
+    /* the parts after the pass (part.h): erosion takes the elements whose yarns
+     * have ruptured, their stored energy out of the pass's; a pack's per-ply
+     * accounts follow */
+    if (accumulate)
+        t.internal_energy -= wff_parts_after_forces(m, u, state, dt_flow);
     if (energy)
         *energy = t.internal_energy;
     if (accumulate) {
         m->internal_energy = t.internal_energy;
         m->dissipated_shear += t.dissipated;
         m->dissipated_failure += t.failure_dissipated;
-        wff_pack_accumulate(m); /* per-ply energies of a pack */
     }
     return 0;
 }
@@ -125,20 +125,6 @@ static int compute_forces_zeroed(wff_model *m, double dt_flow, wff_error *err)
     return force_pass_added(m, m->u, m->f, m->state, dt_flow, 1, NULL, err);
 }
 
-/* Coulomb friction as a velocity correction: an impulse up to `limit`
- * against the relative tangential speed `speed` of a node of mass `mass`
- * (sticking if the limit allows). The friction force impulse/Δt works
- * against the slip that remains, speed − impulse/mass, over the step: that is
- * the energy it dissipates (zero while sticking). Returns the impulse. */
-static double friction_impulse(double mass, double speed, double limit, double *dissipated)
-{
-    double stick = mass * speed;
-    double impulse = stick < limit ? stick : limit;
-    double slip = speed - impulse / mass;
-    *dissipated += impulse * slip;
-    return impulse;
-}
-
 /* v^{n+½} from f^n; dt_done is the step just taken (0 on the first half step):
  * the second half of its trapezoidal external work, ½ Rⁿ⁺¹·Δu, is added here
  * on the prescribed DOFs (the first half was added with the position update). */
@@ -148,38 +134,6 @@ static void update_velocities(wff_model *m, double dt_mid, double dt_done)
     wff_step_velocities(m, dt_mid, dt_done, &work, &dissipated);
     m->external_work += work;
     m->dissipated_friction += dissipated;
-}
-
-double wff_clamp_correct(const wff_model *m, double *v, double dt_mid)
-{
-    return wff_step_clamp(m, v, dt_mid); /* wff_clamp_node on every clamped node */
-}
-
-/* friction clamp: in-plane, two faces, on the node's free in-plane
- * components (a node on a symmetry line slides along it and is held by
- * friction there too) */
-double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid)
-{
-    double dissipated = 0;
-    int n = m->clamp.node[c];
-    double *vn = v + D * n;
-    int free_x = m->dof_kind[D * n + WFF_UX] == WFF_DOF_FREE;
-    int free_y = m->dof_kind[D * n + WFF_UY] == WFF_DOF_FREE;
-    double speed = hypot(free_x ? vn[0] : 0, free_y ? vn[1] : 0);
-    if (speed == 0)
-        return 0;
-    /* both faces press with N_a; an out-of-plane load R_z adds to one */
-    double pressed = 2 * m->clamp.normal_force[c];
-    if (m->clamp.edge_reaction)
-        pressed += fabs(m->reaction[D * n + WFF_UZ]);
-    double impulse = friction_impulse(m->mass[D * n], speed,
-                                      m->clamp.mu * pressed * dt_mid, &dissipated);
-    double scale = 1 - impulse / (m->mass[D * n] * speed);
-    if (free_x)
-        vn[0] *= scale;
-    if (free_y)
-        vn[1] *= scale;
-    return dissipated;
 }
 
 static int update_time_step(wff_model *m, wff_error *err)
@@ -239,12 +193,12 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     out->transfer = s * m->transfer_energy;
     out->dissipated_failure = s * m->dissipated_failure;
     out->eroded = s * m->eroded_energy;
-    const double ply_contact = m->pack ? m->pack->dissipated : 0; /* (pack.h) */
-    out->dissipated_ply_contact = s * ply_contact;
+    const double parts = wff_parts_dissipated(m); /* (part.h: the ply contact's) */
+    out->dissipated_ply_contact = s * parts;
     /* initial + external work = kinetic + internal + shear + friction + failure + eroded */
     double total = k[0] + k[1] + k[2] + k[3] + m->internal_energy +
                    m->dissipated_shear + m->dissipated_friction + m->dissipated_failure +
-                   m->eroded_energy - m->external_work - m->transfer_energy + ply_contact;
+                   m->eroded_energy - m->external_work - m->transfer_energy + parts;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
      * boundaries) the work done on it or the energy it now holds */
     double stored = m->internal_energy - (m->initial_total - m->initial_kinetic);
@@ -272,10 +226,9 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
                         "(step %ld): a model cannot go back", t_end, m->time, m->step);
     if (m->step == 0 && !m->v_half_valid) {
         /* start: forces at u⁰, energy reference */
-        if (update_time_step(m, err))
+        if (update_time_step(m, err) || wff_parts_setup(m, err))
             return -1;
-        if (m->projectile.active)
-            wff_contact_refresh_candidates(m);
+        wff_parts_refresh(m);
         if (compute_forces(m, 0, err))
             return -1;
         double k[4];
@@ -285,12 +238,10 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         m->v_half_valid = 1;
         /* first half step */
         update_velocities(m, 0.5 * m->dt, 0);
-        if (wff_contact_correct(m, m->dt, 0.5 * m->dt, err) ||
-            (m->pack && wff_ply_contact_correct(m, m->dt, 0.5 * m->dt, err)))
+        if (wff_parts_correct(m, m->dt, 0.5 * m->dt, err))
             return -1;
     }
-    if (m->projectile.active)
-        wff_contact_refresh_candidates(m);
+    wff_parts_refresh(m);
     long done = 0;
     while (m->time < t_end && done < max_steps) {
         /* u^{n+1} = u^n + Δt v^{n+½} */
@@ -305,14 +256,12 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         if (m->step % m->dt_interval == 0) {
             if (update_time_step(m, err))
                 return -1;
-            if (m->projectile.active)
-                wff_contact_refresh_candidates(m);
+            wff_parts_refresh(m);
         }
         if (compute_forces_zeroed(m, dt, err))
             return -1;
         update_velocities(m, 0.5 * (dt + m->dt), dt);
-        if (wff_contact_correct(m, m->dt, 0.5 * (dt + m->dt), err) ||
-            (m->pack && wff_ply_contact_correct(m, m->dt, 0.5 * (dt + m->dt), err)))
+        if (wff_parts_correct(m, m->dt, 0.5 * (dt + m->dt), err))
             return -1;
         {   /* every step (a pass over the DOFs, ~4 % of a step): an unstable
              * step grows the energy by a large factor per step */

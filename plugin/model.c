@@ -4,10 +4,11 @@
  * and the nearest node. Knows the mesh, the material and the elements;
  * nothing of how a step is taken (integrator.c), of contact (contact.c),
  * of output fields or checkpoints, of cells by name or of FreeFEM. */
-#include "solver_internal.h"
+#include "part.h"
+#include "clamp.h"
+#include "contact.h"
 #include "erosion.h"
 #include "zones.h"
-#include "pack.h"
 #include "wovenff/material.h"
 #include "wovenff/kernel.h"
 
@@ -15,28 +16,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* zones.h: every point whose material carries WFF_ELEMENT_LENGTH_STATE gets its
- * element's band length (the material looked up again only where it changes). */
-void wff_model_set_element_lengths(wff_model *m)
-{
-    const int nt = m->el.n_tris, n_el = nt + m->el.n_quads, ns = m->n_state;
-    const wff_material *last = NULL;
-    int slot = -1;
-    for (int e = 0; e < n_el; e++) {
-        wff_element_material scratch;
-        const wff_material *mat = wff_zones_element_material(m, e, &scratch)->mat;
-        if (mat != last)
-            slot = wff_material_state_index(mat, WFF_ELEMENT_LENGTH_STATE), last = mat;
-        if (slot < 0)
-            continue;
-        const int np = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
-        const double h = wff_element_band_length(&m->el, e);
-        double *state = m->state + (size_t)ns * wff_element_first_point(nt, e);
-        for (int q = 0; q < np; q++)
-            state[ns * q + slot] = h;
-    }
-}
 
 void wff_model_free(wff_model *m)
 {
@@ -55,7 +34,7 @@ void wff_model_free(wff_model *m)
     free(m->clamp.normal_force);
     free(m->operator_scratch);
     free(m->bc);
-    wff_pack_free(m);
+    wff_parts_free(m); /* each part what it allocated (part.h) */
     wff_zones_free(m);
     wff_model_order_free(m);
     wff_elements_free(&m->el);
@@ -77,40 +56,7 @@ int wff_model_create(wff_model *m, const char *mesh_path, const wff_mesh_options
     return 0;
 }
 
-static void sum_fabric_mass(wff_model *m)
-{
-    m->fabric_mass = 0;
-    for (int n = 0; n < m->n_nodes; n++)
-        m->fabric_mass += m->mass[D * n];
-}
-
 static void set_dof(wff_model *m, int node, void *data);
-static int share_clamp_force(wff_model *m, wff_error *err);
-
-/* Before the first step: the stored energy of the state as set up (e.g. the
- * preload), so that energies read before any step are complete. A force pass
- * with the state held; its forces are recomputed when the run starts, and a bad
- * element is reported then. */
-static void stored_energy_now(wff_model *m)
-{
-    if (m->v_half_valid || m->step > 0)
-        return;
-    wff_force_totals t;
-    memset(m->f, 0, sizeof(double) * (size_t)m->n_dofs);
-    wff_zones_forces(m, m->u, m->state, 0, m->f, &t);
-    m->internal_energy = t.bad_element >= 0 ? 0 : t.internal_energy;
-}
-
-/* The masses changed with a zone's material or preload (zones.h). */
-int wff_model_masses_changed(wff_model *m, wff_error *err)
-{
-    wff_zones_masses(m);
-    sum_fabric_mass(m);
-    if (m->clamp.n && share_clamp_force(m, err))
-        return -1;
-    stored_energy_now(m);
-    return 0;
-}
 
 int wff_model_create_from_mesh(wff_model *m, wff_mesh *mesh, const char *material_path,
                                wff_error *err)
@@ -177,7 +123,7 @@ int wff_model_setup(wff_model *m, wff_error *err)
     m->em.J_pre = 1;
     m->preload[0] = m->preload[3] = 1;
     wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
-    sum_fabric_mass(m);
+    wff_model_sum_fabric_mass(m);
     /* amplitude DOFs of a cell without amplitudes stay put */
     if (m->mat.cell->n_amplitudes == 0)
         for (int n = 0; n < m->n_nodes; n++)
@@ -190,7 +136,7 @@ int wff_model_setup(wff_model *m, wff_error *err)
         return -1;
     }
     wff_model_set_element_lengths(m); /* a state the element code sets (cell.h) */
-    stored_energy_now(m);
+    wff_model_stored_energy_now(m);
     return 0;
 }
 
@@ -208,8 +154,8 @@ int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[
     wff_orientation_map(m->em.orientation, m->preload, m->em.F_pre); /* (θ = 0: a copy) */
     m->em.J_pre = det;
     wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
-    sum_fabric_mass(m);
-    if (m->clamp.n && share_clamp_force(m, err)) /* the new masses: order of calls free */
+    wff_model_sum_fabric_mass(m);
+    if (m->clamp.n && wff_clamp_share(m, err)) /* the new masses: order of calls free */
         return -1;
     if (m->mat.cell->n_amplitudes)
         for (int n = 0; n < m->n_nodes; n++) {
@@ -218,7 +164,7 @@ int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[
         }
     if (m->zones && wff_zones_preload_changed(m, err)) /* matched zone preloads follow */
         return -1;
-    stored_energy_now(m);
+    wff_model_stored_energy_now(m);
     return 0;
 }
 
@@ -232,11 +178,11 @@ int wff_model_set_orientation(wff_model *m, double theta, wff_error *err)
                         "before the first step", theta * 180 / M_PI, m->time, m->step,
                         m->em.orientation * 180 / M_PI);
     m->em.orientation = theta;
-    wff_pack_orientation_all(m, theta); /* every ply of a pack */
+    wff_parts_follow(m, "orientation", theta); /* (a pack: every ply) */
     /* the map the kernels apply (det unchanged: J_pre, the masses and a zone's
      * matched preload, a material-frame state, stay) */
     wff_orientation_map(theta, m->preload, m->em.F_pre);
-    stored_energy_now(m);
+    wff_model_stored_energy_now(m);
     return 0;
 }
 
@@ -340,13 +286,32 @@ static int check_component(int component, wff_error *err)
     return 0;
 }
 
+/* The boundary condition just set by group, kept so that a mesh transfer
+ * (remesh.c) can set it again on the new mesh. */
+static int log_bc(wff_model *m, int kind, const char *group, int component, double value,
+                  double mu, wff_error *err)
+{
+    wff_bc_record *bc = realloc(m->bc, sizeof *bc * (size_t)(m->n_bc + 1));
+    if (!bc)
+        return wff_fail(err, "out of memory recording a boundary condition on '%s'", group);
+    m->bc = bc;
+    wff_bc_record *r = &bc[m->n_bc++];
+    memset(r, 0, sizeof *r);
+    snprintf(r->group, sizeof r->group, "%s", group);
+    r->kind = kind;
+    r->component = component;
+    r->value = value;
+    r->mu = mu;
+    return 0;
+}
+
 int wff_model_fix_group(wff_model *m, const char *group, int component, wff_error *err)
 {
     if (check_component(component, err))
         return -1;
     dof_setting s = {component, WFF_DOF_FIXED, 0, -1};
     int count = set_group_dofs(m, group, &s, "fix", err);
-    if (count > 0 && wff_model_log_bc(m, WFF_DOF_FIXED, group, component, 0, 0, err))
+    if (count > 0 && log_bc(m, WFF_DOF_FIXED, group, component, 0, 0, err))
         return -1;
     return count;
 }
@@ -360,7 +325,7 @@ int wff_model_prescribe_group(wff_model *m, const char *group, int component, do
         return wff_fail(err, "prescribed velocity of '%s' is not finite", group);
     dof_setting s = {component, WFF_DOF_PRESCRIBED, velocity, -1};
     int count = set_group_dofs(m, group, &s, "prescribe", err);
-    if (count > 0 && wff_model_log_bc(m, WFF_DOF_PRESCRIBED, group, component, velocity, 0, err))
+    if (count > 0 && log_bc(m, WFF_DOF_PRESCRIBED, group, component, velocity, 0, err))
         return -1;
     return count;
 }
@@ -371,65 +336,6 @@ static void add_clamp_node(wff_model *m, int node, void *data)
     m->clamp.node[m->clamp.n++] = node;
     m->dof_kind[D * node + WFF_UZ] = WFF_DOF_FIXED; /* pressed flat */
     m->v[D * node + WFF_UZ] = 0;
-}
-
-/* The clamping force shared among the clamp's nodes: by the area of the
- * elements of the clamp's surface (a third of a triangle, a quarter of a
- * quadrilateral, at each corner) or, for a curve group, by lumped mass; only
- * nodes within clamp.radius of (0, 0) when it is set. */
-static int share_clamp_force(wff_model *m, wff_error *err)
-{
-    wff_clamp *c = &m->clamp;
-    double *share = c->normal_force;
-    for (int i = 0; i < c->n; i++)
-        share[i] = 0;
-    if (c->region >= 0) { /* node area by element, gathered per clamp node below */
-        double *area = calloc((size_t)m->n_nodes, sizeof(double));
-        if (!area)
-            return wff_fail(err, "out of memory");
-        const double *xy = m->mesh.xy;
-        for (int e = 0; e < m->mesh.n_tris; e++) {
-            if (m->mesh.tri_region[e] != c->region)
-                continue;
-            const int *t = m->mesh.tri + 3 * e;
-            const double *p0 = xy + 2 * t[0], *p1 = xy + 2 * t[1], *p2 = xy + 2 * t[2];
-            double a = 0.5 * fabs((p1[0] - p0[0]) * (p2[1] - p0[1]) -
-                                  (p2[0] - p0[0]) * (p1[1] - p0[1]));
-            for (int k = 0; k < 3; k++)
-                area[t[k]] += a / 3;
-        }
-        for (int e = 0; e < m->mesh.n_quads; e++) {
-            if (m->mesh.quad_region[e] != c->region)
-                continue;
-            const int *q = m->mesh.quad + 4 * e;
-            double a = 0; /* shoelace */
-            for (int k = 0; k < 4; k++) {
-                int p = q[k], r = q[(k + 1) % 4];
-                a += xy[2 * p] * xy[2 * r + 1] - xy[2 * r] * xy[2 * p + 1];
-            }
-            for (int k = 0; k < 4; k++)
-                area[q[k]] += 0.25 * fabs(0.5 * a);
-        }
-        for (int i = 0; i < c->n; i++)
-            share[i] = area[c->node[i]];
-        free(area);
-    } else {
-        for (int i = 0; i < c->n; i++)
-            share[i] = m->mass[D * c->node[i]];
-    }
-    double total = 0;
-    for (int i = 0; i < c->n; i++) {
-        const double *p = m->mesh.xy + 2 * c->node[i];
-        if (c->radius > 0 && hypot(p[0], p[1]) > c->radius)
-            share[i] = 0;
-        total += share[i];
-    }
-    if (!(total > 0))
-        return wff_fail(err, "friction clamp: no clamped node within clamp_radius %g m of (0, 0)",
-                        c->radius);
-    for (int i = 0; i < c->n; i++)
-        share[i] *= c->force_whole / m->symmetry_factor / total; /* modelled part */
-    return 0;
 }
 
 int wff_model_clamp_friction(wff_model *m, const char *group, double normal_force, double mu,
@@ -460,9 +366,9 @@ int wff_model_clamp_friction(wff_model *m, const char *group, double normal_forc
     m->clamp.region = wff_mesh_group_tag(&m->mesh, 2, group);
     m->clamp.radius = 0;
     m->clamp.edge_reaction = 0;
-    if (share_clamp_force(m, err))
+    if (wff_clamp_share(m, err))
         return -1;
-    if (wff_model_log_bc(m, WFF_BC_CLAMP, group, 0, normal_force, mu, err))
+    if (log_bc(m, WFF_BC_CLAMP, group, 0, normal_force, mu, err))
         return -1;
     return count;
 }
@@ -489,7 +395,7 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
 int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err)
 {
     int rc;
-    if (wff_pack_set_option(m, key, value, &rc, err)) /* ply_mu, ply_thickness */
+    if (wff_parts_set(m, key, value, &rc, err)) /* the parts' own (part.h) */
         return rc;
     if (strcmp(key, "dtfactor") == 0) {
         if (!(value > 0 && value <= 2))
@@ -515,11 +421,11 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
             m->symmetry_factor = old;
             return -1;
         }
-        if (m->clamp.n && share_clamp_force(m, err)) {
+        if (m->clamp.n && wff_clamp_share(m, err)) {
             wff_error ignored;
             m->symmetry_factor = old;
             wff_contact_symmetry_changed(m, &ignored);
-            share_clamp_force(m, &ignored);
+            wff_clamp_share(m, &ignored);
             return -1;
         }
     } else if (strcmp(key, "threads") == 0) {
@@ -569,14 +475,12 @@ int wff_model_set_option(wff_model *m, const char *key, double value, wff_error 
             return wff_fail(err, "clamp_radius = %g: must be >= 0 m (0: the whole clamp)", value);
         double before = m->clamp.radius;
         m->clamp.radius = value;
-        if (share_clamp_force(m, err)) { /* no node within: keep the force as it was */
+        if (wff_clamp_share(m, err)) { /* no node within: keep the force as it was */
             wff_error ignored;
             m->clamp.radius = before;
-            share_clamp_force(m, &ignored);
+            wff_clamp_share(m, &ignored);
             return -1;
         }
-    } else if (strcmp(key, "erosion") == 0) {
-        return wff_erosion_set(m, value, err);
     } else if (strcmp(key, "orientation") == 0) { /* degrees */
         if (!isfinite(value))
             return wff_fail(err, "orientation = %g: must be a finite angle in degrees", value);

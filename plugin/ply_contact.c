@@ -35,7 +35,7 @@
  * plies pair with their neighbours only, or with the next live one through a
  * hole (enough while plies cannot pass each other, which the contact keeps).
  * The normals pass runs one ply a thread; the sweeps are serial. */
-#include "pack.h"
+#include "ply_contact.h"
 #include "wall_clock.h"
 
 #include <math.h>
@@ -360,10 +360,23 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
     return 1;
 }
 
+double wff_ply_thickness(const wff_model *m)
+{
+    if (m->pack && m->pack->thickness > 0)
+        return m->pack->thickness;
+    return m->mat.areal_density / (WFF_PLY_FIBRE_DENSITY * WFF_PLY_FIBRE_FRACTION);
+}
+
+double wff_ply_contact_distance(const wff_model *m)
+{
+    double t = wff_ply_thickness(m), gap = m->pack ? m->pack->gap : t;
+    return t < gap ? t : gap;
+}
+
 double wff_ply_penetration_bound(const wff_model *m)
 {
     const struct wff_pack *P = m->pack;
-    const double h = wff_pack_contact_distance(m);
+    const double h = wff_ply_contact_distance(m);
     double reach = 0;
     for (int i = 0; P && P->reach && i < P->nodes; i++)
         reach = fmax(reach, P->reach[i]);
@@ -420,7 +433,7 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
     if (!P->impulse && ensure_workspace(m, err))
         return -1;
     const int nn = P->nodes;
-    const double h = wff_pack_contact_distance(m);
+    const double h = wff_ply_contact_distance(m);
     nodal_normals(m, dt);
     wff_projectile *pr = &m->projectile;
     for (int c = 0; pr->active && c < pr->n_contact; c++)
@@ -519,3 +532,15 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
     P->seconds += wff_wall_seconds() - started;
     return 0;
 }
+
+/* The kinetic energy the ply contact removed, J (model part). */
+static double ply_contact_dissipated(const wff_model *m)
+{
+    return m->pack ? m->pack->dissipated : 0;
+}
+
+const wff_part_ops wff_ply_contact_part = {
+    .name = "ply_contact",
+    .correct = wff_ply_contact_correct,
+    .dissipated = ply_contact_dissipated,
+};

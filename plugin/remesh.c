@@ -3,15 +3,15 @@
  * grid over its triangles, P1 interpolation of the nodal DOFs, γᶠ per new
  * quadrature point from the old element containing it, the groups and the
  * boundary conditions set again by name, masses, forces and the stable step
- * recomputed, and the energy the transfer changed. Also the record of the
- * boundary conditions set by group (wff_model_log_bc) it replays. Knows the
+ * recomputed, and the energy the transfer changed. The record of the
+ * boundary conditions set by group it replays is model.c's. Knows the
  * model's arrays, the elements and the contact call; nothing of cells by
  * name, of output, of checkpoints or of FreeFEM.
  *
  * The new model is built beside the old one and swapped in only when whole:
  * a failure frees what was built and leaves the old model as it was. A
  * per-node or per-point array added to wff_model must be added here. */
-#include "solver_internal.h"
+#include "contact.h"
 #include "zones.h"
 #include "erosion.h"
 
@@ -29,23 +29,6 @@
 /* A triangle's point (a vertex) is located a little toward the triangle's
  * centre, so that the old element chosen is the one the new element lies in. */
 #define NUDGE 1e-6
-
-int wff_model_log_bc(wff_model *m, int kind, const char *group, int component, double value,
-                     double mu, wff_error *err)
-{
-    wff_bc_record *bc = realloc(m->bc, sizeof *bc * (size_t)(m->n_bc + 1));
-    if (!bc)
-        return wff_fail(err, "out of memory recording a boundary condition on '%s'", group);
-    m->bc = bc;
-    wff_bc_record *r = &bc[m->n_bc++];
-    memset(r, 0, sizeof *r);
-    snprintf(r->group, sizeof r->group, "%s", group);
-    r->kind = kind;
-    r->component = component;
-    r->value = value;
-    r->mu = mu;
-    return 0;
-}
 
 /* ---- the old mesh as triangles, with a bucket grid ---------------------------------- */
 
@@ -547,14 +530,9 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     }
     if (m->el.n_threads > 1 && wff_elements_set_threads(&nm.el, m->el.n_threads, err))
         goto fail_prefixed;
-    if (m->el.eroded) { /* erosion stays on (nothing has eroded: checked above) */
-        nm.el.eroded = calloc((size_t)(nm.mesh.n_tris + nm.mesh.n_quads), 1);
-        if (!nm.el.eroded) {
-            wff_fail(err, "out of memory for the erosion flags");
-            goto fail_prefixed;
-        }
-        nm.el.erosion = m->el.erosion;
-    }
+    /* erosion stays on (nothing has eroded: checked above) */
+    if (m->el.eroded && wff_erosion_on(&nm, m->el.erosion, err))
+        goto fail_prefixed;
     nm.n_nodes = nm.mesh.n_nodes;
     nm.n_dofs = D * nm.n_nodes;
     if (allocate(&nm, err) || carry_groups(m, &nm.mesh, err))

@@ -1,7 +1,7 @@
 /* solver_internal.h: what the solver's files (model.c, contact.c,
- * integrator.c, fields.c, checkpoint.c, operators.c) share and nobody else sees: the DOF
- * stride, the contact calls the integrator makes once a step, and the force
- * pass and clamp correction operators.c reuses. The public
+ * integrator.c, fields.c, checkpoint.c, operators.c, the parts) share and nobody else
+ * sees: the DOF stride, the force pass operators.c reuses, the per-step passes
+ * over DOFs and nodes, the model's set-up and its order. The public
  * API is include/wovenff/solver.h. */
 #ifndef WFF_SOLVER_INTERNAL_H
 #define WFF_SOLVER_INTERNAL_H
@@ -11,18 +11,6 @@
 
 #define D WFF_DOFS_PER_NODE
 
-/* contact.c: the nodes near enough the projectile's axis to touch it before
- * the next refresh (every node with contact_search 0). */
-void wff_contact_refresh_candidates(wff_model *m);
-/* contact.c: the kinematic contact and friction impulses of one step, added
- * to f as forces over dt_mid; -1 (err set) if the projectile has passed
- * through the fabric. */
-int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
-
-/* contact.c: the symmetry factor changed (or the axis did): the projectile's
- * modelled mass follows; -1 (err set) if its axis is off the symmetry
- * planes. */
-int wff_contact_symmetry_changed(wff_model *m, wff_error *err);
 /* integrator.c: the element force pass at u into f (zeroed first), the
  * points' state (m->n_state each) advanced by dt_flow in state (0: held); accumulate 1: the model's stored
  * energy, shear dissipation and element-step count updated as a step does.
@@ -30,13 +18,6 @@ int wff_contact_symmetry_changed(wff_model *m, wff_error *err);
  * -1 (err set, naming the element) on a bad point. */
 int wff_force_pass(wff_model *m, const double *u, double *f, double *state, double dt_flow,
                    int accumulate, double *energy, wff_error *err);
-/* integrator.c: the friction clamp's Coulomb correction of the in-plane
- * velocities v (5 per node) of the clamped nodes over dt_mid; returns the
- * energy it dissipates, J (model part). */
-double wff_clamp_correct(const wff_model *m, double *v, double dt_mid);
-/* integrator.c: the friction clamp's correction of clamped node c (index
- * into m->clamp.node) in v; returns the energy it dissipates, J. */
-double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid);
 /* step_threads.c: the per-step passes, threaded (the model's thread count)
  * with sums in an order set by the item count alone: the same bits for any
  * thread count. u += dt v and m->f = 0, returning the first half of the
@@ -53,14 +34,6 @@ void wff_step_velocities(wff_model *m, double dt_mid, double dt_done, double *wo
 double wff_step_clamp(const wff_model *m, double *v, double dt_mid);
 void wff_step_kinetic(const wff_model *m, double half, double sums[3]);
 int wff_step_candidates(const wff_model *m, double reach, int *candidates);
-/* contact.c: move the projectile back along z until no node is inside it
- * now; returns the distance, m. */
-double wff_contact_retract(wff_model *m);
-/* remesh.c: remember a boundary condition set by group (wff_bc_record) so
- * that a mesh transfer can set it again; -1 (err set) if out of memory. */
-int wff_model_log_bc(wff_model *m, int kind, const char *group, int component, double value,
-                     double mu, wff_error *err);
-
 /* model.c: a model's arrays, masses and defaults from its mesh, material and
  * elements (m->mesh, m->mat, m->el and the order arrays set; every other field
  * 0): the second half of wff_model_create_ordered. On failure m is freed. */

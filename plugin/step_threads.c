@@ -9,8 +9,8 @@
  * sums its items in order and the parts are added in order, so a result is
  * the same bit for bit whatever the number of threads. Knows the model's
  * arrays (solver_internal.h); nothing of cells, elements, FreeFEM; a
- * clamped node's friction is the integrator's (wff_clamp_node). */
-#include "solver_internal.h"
+ * clamped node's friction is clamp.c's (wff_clamp_node). */
+#include "clamp.h"
 #include "wovenff/renumber.h"
 
 #include <math.h>

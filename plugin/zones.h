@@ -57,15 +57,22 @@ int wff_zones_preload_changed(wff_model *m, wff_error *err);
 /* The zones' materials, preloads and element assignment folded into hash g
  * (g unchanged without zones: checkpoints of one-material models as before). */
 uint64_t wff_zones_fingerprint(const wff_model *m, uint64_t g);
-/* pack.c: a pack of several plies gets one zone per ply (zone 0, the model's material,
+/* pack_build.c: a pack of several plies gets one zone per ply (zone 0, the model's material,
  * left empty), each of the model's material; -1 (err set) if the model has zones. */
 int wff_zones_pack(wff_model *m, wff_error *err);
 /* The last force pass's stored energy, shear and failure dissipation of each ply
  * (model part, J; the model's wff_pack_plies entries); zeros without zones. */
 void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, double *failure);
-/* model.c: the masses changed (a zone's material or preload): masses, fabric
- * mass, the clamp's shares and the stored energy before the run again; -1
- * (err set) if the clamp's shares fail. */
+/* The masses changed (a zone's material or preload, the model's preload): the
+ * zones' masses, the fabric mass, the clamp's shares (clamp.c) and the stored
+ * energy before the run again; -1 (err set) if the clamp's shares fail. */
 int wff_model_masses_changed(wff_model *m, wff_error *err);
+/* m->fabric_mass from the nodal masses. */
+void wff_model_sum_fabric_mass(wff_model *m);
+/* Before the first step (nothing after it): the stored energy of the state
+ * as set up (e.g. the preload) into m->internal_energy, so that energies read
+ * before any step are complete (a force pass with the state held; a bad
+ * element gives 0 here and is reported when the run starts). */
+void wff_model_stored_energy_now(wff_model *m);
 
 #endif

@@ -149,6 +149,11 @@ typedef struct wff_model {
     double dissipated_failure; /* stored energy released by yarn damage, J (model part) */
     double eroded_energy;     /* stored energy of eroded elements at erosion, J (model part) */
     int n_eroded;             /* elements eroded so far */
+    int *eroded_now;          /* the elements the last force pass eroded (plugin/erosion.c;
+                                 model numbering, in element order; NULL while erosion is
+                                 off), n_eroded_now of them */
+    double *eroded_now_energy; /* their stored energy at erosion, J (model part) */
+    int n_eroded_now;
     double initial_total;     /* kinetic + internal at the start, J (model part) */
     double initial_kinetic;
     int v_half_valid;         /* 1 once v holds a half-step velocity */

@@ -1,0 +1,20 @@
+/* clamp.h: the friction clamp (plugin/clamp.c), what model.c, step_threads.c
+ * and the whole-model operations share about it. */
+#ifndef WFF_CLAMP_H
+#define WFF_CLAMP_H
+
+#include "solver_internal.h"
+
+/* The clamping force (m->clamp.force_whole, whole specimen) shared among the
+ * clamp's nodes into m->clamp.normal_force (modelled part): by area for a
+ * surface group, by lumped mass for a curve group, only within clamp.radius
+ * of (0, 0) when set; -1 (err set) when no node is within it or out of
+ * memory. Called again whenever the masses, the symmetry or the radius
+ * change. */
+int wff_clamp_share(wff_model *m, wff_error *err);
+/* The Coulomb correction of clamped node c (index into m->clamp.node) in v
+ * (5 per node) over dt_mid: in-plane, two faces, on the node's free in-plane
+ * components; returns the energy it dissipates, J (model part). */
+double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid);
+
+#endif

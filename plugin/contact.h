@@ -1,0 +1,30 @@
+/* contact.h: the projectile's kinematic contact (plugin/contact.c), a part
+ * of the step (part.h), and the calls the whole-model operations (operators.c,
+ * remesh.c) and the settings (model.c) make to it. */
+#ifndef WFF_CONTACT_H
+#define WFF_CONTACT_H
+
+#include "part.h"
+
+/* The part: the contact candidates refreshed with the stable step; after the
+ * velocity update, the contact and friction impulses of the step. Nothing
+ * without a projectile. */
+extern const wff_part_ops wff_projectile_contact_part;
+
+/* The nodes near enough the projectile's axis to touch it before
+ * the next refresh (every node with contact_search 0). */
+void wff_contact_refresh_candidates(wff_model *m);
+/* The kinematic contact and friction impulses of one step, added
+ * to f as forces over dt_mid; -1 (err set) if the projectile has passed
+ * through the fabric. */
+int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
+
+/* The symmetry factor changed (or the axis did): the projectile's
+ * modelled mass follows; -1 (err set) if its axis is off the symmetry
+ * planes. */
+int wff_contact_symmetry_changed(wff_model *m, wff_error *err);
+/* Move the projectile back along z until no node is inside it
+ * now; returns the distance, m. */
+double wff_contact_retract(wff_model *m);
+
+#endif

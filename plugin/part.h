@@ -1,0 +1,87 @@
+/* part.h: the step's spine. Every participant in a step beyond the element
+ * force pass and the velocity update (the projectile's contact, element
+ * erosion, a pack's per-ply accounts, the ply-to-ply contact, ...) is a
+ * *part*: one constant ops table of its own, in the manner of a cell's
+ * (include/wovenff/cell.h), defined in the part's own file. The ordered list
+ * of parts is plugin/parts.c; the model, the integrator and the whole-model
+ * operations run the list and name no part (docs/architecture.md, "The
+ * step's spine"; the order of a step, docs/model.md §14).
+ *
+ * Every op is optional (NULL: the part takes no part in that pass). An op
+ * is called for every model: a part that is not switched on for this model
+ * (no projectile, no pack, erosion off) returns at once, with nothing done
+ * and 0 returned, so that a model without it runs exactly as before the part
+ * existed. */
+#ifndef WFF_PART_H
+#define WFF_PART_H
+
+#include "solver_internal.h"
+
+typedef struct wff_part_ops {
+    const char *name;   /* for messages and docs: "projectile_contact", ... */
+
+    /* The run starts (the first step, before its first force pass): set up
+     * what the step needs. -1 (err set) on failure. */
+    int (*setup)(wff_model *m, wff_error *err);
+
+    /* The stable step was updated, or an advance begins: refresh what depends
+     * on the step or the positions (the projectile's contact candidates). */
+    void (*refresh)(wff_model *m);
+
+    /* After an accumulating element force pass at displacement u that
+     * advanced the points' states `state` by dt_flow (0: held): returns the
+     * stored energy the part took out of the pass's total (J, model part;
+     * erosion: the eroded elements'); `stored` is the pass's total so far. */
+    double (*after_forces)(wff_model *m, const double *u, const double *state, double dt_flow);
+
+    /* After the velocity update: correct the velocities v^{n+½} (impulses,
+     * added to f as forces over dt_mid); dt is the step to be taken next.
+     * -1 (err set) on a failure the run must stop for. */
+    int (*correct)(wff_model *m, double dt, double dt_mid, wff_error *err);
+
+    /* Its term of the energy balance: the energy it has dissipated so far,
+     * J (model part), a term of D in wff_energies.error. */
+    double (*dissipated)(const wff_model *m);
+
+    /* A model-wide setting changed that the part follows (`what`:
+     * "orientation", the warp direction in rad as value). */
+    void (*follow)(wff_model *m, const char *what, double value);
+
+    /* Its settings by name (wff_model_set_option): 1 if key is the part's,
+     * with the result (0 or -1, err set) in *rc; 0 if not. */
+    int (*set)(wff_model *m, const char *key, double value, int *rc, wff_error *err);
+
+    /* Its values by name (wff_model_value): 1 if key is the part's (*value
+     * set, or *rc -1 with err set), 0 if not. */
+    int (*value)(const wff_model *m, const char *key, double *value, int *rc, wff_error *err);
+
+    /* Checkpoints and mesh transfers: NULL when the part carries over (or has
+     * nothing to carry), else a sentence saying why it cannot, for the
+     * refusal's message. */
+    const char *(*refuses_checkpoint)(const wff_model *m);
+    const char *(*refuses_remesh)(const wff_model *m);
+
+    /* Free what the part allocated in m (wff_model_free). */
+    void (*free)(wff_model *m);
+} wff_part_ops;
+
+/* parts.c: the parts in the order a step runs them (NULL-terminated). */
+extern const wff_part_ops *const wff_parts[];
+
+/* Convenience loops over the list (parts.c), each in the list's order. */
+int wff_parts_setup(wff_model *m, wff_error *err);
+void wff_parts_refresh(wff_model *m);
+double wff_parts_after_forces(wff_model *m, const double *u, const double *state,
+                              double dt_flow);
+int wff_parts_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
+double wff_parts_dissipated(const wff_model *m);
+void wff_parts_follow(wff_model *m, const char *what, double value);
+int wff_parts_set(wff_model *m, const char *key, double value, int *rc, wff_error *err);
+int wff_parts_value(const wff_model *m, const char *key, double *value, int *rc,
+                    wff_error *err);
+/* The first part's refusal (NULL: every part carries over); *part its name. */
+const char *wff_parts_refuse_checkpoint(const wff_model *m, const char **part);
+const char *wff_parts_refuse_remesh(const wff_model *m, const char **part);
+void wff_parts_free(wff_model *m);
+
+#endif

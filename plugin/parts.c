@@ -1,0 +1,122 @@
+/* parts.c: the step's parts in the order a step runs them (part.h;
+ * docs/model.md §14), and the loops the model, the integrator and the
+ * whole-model operations run over them. A new per-step phenomenon is a new
+ * file with its wff_part_ops and one line here. */
+#include "part.h"
+#include "contact.h"
+#include "erosion.h"
+#include "pack.h"
+#include "ply_contact.h"
+
+#include <stddef.h>
+
+/* After the force pass: erosion first (the elements that go, their stored
+ * energy out of the pass's), then the pack's per-ply accounts (which read the
+ * elements erosion just took). After the velocity update: the projectile's
+ * contact first, then the plies' (which reads the projectile's impulses). */
+const wff_part_ops *const wff_parts[] = {
+    &wff_erosion_part,
+    &wff_pack_part,
+    &wff_projectile_contact_part,
+    &wff_ply_contact_part,
+    NULL,
+};
+
+#define EACH_PART(ops) for (const wff_part_ops *const *ops = wff_parts; *ops; ops++)
+
+int wff_parts_setup(wff_model *m, wff_error *err)
+{
+    EACH_PART(p)
+        if ((*p)->setup && (*p)->setup(m, err))
+            return -1;
+    return 0;
+}
+
+void wff_parts_refresh(wff_model *m)
+{
+    EACH_PART(p)
+        if ((*p)->refresh)
+            (*p)->refresh(m);
+}
+
+double wff_parts_after_forces(wff_model *m, const double *u, const double *state,
+                              double dt_flow)
+{
+    double removed = 0;
+    EACH_PART(p)
+        if ((*p)->after_forces)
+            removed += (*p)->after_forces(m, u, state, dt_flow);
+    return removed;
+}
+
+int wff_parts_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
+{
+    EACH_PART(p)
+        if ((*p)->correct && (*p)->correct(m, dt, dt_mid, err))
+            return -1;
+    return 0;
+}
+
+double wff_parts_dissipated(const wff_model *m)
+{
+    double sum = 0;
+    EACH_PART(p)
+        if ((*p)->dissipated)
+            sum += (*p)->dissipated(m);
+    return sum;
+}
+
+void wff_parts_follow(wff_model *m, const char *what, double value)
+{
+    EACH_PART(p)
+        if ((*p)->follow)
+            (*p)->follow(m, what, value);
+}
+
+int wff_parts_set(wff_model *m, const char *key, double value, int *rc, wff_error *err)
+{
+    EACH_PART(p)
+        if ((*p)->set && (*p)->set(m, key, value, rc, err))
+            return 1;
+    return 0;
+}
+
+int wff_parts_value(const wff_model *m, const char *key, double *value, int *rc,
+                    wff_error *err)
+{
+    EACH_PART(p)
+        if ((*p)->value && (*p)->value(m, key, value, rc, err))
+            return 1;
+    return 0;
+}
+
+const char *wff_parts_refuse_checkpoint(const wff_model *m, const char **part)
+{
+    EACH_PART(p) {
+        const char *why = (*p)->refuses_checkpoint ? (*p)->refuses_checkpoint(m) : NULL;
+        if (why) {
+            *part = (*p)->name;
+            return why;
+        }
+    }
+    return NULL;
+}
+
+const char *wff_parts_refuse_remesh(const wff_model *m, const char **part)
+{
+    EACH_PART(p) {
+        const char *why = (*p)->refuses_remesh ? (*p)->refuses_remesh(m) : NULL;
+        if (why) {
+            *part = (*p)->name;
+            return why;
+        }
+    }
+    return NULL;
+}
+
+void wff_parts_free(wff_model *m)
+{
+    EACH_PART(p)
+        if ((*p)->free)
+            (*p)->free(m);
+}
