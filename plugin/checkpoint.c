@@ -3,9 +3,8 @@
  * fingerprints of what must match, the state fields in file order, an
  * atomic save (text_io.c) and a load that says which input differs. Knows the
  * model's arrays; nothing of how they evolve, of cells by name or of FreeFEM. */
-#include "solver_internal.h"
+#include "part.h"
 #include "zones.h"
-#include "pack.h"
 #include "wovenff/text_io.h"
 
 #include <math.h>
@@ -161,9 +160,9 @@ static int state_fields(wff_model *m, int n_candidates, state_field *f)
 
 int wff_model_save(const wff_model *m, const char *path, wff_error *err)
 {
-    if (m->pack && m->pack->n > 1)
-        return wff_fail(err, "checkpoint '%s': a pack of %d plies cannot be checkpointed (its "
-                        "ply contact state is not in the format): refused", path, m->pack->n);
+    char why[WFF_ERROR_MAX - 64];
+    if (wff_parts_refuse_checkpoint(m, why, sizeof why)) /* (part.h) */
+        return wff_fail(err, "checkpoint '%s': cannot be written: %s: refused", path, why);
     checkpoint_header h;
     fingerprint(m, &h);
     state_field fields[MAX_STATE_FIELDS];
@@ -206,10 +205,10 @@ static const char *hash_mismatch(const checkpoint_header *a, const checkpoint_he
 
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err)
 {
-    if (m->pack && m->pack->n > 1)
-        return wff_fail(err, "checkpoint '%s': a pack of %d plies cannot be restarted from a "
-                        "checkpoint (its ply contact state is not in the format): refused", path,
-                        m->pack->n);
+    char refusal[WFF_ERROR_MAX - 64];
+    if (wff_parts_refuse_checkpoint(m, refusal, sizeof refusal)) /* (part.h) */
+        return wff_fail(err, "checkpoint '%s': cannot be restarted from: %s: refused", path,
+                        refusal);
     char *buf;
     size_t size;
     if (wff_read_file(path, "checkpoint", CHECKPOINT_FILE_MAX, &buf, &size, err))

@@ -10,6 +10,7 @@
 #include "zones.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -229,9 +230,23 @@ static int erosion_set(wff_model *m, const char *key, double value, int *rc, wff
     return 1;
 }
 
+/* A mesh transfer carries neither erosion nor yarn damage: refused once
+ * elements have eroded, or with erosion on and damage anywhere (erosion off,
+ * the damage states transfer as any state). */
+static int erosion_refuses_remesh(const wff_model *m, char *why, size_t size)
+{
+    if (!(m->n_eroded > 0 || (m->el.eroded && wff_model_damaged(m))))
+        return 0;
+    snprintf(why, size, "the model has %s (%d elements eroded): a mesh transfer does not "
+             "carry yarn damage or erosion: run without -adapt or without failure",
+             m->n_eroded ? "eroded elements" : "yarn damage", m->n_eroded);
+    return 1;
+}
+
 const wff_part_ops wff_erosion_part = {
     .name = "erosion",
     .after_forces = erosion_after_forces,
     .set = erosion_set,
+    .refuses_remesh = erosion_refuses_remesh,
     .free = erosion_free,
 };

@@ -333,9 +333,13 @@ int wff_model_pack_value(const wff_model *m, const char *key, double *value, wff
 }
 
 /* Checkpoints do not hold the ply contact's state. */
-static const char *pack_refuses_checkpoint(const wff_model *m)
+static int pack_refuses_checkpoint(const wff_model *m, char *why, size_t size)
 {
-    return m->pack && m->pack->n > 1 ? "its ply contact state is not in the format" : NULL;
+    if (!m->pack || m->pack->n < 2)
+        return 0;
+    snprintf(why, size, "a pack of %d plies (its ply contact state is not in the format)",
+             m->pack->n);
+    return 1;
 }
 
 const wff_part_ops wff_pack_part = {

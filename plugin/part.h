@@ -17,6 +17,8 @@
 
 #include "solver_internal.h"
 
+#include <stddef.h>
+
 typedef struct wff_part_ops {
     const char *name;   /* for messages and docs: "projectile_contact", ... */
 
@@ -55,11 +57,11 @@ typedef struct wff_part_ops {
      * set, or *rc -1 with err set), 0 if not. */
     int (*value)(const wff_model *m, const char *key, double *value, int *rc, wff_error *err);
 
-    /* Checkpoints and mesh transfers: NULL when the part carries over (or has
-     * nothing to carry), else a sentence saying why it cannot, for the
-     * refusal's message. */
-    const char *(*refuses_checkpoint)(const wff_model *m);
-    const char *(*refuses_remesh)(const wff_model *m);
+    /* Checkpoints and mesh transfers: 0 when the part carries over (or has
+     * nothing to carry); 1 when it cannot, with a sentence saying why in
+     * why[size] for the refusal's message. */
+    int (*refuses_checkpoint)(const wff_model *m, char *why, size_t size);
+    int (*refuses_remesh)(const wff_model *m, char *why, size_t size);
 
     /* Free what the part allocated in m (wff_model_free). */
     void (*free)(wff_model *m);
@@ -79,9 +81,10 @@ void wff_parts_follow(wff_model *m, const char *what, double value);
 int wff_parts_set(wff_model *m, const char *key, double value, int *rc, wff_error *err);
 int wff_parts_value(const wff_model *m, const char *key, double *value, int *rc,
                     wff_error *err);
-/* The first part's refusal (NULL: every part carries over); *part its name. */
-const char *wff_parts_refuse_checkpoint(const wff_model *m, const char **part);
-const char *wff_parts_refuse_remesh(const wff_model *m, const char **part);
+/* 1 with the first refusing part's reason in why[size], 0 when every part
+ * carries over. */
+int wff_parts_refuse_checkpoint(const wff_model *m, char *why, size_t size);
+int wff_parts_refuse_remesh(const wff_model *m, char *why, size_t size);
 void wff_parts_free(wff_model *m);
 
 #endif

@@ -90,28 +90,20 @@ int wff_parts_value(const wff_model *m, const char *key, double *value, int *rc,
     return 0;
 }
 
-const char *wff_parts_refuse_checkpoint(const wff_model *m, const char **part)
+int wff_parts_refuse_checkpoint(const wff_model *m, char *why, size_t size)
 {
-    EACH_PART(p) {
-        const char *why = (*p)->refuses_checkpoint ? (*p)->refuses_checkpoint(m) : NULL;
-        if (why) {
-            *part = (*p)->name;
-            return why;
-        }
-    }
-    return NULL;
+    EACH_PART(p)
+        if ((*p)->refuses_checkpoint && (*p)->refuses_checkpoint(m, why, size))
+            return 1;
+    return 0;
 }
 
-const char *wff_parts_refuse_remesh(const wff_model *m, const char **part)
+int wff_parts_refuse_remesh(const wff_model *m, char *why, size_t size)
 {
-    EACH_PART(p) {
-        const char *why = (*p)->refuses_remesh ? (*p)->refuses_remesh(m) : NULL;
-        if (why) {
-            *part = (*p)->name;
-            return why;
-        }
-    }
-    return NULL;
+    EACH_PART(p)
+        if ((*p)->refuses_remesh && (*p)->refuses_remesh(m, why, size))
+            return 1;
+    return 0;
 }
 
 void wff_parts_free(wff_model *m)

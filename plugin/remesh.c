@@ -12,6 +12,7 @@
  * a failure frees what was built and leaves the old model as it was. A
  * per-node or per-point array added to wff_model must be added here. */
 #include "contact.h"
+#include "part.h"
 #include "zones.h"
 #include "erosion.h"
 
@@ -482,15 +483,11 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
                      wff_error *err)
 {
     wff_remesh_report rep = {0, 0, 0, 0, 0};
-    /* erosion is not transferred: refused once elements have eroded, or with erosion on
-     * and yarn damage anywhere (erosion off, the damage states transfer as any state) */
-    if (m->n_eroded > 0 || (m->el.eroded && wff_model_damaged(m))) { /* (m unchanged) */
-        int eroded = m->n_eroded;
+    char refusal[WFF_ERROR_MAX - 32];
+    if (wff_parts_refuse_remesh(m, refusal, sizeof refusal)) { /* a part that does not carry over
+                                                          (erosion, damage): m unchanged */
         wff_mesh_free(new_mesh);
-        return wff_fail(err, "wff_model_remesh: the model has %s (%d elements eroded): a "
-                        "mesh transfer does not carry yarn damage or erosion: run without "
-                        "-adapt or without failure", eroded ? "eroded elements" : "yarn damage",
-                        eroded);
+        return wff_fail(err, "wff_model_remesh: %s", refusal);
     }
     if (m->zones) { /* (m unchanged: the new mesh is freed, as on any failure) */
         wff_mesh_free(new_mesh);
