@@ -6,6 +6,7 @@
  * with Coulomb friction as velocity impulses each step. Knows the model's
  * arrays; nothing of cells, elements, the friction clamp or FreeFEM. */
 #include "contact.h"
+#include "wovenff/renumber.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -221,14 +221,16 @@ int wff_model_damaged(const wff_model *m)
     return 0;
 }
 
-/* The setting erosion. */
-static int erosion_set(wff_model *m, const char *key, double value, int *rc, wff_error *err)
+/* The setting erosion (wff_erosion_set checks it). */
+static int erosion_apply(wff_model *m, double value, wff_error *err)
 {
-    if (strcmp(key, "erosion") != 0)
-        return 0;
-    *rc = wff_erosion_set(m, value, err);
-    return 1;
+    return wff_erosion_set(m, value, err);
 }
+
+static const wff_setting erosion_settings[] = {
+    {"erosion", NULL, erosion_apply},
+    {NULL, NULL, NULL},
+};
 
 /* A mesh transfer carries neither erosion nor yarn damage: refused once
  * elements have eroded, or with erosion on and damage anywhere (erosion off,
@@ -243,10 +245,18 @@ static int erosion_refuses_remesh(const wff_model *m, char *why, size_t size)
     return 1;
 }
 
+/* Onto a new mesh (nothing eroded, no damage: refused otherwise): erosion
+ * stays on with its rule. */
+static int erosion_carry(const wff_model *from, wff_model *to, wff_error *err)
+{
+    return from->el.eroded ? wff_erosion_on(to, from->el.erosion, err) : 0;
+}
+
 const wff_part_ops wff_erosion_part = {
     .name = "erosion",
     .after_forces = erosion_after_forces,
-    .set = erosion_set,
+    .settings = erosion_settings,
     .refuses_remesh = erosion_refuses_remesh,
+    .carry = erosion_carry,
     .free = erosion_free,
 };

@@ -7,6 +7,7 @@
 #include "zones.h"
 #include "pack.h"
 #include "wovenff/state.h"
+#include "wovenff/renumber.h"
 
 #include <math.h>
 #include <stdio.h>

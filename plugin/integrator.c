@@ -9,6 +9,7 @@
  * fields, of checkpoints or of FreeFEM. */
 #include "part.h"
 #include "zones.h"
+#include "wovenff/renumber.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -11,6 +11,7 @@
 #include "zones.h"
 #include "wovenff/material.h"
 #include "wovenff/kernel.h"
+#include "wovenff/renumber.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -392,118 +393,260 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
     return n;
 }
 
-int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err)
+/* ---- the model's own settings (wff_model_set_option), one {name, check, apply}
+ * row each; the parts extend them with their own tables (part.h) ---- */
+
+/* A value that must be 0 or 1 (what each means in `meaning`). */
+static int check_flag(const char *name, double value, const char *meaning, wff_error *err)
 {
-    int rc;
-    if (wff_parts_set(m, key, value, &rc, err)) /* the parts' own (part.h) */
-        return rc;
-    if (strcmp(key, "dtfactor") == 0) {
-        if (!(value > 0 && value <= 2))
-            return wff_fail(err, "dtfactor = %g: must be in (0, 2] (1 is the stability limit)",
-                            value);
-        m->dt_factor = value;
-        if (m->dt_stable > 0)
-            m->dt = value * m->dt_stable;
-    } else if (strcmp(key, "dtinterval") == 0) {
-        if (!(value >= 1 && value <= 1e6) || value != floor(value))
-            return wff_fail(err, "dtinterval = %g: must be a whole number of steps >= 1", value);
-        m->dt_interval = (int)value;
-    } else if (strcmp(key, "symmetry") == 0) {
-        if (value != 1 && value != 2 && value != 4)
-            return wff_fail(err, "symmetry = %g: must be 1 (full), 2 (half) or 4 (quarter)",
-                            value);
-        if ((m->step > 0 || m->v_half_valid) && value != m->symmetry_factor)
-            return wff_fail(err, "symmetry = %g: the run has started (step %ld); set the "
-                            "symmetry before the first step", value, m->step);
-        double old = m->symmetry_factor;
-        m->symmetry_factor = value;
-        if (wff_contact_symmetry_changed(m, err)) {
-            m->symmetry_factor = old;
-            return -1;
-        }
-        if (m->clamp.n && wff_clamp_share(m, err)) {
-            wff_error ignored;
-            m->symmetry_factor = old;
-            wff_contact_symmetry_changed(m, &ignored);
-            wff_clamp_share(m, &ignored);
-            return -1;
-        }
-    } else if (strcmp(key, "threads") == 0) {
-        if (value == 0) /* the default: the cores this process may use */
-            value = wff_default_threads() < m->el.max_threads ? wff_default_threads()
-                                                              : m->el.max_threads;
-        if (value != floor(value) || wff_elements_set_threads(&m->el, (int)value, err))
-            return value != floor(value) ? wff_fail(err, "threads = %g: a whole number", value)
-                                         : -1;
-    } else if (strcmp(key, "amplitude_mass_factor") == 0) {
-        if (!(value >= 1 && value <= 1e6))
-            return wff_fail(err, "amplitude_mass_factor = %g: must be >= 1 (1 is the paper's "
-                            "1/6 of the displacement mass)", value);
-        m->em.amplitude_mass_factor = value;
-        wff_zones_masses(m);
-    } else if (strcmp(key, "static_amplitudes") == 0) {
-        if (value != 0 && value != 1)
-            return wff_fail(err, "static_amplitudes = %g: must be 0 (dynamic nodal amplitudes, "
-                            "the paper) or 1 (balanced at every point, King 2005)", value);
-        if (value == 1 && m->zones)
-            return wff_fail(err, "static_amplitudes: the model has zonal materials; zones keep "
-                            "the amplitudes dynamic");
-        if (value == 1 && m->mat.cell->n_amplitudes == 0)
-            return wff_fail(err, "static_amplitudes: cell '%s' has no amplitudes",
-                            m->mat.cell->name);
-        if (value == 1) { /* first guess: the amplitudes of node 0 (the preload's) */
-            const double guess[2] = {m->u[3], m->u[4]};
-            if (wff_elements_static_amplitudes(&m->el, &m->em, guess, err))
-                return -1;
-        } else {
-            m->em.static_amplitudes = 0;
-        }
-    } else if (strcmp(key, "contact_search") == 0) {
-        if (value != 0 && value != 1)
-            return wff_fail(err, "contact_search = %g: must be 1 (only nodes the projectile "
-                            "can reach) or 0 (every node, every step)", value);
-        m->projectile.search_all = value == 0;
-    } else if (strcmp(key, "reference_path") == 0) {
-        if (value != 0 && value != 1)
-            return wff_fail(err, "reference_path = %g: must be 0 (cell fast path where there "
-                            "is one) or 1 (plain evaluate)", value);
-        m->em.reference_path = (int)value;
-    } else if (strcmp(key, "clamp_radius") == 0) {
-        if (m->clamp.n == 0)
-            return wff_fail(err, "clamp_radius: no friction clamp yet (set the clamp first)");
-        if (!(value >= 0) || !isfinite(value))
-            return wff_fail(err, "clamp_radius = %g: must be >= 0 m (0: the whole clamp)", value);
-        double before = m->clamp.radius;
-        m->clamp.radius = value;
-        if (wff_clamp_share(m, err)) { /* no node within: keep the force as it was */
-            wff_error ignored;
-            m->clamp.radius = before;
-            wff_clamp_share(m, &ignored);
-            return -1;
-        }
-    } else if (strcmp(key, "orientation") == 0) { /* degrees */
-        if (!isfinite(value))
-            return wff_fail(err, "orientation = %g: must be a finite angle in degrees", value);
-        double right_angles = value / 90; /* exact multiples of 90 degrees: k pi/2 */
-        double theta = right_angles == nearbyint(right_angles) ? right_angles * M_PI_2
-                                                               : value * (M_PI / 180);
-        return wff_model_set_orientation(m, theta, err);
-    } else if (strcmp(key, "clamp_edge_reaction") == 0) {
-        if (m->clamp.n == 0)
-            return wff_fail(err, "clamp_edge_reaction: no friction clamp yet (set the clamp "
-                            "first)");
-        if (value != 0 && value != 1)
-            return wff_fail(err, "clamp_edge_reaction = %g: must be 0 (friction from the "
-                            "clamping force only) or 1 (also mu |R_z|)", value);
-        m->clamp.edge_reaction = (int)value;
-    } else {
-        return wff_fail(err, "unknown solver setting '%s' (known: dtfactor, dtinterval, "
-                        "symmetry, reference_path, threads, amplitude_mass_factor, "
-                        "static_amplitudes, contact_search, erosion, orientation, "
-                        "clamp_radius, clamp_edge_reaction, ply_mu, ply_thickness)",
-                        key);
+    if (value != 0 && value != 1)
+        return wff_fail(err, "%s = %g: must be %s", name, value, meaning);
+    return 0;
+}
+
+static int check_dtfactor(const wff_model *m, double value, wff_error *err)
+{
+    (void)m;
+    if (!(value > 0 && value <= 2))
+        return wff_fail(err, "dtfactor = %g: must be in (0, 2] (1 is the stability limit)",
+                        value);
+    return 0;
+}
+
+static int apply_dtfactor(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->dt_factor = value;
+    if (m->dt_stable > 0)
+        m->dt = value * m->dt_stable;
+    return 0;
+}
+
+static int check_dtinterval(const wff_model *m, double value, wff_error *err)
+{
+    (void)m;
+    if (!(value >= 1 && value <= 1e6) || value != floor(value))
+        return wff_fail(err, "dtinterval = %g: must be a whole number of steps >= 1", value);
+    return 0;
+}
+
+static int apply_dtinterval(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->dt_interval = (int)value;
+    return 0;
+}
+
+static int check_symmetry(const wff_model *m, double value, wff_error *err)
+{
+    if (value != 1 && value != 2 && value != 4)
+        return wff_fail(err, "symmetry = %g: must be 1 (full), 2 (half) or 4 (quarter)", value);
+    if ((m->step > 0 || m->v_half_valid) && value != m->symmetry_factor)
+        return wff_fail(err, "symmetry = %g: the run has started (step %ld); set the "
+                        "symmetry before the first step", value, m->step);
+    return 0;
+}
+
+/* The projectile's modelled mass and the clamp's shares follow (both kept as
+ * they were when either refuses). */
+static int apply_symmetry(wff_model *m, double value, wff_error *err)
+{
+    double old = m->symmetry_factor;
+    m->symmetry_factor = value;
+    if (wff_contact_symmetry_changed(m, err)) {
+        m->symmetry_factor = old;
+        return -1;
+    }
+    if (m->clamp.n && wff_clamp_share(m, err)) {
+        wff_error ignored;
+        m->symmetry_factor = old;
+        wff_contact_symmetry_changed(m, &ignored);
+        wff_clamp_share(m, &ignored);
+        return -1;
     }
     return 0;
+}
+
+static int check_threads(const wff_model *m, double value, wff_error *err)
+{
+    (void)m;
+    if (value != floor(value))
+        return wff_fail(err, "threads = %g: a whole number", value);
+    return 0;
+}
+
+static int apply_threads(wff_model *m, double value, wff_error *err)
+{
+    if (value == 0) /* the default: the cores this process may use */
+        value = wff_default_threads() < m->el.max_threads ? wff_default_threads()
+                                                          : m->el.max_threads;
+    return wff_elements_set_threads(&m->el, (int)value, err);
+}
+
+static int check_amplitude_mass_factor(const wff_model *m, double value, wff_error *err)
+{
+    (void)m;
+    if (!(value >= 1 && value <= 1e6))
+        return wff_fail(err, "amplitude_mass_factor = %g: must be >= 1 (1 is the paper's "
+                        "1/6 of the displacement mass)", value);
+    return 0;
+}
+
+static int apply_amplitude_mass_factor(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->em.amplitude_mass_factor = value;
+    wff_zones_masses(m);
+    return 0;
+}
+
+static int check_static_amplitudes(const wff_model *m, double value, wff_error *err)
+{
+    if (check_flag("static_amplitudes", value, "0 (dynamic nodal amplitudes, the paper) or "
+                   "1 (balanced at every point, King 2005)", err))
+        return -1;
+    if (value == 1 && m->zones)
+        return wff_fail(err, "static_amplitudes: the model has zonal materials; zones keep "
+                        "the amplitudes dynamic");
+    if (value == 1 && m->mat.cell->n_amplitudes == 0)
+        return wff_fail(err, "static_amplitudes: cell '%s' has no amplitudes",
+                        m->mat.cell->name);
+    return 0;
+}
+
+static int apply_static_amplitudes(wff_model *m, double value, wff_error *err)
+{
+    if (value == 1) { /* first guess: the amplitudes of node 0 (the preload's) */
+        const double guess[2] = {m->u[3], m->u[4]};
+        return wff_elements_static_amplitudes(&m->el, &m->em, guess, err);
+    }
+    m->em.static_amplitudes = 0;
+    return 0;
+}
+
+static int check_contact_search(const wff_model *m, double value, wff_error *err)
+{
+    (void)m;
+    return check_flag("contact_search", value, "1 (only nodes the projectile can reach) or 0 "
+                      "(every node, every step)", err);
+}
+
+static int apply_contact_search(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->projectile.search_all = value == 0;
+    return 0;
+}
+
+static int check_reference_path(const wff_model *m, double value, wff_error *err)
+{
+    (void)m;
+    return check_flag("reference_path", value, "0 (cell fast path where there is one) or 1 "
+                      "(plain evaluate)", err);
+}
+
+static int apply_reference_path(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->em.reference_path = (int)value;
+    return 0;
+}
+
+static int check_clamp_radius(const wff_model *m, double value, wff_error *err)
+{
+    if (m->clamp.n == 0)
+        return wff_fail(err, "clamp_radius: no friction clamp yet (set the clamp first)");
+    if (!(value >= 0) || !isfinite(value))
+        return wff_fail(err, "clamp_radius = %g: must be >= 0 m (0: the whole clamp)", value);
+    return 0;
+}
+
+static int apply_clamp_radius(wff_model *m, double value, wff_error *err)
+{
+    double before = m->clamp.radius;
+    m->clamp.radius = value;
+    if (wff_clamp_share(m, err)) { /* no node within: keep the force as it was */
+        wff_error ignored;
+        m->clamp.radius = before;
+        wff_clamp_share(m, &ignored);
+        return -1;
+    }
+    return 0;
+}
+
+static int check_orientation(const wff_model *m, double value, wff_error *err)
+{
+    (void)m;
+    if (!isfinite(value))
+        return wff_fail(err, "orientation = %g: must be a finite angle in degrees", value);
+    return 0;
+}
+
+/* degrees; exact multiples of 90 degrees: exactly k pi/2 */
+static int apply_orientation(wff_model *m, double value, wff_error *err)
+{
+    double right_angles = value / 90;
+    double theta = right_angles == nearbyint(right_angles) ? right_angles * M_PI_2
+                                                           : value * (M_PI / 180);
+    return wff_model_set_orientation(m, theta, err);
+}
+
+static int check_clamp_edge_reaction(const wff_model *m, double value, wff_error *err)
+{
+    if (m->clamp.n == 0)
+        return wff_fail(err, "clamp_edge_reaction: no friction clamp yet (set the clamp "
+                        "first)");
+    return check_flag("clamp_edge_reaction", value, "0 (friction from the clamping force "
+                      "only) or 1 (also mu |R_z|)", err);
+}
+
+static int apply_clamp_edge_reaction(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->clamp.edge_reaction = (int)value;
+    return 0;
+}
+
+static const wff_setting model_settings[] = {
+    {"dtfactor", check_dtfactor, apply_dtfactor},
+    {"dtinterval", check_dtinterval, apply_dtinterval},
+    {"symmetry", check_symmetry, apply_symmetry},
+    {"reference_path", check_reference_path, apply_reference_path},
+    {"threads", check_threads, apply_threads},
+    {"amplitude_mass_factor", check_amplitude_mass_factor, apply_amplitude_mass_factor},
+    {"static_amplitudes", check_static_amplitudes, apply_static_amplitudes},
+    {"contact_search", check_contact_search, apply_contact_search},
+    {"orientation", check_orientation, apply_orientation},
+    {"clamp_radius", check_clamp_radius, apply_clamp_radius},
+    {"clamp_edge_reaction", check_clamp_edge_reaction, apply_clamp_edge_reaction},
+    {NULL, NULL, NULL},
+};
+
+/* The row named key: the model's own first, then the parts' in list order. */
+static const wff_setting *find_setting(const char *key)
+{
+    for (const wff_setting *s = model_settings; s->name; s++)
+        if (strcmp(s->name, key) == 0)
+            return s;
+    return wff_parts_setting(key);
+}
+
+int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err)
+{
+    const wff_setting *s = find_setting(key);
+    if (!s) {
+        char known[WFF_ERROR_MAX / 2] = "";
+        size_t used = 0;
+        for (const wff_setting *r = model_settings; r->name; r++)
+            used += (size_t)snprintf(known + used, used < sizeof known ? sizeof known - used : 0,
+                                     "%s%s", used ? ", " : "", r->name);
+        if (used < sizeof known)
+            wff_parts_setting_names(known + used, sizeof known - used, used > 0);
+        return wff_fail(err, "unknown solver setting '%s' (known: %s)", key, known);
+    }
+    if (s->check && s->check(m, value, err))
+        return -1;
+    return s->apply(m, value, err);
 }
 
 int wff_model_nearest_node(const wff_model *m, double x, double y)

@@ -10,6 +10,7 @@
  * checkpoints or of FreeFEM. */
 #include "contact.h"
 #include "zones.h"
+#include "wovenff/renumber.h"
 
 #include <float.h>
 #include <math.h>

@@ -9,6 +9,7 @@
 #include "erosion.h"
 #include "ply_contact.h"
 #include "zones.h"
+#include "wovenff/renumber.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -85,30 +86,53 @@ static double pack_after_forces(wff_model *m, const double *u, const double *sta
 
 
 /* The settings ply_mu and ply_thickness. */
-static int pack_set(wff_model *m, const char *key, double value, int *rc, wff_error *err)
+static int check_pack(const char *name, const wff_model *m, wff_error *err)
 {
-    int mu = strcmp(key, "ply_mu") == 0, th = strcmp(key, "ply_thickness") == 0;
-    if (!mu && !th)
-        return 0;
-    *rc = 0;
-    if (!m->pack) {
-        *rc = wff_fail(err, "%s: the model is not a pack (give the plies first)", key);
-    } else if (mu) {
-        if (!(value >= 0) || !isfinite(value))
-            *rc = wff_fail(err, "ply_mu = %g: must be a friction coefficient >= 0", value);
-        else
-            m->pack->mu = value;
-    } else {
-        if (!(value > 0) || !isfinite(value))
-            *rc = wff_fail(err, "ply_thickness = %g m: must be > 0", value);
-        else if (m->step > 0 || m->v_half_valid)
-            *rc = wff_fail(err, "ply_thickness: the run has started (step %ld); set it before "
-                           "the first step", m->step);
-        else
-            m->pack->thickness = value;
-    }
-    return 1;
+    if (!m->pack)
+        return wff_fail(err, "%s: the model is not a pack (give the plies first)", name);
+    return 0;
 }
+
+static int check_ply_mu(const wff_model *m, double value, wff_error *err)
+{
+    if (check_pack("ply_mu", m, err))
+        return -1;
+    if (!(value >= 0) || !isfinite(value))
+        return wff_fail(err, "ply_mu = %g: must be a friction coefficient >= 0", value);
+    return 0;
+}
+
+static int apply_ply_mu(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->pack->mu = value;
+    return 0;
+}
+
+static int check_ply_thickness(const wff_model *m, double value, wff_error *err)
+{
+    if (check_pack("ply_thickness", m, err))
+        return -1;
+    if (!(value > 0) || !isfinite(value))
+        return wff_fail(err, "ply_thickness = %g m: must be > 0", value);
+    if (m->step > 0 || m->v_half_valid)
+        return wff_fail(err, "ply_thickness: the run has started (step %ld); set it before "
+                        "the first step", m->step);
+    return 0;
+}
+
+static int apply_ply_thickness(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->pack->thickness = value;
+    return 0;
+}
+
+static const wff_setting pack_settings[] = {
+    {"ply_mu", check_ply_mu, apply_ply_mu},
+    {"ply_thickness", check_ply_thickness, apply_ply_thickness},
+    {NULL, NULL, NULL},
+};
 
 /* Ply p's node range in the model's order. */
 static void ply_nodes(const wff_model *m, int p, int *first, int *end)
@@ -342,11 +366,26 @@ static int pack_refuses_checkpoint(const wff_model *m, char *why, size_t size)
     return 1;
 }
 
+/* The pack's values by name, in wovenffState's order (include/wovenff/pack.h). */
+static const char *const pack_value_names[] = {
+    "plies", "back_face", "ply_contact_dissipated", "ply_penetration", "ply_contacts",
+    "ply_slip", "ply_mu", "ply_thickness", "ply_gap", "ply_contact_seconds", "ply_left_out",
+    "ply_penetration_bound", NULL};
+
+static void pack_value(const wff_model *m, const char *key, double *value)
+{
+    wff_error ignored; /* (every name above is known) */
+    *value = 0;
+    wff_model_pack_value(m, key, value, &ignored);
+}
+
 const wff_part_ops wff_pack_part = {
     .name = "pack",
     .after_forces = pack_after_forces,
     .follow = pack_follow,
-    .set = pack_set,
+    .settings = pack_settings,
+    .value_names = pack_value_names,
+    .value = pack_value,
     .refuses_checkpoint = pack_refuses_checkpoint,
     .free = pack_free,
 };

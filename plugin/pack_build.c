@@ -9,6 +9,7 @@
 #include "pack.h"
 #include "erosion.h"
 #include "zones.h"
+#include "wovenff/renumber.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -19,6 +19,15 @@
 
 #include <stddef.h>
 
+/* A setting by name (wff_model_set_option): check (NULL: none) refuses a value
+ * with a message naming it and changes nothing; apply sets it (after check),
+ * -1 (err set) when the model's state refuses it. */
+typedef struct wff_setting {
+    const char *name;
+    int (*check)(const wff_model *m, double value, wff_error *err);
+    int (*apply)(wff_model *m, double value, wff_error *err);
+} wff_setting;
+
 typedef struct wff_part_ops {
     const char *name;   /* for messages and docs: "projectile_contact", ... */
 
@@ -49,19 +58,25 @@ typedef struct wff_part_ops {
      * "orientation", the warp direction in rad as value). */
     void (*follow)(wff_model *m, const char *what, double value);
 
-    /* Its settings by name (wff_model_set_option): 1 if key is the part's,
-     * with the result (0 or -1, err set) in *rc; 0 if not. */
-    int (*set)(wff_model *m, const char *key, double value, int *rc, wff_error *err);
+    /* Its settings by name (wff_model_set_option), rows ending in a NULL name. */
+    const wff_setting *settings;
 
-    /* Its values by name (wff_model_value): 1 if key is the part's (*value
-     * set, or *rc -1 with err set), 0 if not. */
-    int (*value)(const wff_model *m, const char *key, double *value, int *rc, wff_error *err);
+    /* Its values by name (wff_model_value, values.c): their names (NULL-
+     * terminated; after the model's own and the parts' before it in the list,
+     * in wovenffState's order), and the value of one of them into *value. */
+    const char *const *value_names;
+    void (*value)(const wff_model *m, const char *key, double *value);
 
     /* Checkpoints and mesh transfers: 0 when the part carries over (or has
      * nothing to carry); 1 when it cannot, with a sentence saying why in
      * why[size] for the refusal's message. */
     int (*refuses_checkpoint)(const wff_model *m, char *why, size_t size);
     int (*refuses_remesh)(const wff_model *m, char *why, size_t size);
+
+    /* A mesh transfer (remesh.c) that no part refused: carry the part onto the
+     * new model `to`, whose elements are set up (its arrays of the part are
+     * NULL); -1 (err set) on failure. */
+    int (*carry)(const wff_model *from, wff_model *to, wff_error *err);
 
     /* Free what the part allocated in m (wff_model_free). */
     void (*free)(wff_model *m);
@@ -78,13 +93,15 @@ double wff_parts_after_forces(wff_model *m, const double *u, const double *state
 int wff_parts_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
 double wff_parts_dissipated(const wff_model *m);
 void wff_parts_follow(wff_model *m, const char *what, double value);
-int wff_parts_set(wff_model *m, const char *key, double value, int *rc, wff_error *err);
-int wff_parts_value(const wff_model *m, const char *key, double *value, int *rc,
-                    wff_error *err);
+/* The part's setting row named key (NULL: none); the parts' setting names,
+ * ", "-separated (led by ", " when `comma`), into out[size]. */
+const wff_setting *wff_parts_setting(const char *key);
+void wff_parts_setting_names(char *out, size_t size, int comma);
 /* 1 with the first refusing part's reason in why[size], 0 when every part
  * carries over. */
 int wff_parts_refuse_checkpoint(const wff_model *m, char *why, size_t size);
 int wff_parts_refuse_remesh(const wff_model *m, char *why, size_t size);
+int wff_parts_carry(const wff_model *from, wff_model *to, wff_error *err);
 void wff_parts_free(wff_model *m);
 
 #endif

@@ -9,6 +9,8 @@
 #include "ply_contact.h"
 
 #include <stddef.h>
+#include <stdio.h>
+#include <string.h>
 
 /* After the force pass: erosion first (the elements that go, their stored
  * energy out of the pass's), then the pack's per-ply accounts (which read the
@@ -73,21 +75,26 @@ void wff_parts_follow(wff_model *m, const char *what, double value)
             (*p)->follow(m, what, value);
 }
 
-int wff_parts_set(wff_model *m, const char *key, double value, int *rc, wff_error *err)
+const wff_setting *wff_parts_setting(const char *key)
 {
     EACH_PART(p)
-        if ((*p)->set && (*p)->set(m, key, value, rc, err))
-            return 1;
-    return 0;
+        for (const wff_setting *s = (*p)->settings; s && s->name; s++)
+            if (strcmp(s->name, key) == 0)
+                return s;
+    return NULL;
 }
 
-int wff_parts_value(const wff_model *m, const char *key, double *value, int *rc,
-                    wff_error *err)
+void wff_parts_setting_names(char *out, size_t size, int comma)
 {
+    size_t used = 0;
     EACH_PART(p)
-        if ((*p)->value && (*p)->value(m, key, value, rc, err))
-            return 1;
-    return 0;
+        for (const wff_setting *s = (*p)->settings; s && s->name; s++) {
+            if (used >= size)
+                return;
+            used += (size_t)snprintf(out + used, size - used, "%s%s", comma ? ", " : "",
+                                     s->name);
+            comma = 1;
+        }
 }
 
 int wff_parts_refuse_checkpoint(const wff_model *m, char *why, size_t size)
@@ -103,6 +110,14 @@ int wff_parts_refuse_remesh(const wff_model *m, char *why, size_t size)
     EACH_PART(p)
         if ((*p)->refuses_remesh && (*p)->refuses_remesh(m, why, size))
             return 1;
+    return 0;
+}
+
+int wff_parts_carry(const wff_model *from, wff_model *to, wff_error *err)
+{
+    EACH_PART(p)
+        if ((*p)->carry && (*p)->carry(from, to, err))
+            return -1;
     return 0;
 }
 

@@ -15,6 +15,7 @@
 #include "part.h"
 #include "zones.h"
 #include "erosion.h"
+#include "wovenff/renumber.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -508,6 +509,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     nm.bc = NULL, nm.n_bc = 0;
     nm.operator_scratch = NULL; /* operators.c's workspace: the new model allocates its own */
     nm.node_user = nm.node_model = nm.element_user = nm.element_model = NULL;
+    nm.eroded_now = NULL, nm.eroded_now_energy = NULL, nm.n_eroded_now = 0;
     locator L;
     memset(&L, 0, sizeof L);
     char why[WFF_ERROR_MAX];
@@ -527,8 +529,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     }
     if (m->el.n_threads > 1 && wff_elements_set_threads(&nm.el, m->el.n_threads, err))
         goto fail_prefixed;
-    /* erosion stays on (nothing has eroded: checked above) */
-    if (m->el.eroded && wff_erosion_on(&nm, m->el.erosion, err))
+    if (wff_parts_carry(m, &nm, err)) /* (erosion stays on: nothing has eroded) */
         goto fail_prefixed;
     nm.n_nodes = nm.mesh.n_nodes;
     nm.n_dofs = D * nm.n_nodes;

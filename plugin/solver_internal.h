@@ -6,7 +6,6 @@
 #ifndef WFF_SOLVER_INTERNAL_H
 #define WFF_SOLVER_INTERNAL_H
 
-#include "wovenff/renumber.h"
 #include "wovenff/solver.h"
 
 #define D WFF_DOFS_PER_NODE

@@ -7,6 +7,7 @@
 #include "solver_internal.h"
 #include "zones.h"
 #include "wovenff/state.h"
+#include "wovenff/renumber.h"
 
 #include <math.h>
 #include <stdlib.h>

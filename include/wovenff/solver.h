@@ -313,6 +313,18 @@ int wff_model_group_reaction(wff_model *m, const char *group, int component, dou
  * the mesh's x axis, wff_model_set_orientation; exact at multiples of 90). */
 int wff_model_set_option(wff_model *m, const char *key, double value, wff_error *err);
 
+/* The model's state quantities by name (plugin/values.c): time, step, dt,
+ * the projectile's, the energies (whole specimen), element and node counts,
+ * erosion's, then those of the step's parts (a pack's: plies, back_face,
+ * ply_*). wff_model_value_count() of them, named wff_model_value_name(i) in
+ * a fixed order; wff_model_values writes them all in that order (the energies
+ * only with with_energies, the parts' only with with_parts: else 0);
+ * wff_model_value one, -1 (err set) for an unknown name. */
+int wff_model_value_count(void);
+const char *wff_model_value_name(int index);
+void wff_model_values(const wff_model *m, int with_energies, int with_parts, double *out);
+int wff_model_value(const wff_model *m, const char *key, double *value, wff_error *err);
+
 /* The default thread count: OMP_NUM_THREADS's (its first level) when it is
  * set, else the processors this process may run on (its affinity mask),
  * at most WFF_MAX_THREADS. The setting threads = 0 takes it (threads: every

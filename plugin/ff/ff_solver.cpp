@@ -5,8 +5,8 @@
 //   mesh Th = wovenffMesh(md);            // triangles (quads split), same vertex numbering
 //   wovenffFix(md, "sym_x", 0);           // fix a DOF (0 ux, 1 uy, 2 uz, 3 dA1, 4 dA2)
 //   wovenffAdvance(md, tEnd);             // explicit steps until tEnd
-//   real t = wovenffGet(md, "time");      // one state quantity by name (see kState)
-//   wovenffState(md, st);                 // all of them, kState order
+//   real t = wovenffGet(md, "time");      // one state quantity by name (plugin/values.c)
+//   wovenffState(md, st);                 // all of them, in wovenffStateNames' order
 //   wovenffField(md, "uz", values);       // nodal values, P1 DOF order
 //   wovenffFree(md);
 //
@@ -64,87 +64,15 @@ wff_model *model_of(long id, const char *fn)
     return wff_ff_model(id, fn);
 }
 
-// The model's state quantities by name: wovenffGet(md, name) reads one,
-// wovenffState(md, v) all of them in this order, wovenffStateNames lists them.
-// `energy`: computed by wff_model_energies (a pass over the nodes), whole specimen.
-struct StateQuantity {
-    const char *name;
-    bool energy;
-};
-const StateQuantity kState[] = {
-    {"time", false},              {"step", false},
-    {"dt", false},                {"dt_stable", false},
-    {"projectile_tip", false},    {"projectile_velocity", false},
-    {"projectile_force", false},  {"max_penetration", false},
-    {"kinetic_inplane", true},    {"kinetic_transverse", true},
-    {"kinetic_amplitude", true},  {"kinetic_projectile", true},
-    {"internal_energy", true},    {"dissipated_shear", true},
-    {"dissipated_friction", true}, {"external_work", true},
-    {"energy_error", true},       {"element_steps", false},
-    {"elements", false},          {"nodes", false},
-    {"dt_worst_element", false},  {"transfer_energy", true},
-    {"projectile_impulse", false}, {"dissipated_failure", true},
-    {"eroded_energy", true},      {"eroded_elements", false},
-    {"failure_energy", true},     {"plies", false},
-    {"back_face", false},         {"ply_contact_dissipated", false},
-    {"ply_penetration", false},   {"ply_contacts", false},
-    {"ply_slip", false},          {"ply_mu", false},
-    {"ply_thickness", false},     {"ply_gap", false},
-    {"ply_contact_seconds", false}, {"ply_left_out", false},
-    {"ply_penetration_bound", false}};
-const int kStateSize = sizeof kState / sizeof kState[0];
-
+// The model's state quantities by name (plugin/values.c: the model's own and
+// its parts'): wovenffGet(md, name) reads one, wovenffState(md, v) all of them
+// in their order, wovenffStateNames lists them.
 std::string state_names()
 {
     std::string names;
-    for (int i = 0; i < kStateSize; i++)
-        names += std::string(i ? " " : "") + kState[i].name;
+    for (int i = 0; i < wff_model_value_count(); i++)
+        names += std::string(i ? " " : "") + wff_model_value_name(i);
     return names;
-}
-
-// A pack's value by name (include/wovenff/pack.h; a model without plies is one ply).
-double pack_value(const wff_model *m, const char *key)
-{
-    double v = 0;
-    wff_error err;
-    wff_model_pack_value(m, key, &v, &err);
-    return v;
-}
-
-// A pack's key (plies, back_face, ply_*): include/wovenff/pack.h's values.
-static bool is_pack_key(const std::string &name)
-{
-    return name == "plies" || name == "back_face" || name.compare(0, 4, "ply_") == 0;
-}
-
-// Every state quantity in kState order; the energies only if with_energies,
-// the pack's values only if with_pack (else 0: some pass over the plies).
-void state_values(const wff_model *m, bool with_energies, bool with_pack,
-                  double values[kStateSize])
-{
-    wff_energies e = {};
-    if (with_energies)
-        wff_model_energies(m, &e);
-    auto pack = [m, with_pack](const char *key) { return with_pack ? pack_value(m, key) : 0.0; };
-    double s = m->symmetry_factor;
-    const double v[] = {m->time, (double)m->step, m->dt, m->dt_stable, m->projectile.tip,
-                        m->projectile.velocity, s * m->projectile.force,
-                        m->projectile.max_penetration, e.kinetic_inplane, e.kinetic_transverse,
-                        e.kinetic_amplitude, e.kinetic_projectile, e.internal, e.dissipated_shear,
-                        e.dissipated_friction, e.external_work, e.error, (double)m->element_steps,
-                        (double)(m->el.n_tris + m->el.n_quads), (double)m->n_nodes,
-                        (double)(wff_model_user_element(m, m->dt_worst_element) + 1), e.transfer,
-                        s * m->projectile.impulse_total, e.dissipated_failure, e.eroded,
-                        (double)m->n_eroded, e.dissipated_failure, pack("plies"),
-                        pack("back_face"), pack("ply_contact_dissipated"),
-                        pack("ply_penetration"), pack("ply_contacts"),
-                        pack("ply_slip"), pack("ply_mu"),
-                        pack("ply_thickness"), pack("ply_gap"),
-                        pack("ply_contact_seconds"), pack("ply_left_out"),
-                        pack("ply_penetration_bound")};
-    static_assert(sizeof v / sizeof v[0] == kStateSize, "state layout");
-    for (int i = 0; i < kStateSize; i++)
-        values[i] = v[i];
 }
 
 long ffModel(string *const &meshFile, string *const &materialFile, string *const &settings)
@@ -307,25 +235,21 @@ long ffAdvance(const long &id, const double &t_end)
 long ffState(const long &id, KN<double> *const &out)
 {
     const wff_model *m = model_of(id, "wovenffState");
-    double values[kStateSize];
-    state_values(m, true, true, values);
-    out->resize(kStateSize);
-    for (int i = 0; i < kStateSize; i++)
-        (*out)[i] = values[i];
+    std::vector<double> values((size_t)wff_model_value_count());
+    wff_model_values(m, 1, 1, values.data());
+    out->resize((long)values.size());
+    for (size_t i = 0; i < values.size(); i++)
+        (*out)[(long)i] = values[i];
     return 0;
 }
 
 double ffGet(const long &id, string *const &name)
 {
     const wff_model *m = model_of(id, "wovenffGet");
-    for (int i = 0; i < kStateSize; i++)
-        if (*name == kState[i].name) {
-            if (is_pack_key(*name))
-                return pack_value(m, name->c_str()); /* (that one alone) */
-            double values[kStateSize];
-            state_values(m, kState[i].energy, false, values);
-            return values[i];
-        }
+    double value;
+    wff_error err;
+    if (wff_model_value(m, name->c_str(), &value, &err) == 0)
+        return value;
     fail("wovenffGet", "unknown state quantity '" + *name + "' (known: " + state_names() + ")",
          id);
 }
