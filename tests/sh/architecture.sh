@@ -21,7 +21,7 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$root" || exit 1
 doc=docs/architecture.md
 [ -f "$doc" ] || { echo "architecture: $doc is missing"; exit 1; }
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+tmp=${WFF_ARCH_TMP:-$(mktemp -d)}; [ -n "${WFF_ARCH_TMP:-}" ] || trap 'rm -rf "$tmp"' EXIT; mkdir -p "$tmp"
 
 # The layers block: "layer N NAME: file ...", "public-only: NAME", "allow: A -> B".
 awk '/^```layers[ \t]*$/ { inb = 1; next } inb && /^```/ { inb = 0 } inb' "$doc" > "$tmp/block"
@@ -36,8 +36,11 @@ find plugin -type f \( -name '*.c' -o -name '*.h' -o -name '*.cpp' -o -name '*.h
     > "$tmp/files"
 [ -s "$tmp/files" ] || { echo "architecture: no plugin files found"; exit 1; }
 missing=$(awk -v doc="$doc" 'FNR == NR { named[$1] = 1; next }
-    FILENAME == doc { if (match($0, /^\| `plugin\/[^`]*`/))
-                          row[substr($0, RSTART + 3, RLENGTH - 4)] = 1; next }
+    FILENAME == doc { if ($0 !~ /^\| `plugin\//) next
+                      split($0, cell, "|"); c = cell[2]   # the first cell: one or more `plugin/X`
+                      while (match(c, /`plugin\/[^`]*`/)) { row[substr(c, RSTART + 1, RLENGTH - 2)] = 1
+                                                           c = substr(c, RSTART + RLENGTH) }
+                      next }
     { if (!($1 in named)) print "not in the layers block of " doc ": " $1
       if (!($1 in row))   print "no row | `" $1 "` | (its job) in " doc }' \
     "$tmp/layers" "$doc" "$tmp/files")
