@@ -10,7 +10,7 @@
 #      binaries' .d under build/tests/ are not plugin files); calls are the
 #      undefined symbols of each object (nm) mapped to the object that
 #      defines them (build/plugin/**/*.o, build/kernel/baseline/plugin/**/*.o;
-#      a kernel entry NAME__VARIANT is NAME). A layer named on a `public-only:`
+#      a call of NAME__VARIANT is one of the kernel file defining NAME). A layer named on a `public-only:`
 #      line may include no plugin/ header outside its layer and call only
 #      functions declared in include/wovenff/*.h. `allow: FROM -> TO` lines
 #      are exceptions.
@@ -79,10 +79,12 @@ awk "$srcof"'
       if (type == "U" || type == "w" || type == "v") { und[++nu] = file(o) " " sym; next }
       f = file(o); kernel = (o ~ /^build\/kernel\//)
       # a kernel entry is defined in kernel_dispatch.c and in membrane.c: the core object wins
-      if (!(sym in def) || (defk[sym] && !kernel)) { def[sym] = f; defk[sym] = kernel } }
-    END { for (i = 1; i <= nu; i++) { split(und[i], a, " "); s = a[2]
-              if (!(s in def)) { t = s; sub(/__(baseline|avx2|avx512)$/, "", t); s = t }
-              if ((s in def) && def[s] != a[1]) print a[1], def[s], a[2] } }' \
+      if (!(sym in def) || (defk[sym] && !kernel)) { def[sym] = f; defk[sym] = kernel }
+      if (kernel) kdef[sym] = f }
+    END { for (i = 1; i <= nu; i++) { split(und[i], a, " "); s = a[2]; d = ""
+              if (s in def) d = def[s]
+              else { t = s; if (sub(/__(baseline|avx2|avx512)$/, "", t) && (t in kdef)) d = kdef[t] }
+              if (d != "" && d != a[1]) print a[1], d, a[2] } }' \
     "$tmp/files" "$tmp/nm" | sort -u >> "$tmp/edges"
 
 # the public API: every identifier in include/wovenff/*.h
