@@ -1,5 +1,5 @@
 #!/bin/sh
-# The pack study (issue 14, item 4; README "Packs"): V50 and the back-face
+# The pack study (issue 14, item 4; docs/pack_study.md): V50 and the back-face
 # deformation of packs of 1, 2, 4, 8 plies on the coarse mesh, against areal
 # density, and Cunniff's dimensionless form (tools/cunniff.sh). Not part of make test.
 #

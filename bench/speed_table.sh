@@ -2,7 +2,7 @@
 # The speed table of issue 12 from make bench's raw figures: one row per
 # figure, each with its measured value, what it is compared against, the ratio,
 # the target and met/missed. Writes OUT/speed_table.json (one key per row) and
-# OUT/speed.md (the markdown table the README's speed table is copied from).
+# OUT/speed.md (the markdown table docs/speed.md's speed table is copied from).
 # Knows nothing of how the figures were measured (bench/run.sh does that): it
 # only reads the files below, so tests/sh/speed_table.sh can feed it canned ones.
 #
