@@ -98,10 +98,8 @@ int wff_model_create_ordered(wff_model *m, wff_mesh *mesh, const char *material_
     return wff_model_setup(m, err);
 }
 
-int wff_model_setup(wff_model *m, wff_error *err)
+int wff_model_alloc_arrays(wff_model *m)
 {
-    m->n_nodes = m->mesh.n_nodes;
-    m->n_dofs = D * m->n_nodes;
     size_t nd = (size_t)m->n_dofs;
     size_t nq = wff_elements_point_count(&m->el);
     m->u = calloc(nd, sizeof(double));
@@ -111,11 +109,20 @@ int wff_model_setup(wff_model *m, wff_error *err)
     m->dof_kind = calloc(nd, 1);
     m->v_prescribed = calloc(nd, sizeof(double));
     m->reaction = calloc(nd, sizeof(double));
-    m->n_state = m->mat.n_state;
     size_t ns = nq * (size_t)m->n_state;
     m->state = calloc(ns ? ns : 1, sizeof(double)); /* every state starts at 0 */
-    if (!m->u || !m->v || !m->f || !m->mass || !m->dof_kind || !m->v_prescribed ||
-        !m->reaction || !m->state) {
+    return m->u && m->v && m->f && m->mass && m->dof_kind && m->v_prescribed && m->reaction &&
+                   m->state
+               ? 0
+               : -1;
+}
+
+int wff_model_setup(wff_model *m, wff_error *err)
+{
+    m->n_nodes = m->mesh.n_nodes;
+    m->n_dofs = D * m->n_nodes;
+    m->n_state = m->mat.n_state;
+    if (wff_model_alloc_arrays(m)) {
         wff_model_free(m);
         return wff_fail(err, "out of memory for a model of %d nodes", m->n_nodes);
     }

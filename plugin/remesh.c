@@ -334,19 +334,8 @@ static int old_points(const wff_model *m, const locator *L, int t, const double 
 
 static int allocate(wff_model *nm, wff_error *err)
 {
-    size_t nd = (size_t)nm->n_dofs, nn = (size_t)nm->n_nodes;
-    size_t nq = wff_elements_point_count(&nm->el);
-    nm->u = calloc(nd, sizeof(double));
-    nm->v = calloc(nd, sizeof(double));
-    nm->f = calloc(nd, sizeof(double));
-    nm->mass = calloc(nd, sizeof(double));
-    nm->dof_kind = calloc(nd, 1);
-    nm->v_prescribed = calloc(nd, sizeof(double));
-    nm->reaction = calloc(nd, sizeof(double));
-    size_t ns = nq * (size_t)nm->n_state;
-    nm->state = calloc(ns ? ns : 1, sizeof(double));
-    int ok = nm->u && nm->v && nm->f && nm->mass && nm->dof_kind && nm->v_prescribed &&
-             nm->reaction && nm->state;
+    size_t nn = (size_t)nm->n_nodes;
+    int ok = wff_model_alloc_arrays(nm) == 0; /* (model.c's, as a model's creation) */
     if (nm->projectile.active) {
         nm->projectile.candidates = malloc(sizeof(int) * nn);
         nm->projectile.contact_node = malloc(sizeof(int) * nn);

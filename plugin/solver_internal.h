@@ -37,6 +37,11 @@ int wff_step_candidates(const wff_model *m, double reach, int *candidates);
  * elements (m->mesh, m->mat, m->el and the order arrays set; every other field
  * 0): the second half of wff_model_create_ordered. On failure m is freed. */
 int wff_model_setup(wff_model *m, wff_error *err);
+/* model.c: the per-DOF and per-point arrays of a model whose n_dofs, n_state
+ * and elements are set, zeroed (u, v, f, mass, dof_kind, v_prescribed,
+ * reaction, state), for a model's creation and a mesh transfer alike; -1 if
+ * out of memory (what was allocated is left for wff_model_free). */
+int wff_model_alloc_arrays(wff_model *m);
 
 /* renumber.c: renumber the model's mesh (before its elements are set up)
  * and keep the permutations; free them. */
