@@ -3,7 +3,7 @@
  * test followed along x by continuation (wff_fit_predict), and synthetic
  * curves with seeded noise. Knows the static balance (balance.h) and the
  * material, nothing of the GSL fit, of meshes or of the solver. */
-#include "wovenff/fit.h"
+#include "wovenff/fit_data.h"
 
 #include "wovenff/balance.h"
 #include "wovenff/text_io.h"

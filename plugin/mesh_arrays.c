@@ -3,7 +3,7 @@
  * name, and give the triangle twin FreeFEM needs (each quad split along its
  * 0-2 diagonal). Knows nothing of gmsh (mesh.c reads the files), materials
  * or the solver. */
-#include "wovenff/mesh.h"
+#include "wovenff/mesh_arrays.h"
 
 #include <stdlib.h>
 #include <string.h>

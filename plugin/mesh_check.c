@@ -4,7 +4,7 @@
  * element (they would carry no mass), and elements that meet only at a vertex
  * (a hinge no woven fabric has). Each is reported with the node's coordinates.
  * Works on the arrays only: knows nothing of gmsh, materials or the solver. */
-#include "wovenff/mesh.h"
+#include "wovenff/mesh_check.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -32,36 +32,14 @@
 #define WOVENFF_MESH_H
 
 #include "wovenff/error.h"
+#include "wovenff/mesh_arrays.h"
+#include "wovenff/mesh_check.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-#define WFF_MESH_NAME_MAX 64
 #define WFF_MESH_SETTINGS_MAX 16
-
-/* A physical group of the mesh file (curves: dim 1, surfaces: dim 2). */
-typedef struct wff_mesh_group {
-    int dim;
-    int tag;
-    char name[WFF_MESH_NAME_MAX];
-} wff_mesh_group;
-
-typedef struct wff_mesh {
-    int n_nodes;
-    double *xy;          /* 2*n_nodes reference coordinates X, Y in m */
-    int n_tris;
-    int *tri;            /* 3*n_tris node indices, 0-based, counter-clockwise */
-    int *tri_region;     /* physical surface tag of each triangle (0 if none) */
-    int n_quads;
-    int *quad;           /* 4*n_quads node indices, 0-based, counter-clockwise */
-    int *quad_region;
-    int n_edges;         /* line elements of physical curves (see above) */
-    int *edge;           /* 2*n_edges node indices */
-    int *edge_label;     /* physical curve tag of each edge */
-    int n_groups;
-    wff_mesh_group *groups;
-} wff_mesh;
 
 /* Numbers handed to a .geo before it is read, e.g. {"h_min", 1e-3}, as gmsh
  * ONELAB parameters. gmsh 4.8.4 passes a ONELAB number only to a
@@ -95,27 +73,6 @@ typedef struct wff_mesh_options {
  * wff_mesh_free(). */
 int wff_mesh_load(const char *path, const wff_mesh_options *options, wff_mesh *mesh,
                   wff_error *err);
-
-void wff_mesh_free(wff_mesh *mesh);
-
-/* Defects no single element shows (plugin/mesh_check.c), each an error naming
- * `where` (the file), the nodes or elements and the coordinates: an element
- * node index out of range, a node in no element (it would carry no mass),
- * two nodes that coincide (within 1e-9 of the bounding-box diagonal: a slit in
- * the fabric), and, unless allow_vertex_only, elements that meet only at a
- * vertex (no shared edge around the node: a hinge). wff_mesh_load runs it
- * (with the setting vertex_only), and so does wff_model_create_from_mesh (for
- * meshes given as arrays; vertex-only contacts there are the caller's to
- * check). */
-int wff_mesh_check(const wff_mesh *mesh, int allow_vertex_only, const char *where,
-                   wff_error *err);
-
-/* Label of the physical group named `name` of dimension dim, or -1. */
-int wff_mesh_group_tag(const wff_mesh *mesh, int dim, const char *name);
-
-/* Triangle twin: 3*(n_tris + 2*n_quads) indices into tri_out (caller-sized),
- * regions into region_out; triangles first, then each quad as (0,1,2),(0,2,3). */
-void wff_mesh_triangulate(const wff_mesh *mesh, int *tri_out, int *region_out);
 
 #ifdef __cplusplus
 }

@@ -55,7 +55,7 @@ double *dofs_out(const wff_model *m, KN<double> *v)
     return &(*v)[0];
 }
 
-double forces(long id, KN<double> *U, KN<double> *R, double dt)
+double loop_forces(long id, KN<double> *U, KN<double> *R, double dt)
 {
     const char *fn = "wovenffForces";
     wff_model *m = wff_ff_model(id, fn);
@@ -71,7 +71,7 @@ double forces(long id, KN<double> *U, KN<double> *R, double dt)
 
 double ffForces(const long &id, KN<double> *const &U, KN<double> *const &R)
 {
-    return forces(id, U, R, 0);
+    return loop_forces(id, U, R, 0);
 }
 
 double ffForcesDt(const long &id, KN<double> *const &U, KN<double> *const &R, const double &dt)
@@ -79,7 +79,7 @@ double ffForcesDt(const long &id, KN<double> *const &U, KN<double> *const &R, co
     if (!(dt > 0))
         wff_ff_model_fail("wovenffForces", "dt = " + std::to_string(dt) +
                           " s: must be > 0 (without dt: γᶠ held)", id);
-    return forces(id, U, R, dt);
+    return loop_forces(id, U, R, dt);
 }
 
 long ffMass(const long &id, KN<double> *const &M)
@@ -89,7 +89,7 @@ long ffMass(const long &id, KN<double> *const &M)
     return m->n_dofs;
 }
 
-double stable_step(long id, const double *u)
+double loop_stable_step(long id, const double *u)
 {
     const wff_model *m = wff_ff_model(id, "wovenffStableStep");
     double dt;
@@ -101,13 +101,13 @@ double stable_step(long id, const double *u)
 
 double ffStableStep(const long &id)
 {
-    return stable_step(id, nullptr);
+    return loop_stable_step(id, nullptr);
 }
 
 double ffStableStepAt(const long &id, KN<double> *const &U)
 {
     const char *fn = "wovenffStableStep";
-    return stable_step(id, dofs(fn, "U", wff_ff_model(id, fn), U, id));
+    return loop_stable_step(id, dofs(fn, "U", wff_ff_model(id, fn), U, id));
 }
 
 double ffStep(const long &id)
