@@ -1,10 +1,12 @@
 /* clamp.c: the friction clamp (docs/model.md §15): the clamping force shared
  * among the clamped nodes, and the Coulomb correction of a clamped node's
- * in-plane velocity after the velocity update (step_threads.c runs it over
- * the clamp's nodes in the same parallel region as the update). The clamp's
- * nodes are set by group in model.c (wff_model_clamp_friction); knows the
- * model's arrays only. */
+ * in-plane velocity after the velocity update: a part of the step (part.h),
+ * the first to correct the velocities (threaded as step_parts.h splits a
+ * pass). The clamp's nodes are set by group in model.c
+ * (wff_model_clamp_friction); knows the model's arrays only. */
 #include "clamp.h"
+#include "part.h"
+#include "step_parts.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -109,3 +111,36 @@ double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid)
     return dissipated;
 }
 
+
+/* Clamped nodes per part of the threaded pass (step_parts.h). */
+#define CLAMP_GRAIN 64
+
+double wff_clamp_correct_all(const wff_model *m, double *v, double dt_mid)
+{
+    const int n_clamp = m->clamp.n, parts = wff_part_count(n_clamp, CLAMP_GRAIN);
+    double part_dissipated[MAX_PARTS];
+#pragma omp parallel for schedule(static) num_threads(wff_pass_threads(m, parts)) if (wff_pass_threads(m, parts) > 1)
+    for (int k = 0; k < parts; k++) {
+        const int end = wff_part_begin(n_clamp, parts, k + 1);
+        double d = 0;
+        for (int c = wff_part_begin(n_clamp, parts, k); c < end; c++)
+            d += wff_clamp_node(m, v, c, dt_mid);
+        part_dissipated[k] = d;
+    }
+    return wff_sum_parts(part_dissipated, parts);
+}
+
+/* After the velocity update: the Coulomb correction of every clamped node,
+ * its dissipation counted with the friction. */
+static int clamp_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
+{
+    (void)dt, (void)err;
+    if (m->clamp.n)
+        m->dissipated_friction += wff_clamp_correct_all(m, m->v, dt_mid);
+    return 0;
+}
+
+const wff_part_ops wff_clamp_part = {
+    .name = "friction_clamp",
+    .correct = clamp_correct,
+};

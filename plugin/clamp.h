@@ -5,6 +5,11 @@
 
 #include "solver_internal.h"
 
+struct wff_part_ops;
+/* The part (part.h): after the velocity update, the Coulomb correction of
+ * every clamped node (nothing without a friction clamp). */
+extern const struct wff_part_ops wff_clamp_part;
+
 /* The clamping force (m->clamp.force_whole, whole specimen) shared among the
  * clamp's nodes into m->clamp.normal_force (modelled part): by area for a
  * surface group, by lumped mass for a curve group, only within clamp.radius
@@ -16,5 +21,8 @@ int wff_clamp_share(wff_model *m, wff_error *err);
  * (5 per node) over dt_mid: in-plane, two faces, on the node's free in-plane
  * components; returns the energy it dissipates, J (model part). */
 double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid);
+/* The correction of every clamped node in v, threaded (the model's thread
+ * count) with the same bits for any; returns the dissipation, J (model part). */
+double wff_clamp_correct_all(const wff_model *m, double *v, double dt_mid);
 
 #endif

@@ -1,7 +1,6 @@
 /* integrator.c: the explicit central-difference integrator
  * (docs/model.md §12, §14): the force pass, the velocity update with the
- * boundary conditions (the friction clamp's Coulomb correction inside it,
- * clamp.c), the stable step, the advance loop, the energies and the
+ * boundary conditions, the stable step, the advance loop, the energies and the
  * instability detector. The step's other participants are parts (part.h)
  * run from the list in parts.c: after the force pass, after the velocity
  * update, at each stable-step refresh, and their terms of the balance; the
@@ -131,10 +130,7 @@ static int compute_forces_zeroed(wff_model *m, double dt_flow, wff_error *err)
  * on the prescribed DOFs (the first half was added with the position update). */
 static void update_velocities(wff_model *m, double dt_mid, double dt_done)
 {
-    double work, dissipated; /* (threaded with the clamp: step_threads.c) */
-    wff_step_velocities(m, dt_mid, dt_done, &work, &dissipated);
-    m->external_work += work;
-    m->dissipated_friction += dissipated;
+    m->external_work += wff_step_velocities(m, dt_mid, dt_done); /* (step_threads.c) */
 }
 
 static int update_time_step(wff_model *m, wff_error *err)

@@ -8,6 +8,7 @@
  * scripted loop that calls them in the built-in order gives the built-in's
  * numbers. Knows the model; nothing of cells by name, of output fields, of
  * checkpoints or of FreeFEM. */
+#include "clamp.h"
 #include "contact.h"
 #include "zones.h"
 #include "wovenff/renumber.h"
@@ -214,7 +215,7 @@ double wff_model_clamp_correct(wff_model *m, double *V, double dt_mid)
         if (!(b = model_copies(m, in, 1, &err)))
             return 0;
     }
-    double dissipated = wff_step_clamp(m, b ? b : V, dt_mid);
+    double dissipated = wff_clamp_correct_all(m, b ? b : V, dt_mid);
     if (b) {
         wff_model_nodes_to_user(m, b, V, D);
         free(b);

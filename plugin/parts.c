@@ -3,6 +3,7 @@
  * whole-model operations run over them. A new per-step phenomenon is a new
  * file with its wff_part_ops and one line here. */
 #include "part.h"
+#include "clamp.h"
 #include "contact.h"
 #include "erosion.h"
 #include "pack.h"
@@ -14,11 +15,13 @@
 
 /* After the force pass: erosion first (the elements that go, their stored
  * energy out of the pass's), then the pack's per-ply accounts (which read the
- * elements erosion just took). After the velocity update: the projectile's
- * contact first, then the plies' (which reads the projectile's impulses). */
+ * elements erosion just took). After the velocity update: the friction
+ * clamp's correction first, then the projectile's contact, then the plies'
+ * (which reads the projectile's impulses). */
 const wff_part_ops *const wff_parts[] = {
     &wff_erosion_part,
     &wff_pack_part,
+    &wff_clamp_part,
     &wff_projectile_contact_part,
     &wff_ply_contact_part,
     NULL,

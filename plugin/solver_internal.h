@@ -21,16 +21,12 @@ int wff_force_pass(wff_model *m, const double *u, double *f, double *state, doub
  * with sums in an order set by the item count alone: the same bits for any
  * thread count. u += dt v and m->f = 0, returning the first half of the
  * prescribed DOFs' external work; f[0..n) = 0; the velocity update with the boundary
- * conditions, then the clamp friction (into *work the prescribed DOFs'
- * second-half work, into *dissipated the clamp's); the clamp alone on v
- * (returns the dissipation); Σ m v² (in-plane, transverse, amplitude) of the
+ * conditions (returns the prescribed DOFs' second-half work); Σ m v² (in-plane, transverse, amplitude) of the
  * free DOFs at v − half f/m; the nodes within `reach` of the projectile's
  * axis in plane into candidates (returns how many, in node order). */
 double wff_step_positions(wff_model *m, double dt);
 void wff_step_zero(const wff_model *m, double *f, int n);
-void wff_step_velocities(wff_model *m, double dt_mid, double dt_done, double *work,
-                         double *dissipated);
-double wff_step_clamp(const wff_model *m, double *v, double dt_mid);
+double wff_step_velocities(wff_model *m, double dt_mid, double dt_done);
 void wff_step_kinetic(const wff_model *m, double half, double sums[3]);
 int wff_step_candidates(const wff_model *m, double reach, int *candidates);
 /* model.c: a model's arrays, masses and defaults from its mesh, material and
