@@ -25,7 +25,7 @@ CFLAGS   := -std=gnu11 $(OPT) -fopenmp -Wall -Wextra -Werror -fPIC
 # FreeFEM's CodeAlloc (a class operator new/delete pair) in every
 # `Global.Add(..., new OneOperatorN_<...>(f))` registration.
 CXXFLAGS := -std=c++14 -O2 -fPIC -Wall -Wextra -Werror -Wno-mismatched-new-delete \
-            -DBAMG_LONG_LONG -DNCHECKPTR -Wno-deprecated-declarations \
+            -DBAMG_LONG_LONG -DNCHECKPTR -Wno-deprecated-declarations -DWFF_MODEL_OPAQUE \
             -isystem /usr/include/freefem++ -Iinclude
 LDLIBS   := -fopenmp -lgsl -lgslcblas -lgmsh -lmvec -lm
 # Include paths: the core sees its own headers only; test code also sees tests/c/lib.

@@ -18,6 +18,28 @@
 #include <stdlib.h>
 #include <string.h>
 
+wff_model *wff_model_new(void)
+{
+    return calloc(1, sizeof(wff_model));
+}
+
+void wff_model_delete(wff_model *m)
+{
+    if (m)
+        wff_model_free(m);
+    free(m);
+}
+
+int wff_model_dof_count(const wff_model *m) { return m->n_dofs; }
+int wff_model_node_count(const wff_model *m) { return m->n_nodes; }
+int wff_model_triangle_count(const wff_model *m) { return m->el.n_tris; }
+int wff_model_quad_count(const wff_model *m) { return m->el.n_quads; }
+long wff_model_step_count(const wff_model *m) { return m->step; }
+int wff_model_thread_count(const wff_model *m) { return m->el.n_threads; }
+int wff_model_has_projectile(const wff_model *m) { return m->projectile.active; }
+const wff_mesh *wff_model_mesh(const wff_model *m) { return &m->mesh; }
+const wff_material *wff_model_material(const wff_model *m) { return &m->mat; }
+
 void wff_model_free(wff_model *m)
 {
     free(m->u);

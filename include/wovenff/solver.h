@@ -114,7 +114,9 @@ typedef struct wff_bc_record {
     double mu;            /* the clamp's friction coefficient */
 } wff_bc_record;
 
-typedef struct wff_model {
+typedef struct wff_model wff_model;
+#ifndef WFF_MODEL_OPAQUE
+struct wff_model {
     wff_mesh mesh;
     wff_material mat;
     wff_elements el;
@@ -179,7 +181,27 @@ typedef struct wff_model {
     int *element_model;       /* per caller's element: the model's */
     struct wff_pack *pack;    /* plies and their contact (include/wovenff/pack.h); NULL:
                                  one ply, the plain path */
-} wff_model;
+};
+#endif /* WFF_MODEL_OPAQUE */
+
+/* For a caller that keeps the model behind a pointer (the FreeFEM binding,
+ * which does not see the struct: WFF_MODEL_OPAQUE): an empty model to create
+ * into (NULL if out of memory), and wff_model_free and free together. */
+wff_model *wff_model_new(void);
+void wff_model_delete(wff_model *m);
+/* Its sizes and parts, read through calls: DOFs (5 per node), nodes,
+ * triangles and quadrilaterals, steps taken, threads (resolved), whether a projectile is set, its
+ * mesh and material (the model's order; include/wovenff/renumber.h maps to the
+ * caller's). */
+int wff_model_dof_count(const wff_model *m);
+int wff_model_node_count(const wff_model *m);
+int wff_model_triangle_count(const wff_model *m);
+int wff_model_quad_count(const wff_model *m);
+long wff_model_step_count(const wff_model *m);
+int wff_model_thread_count(const wff_model *m);
+int wff_model_has_projectile(const wff_model *m);
+const wff_mesh *wff_model_mesh(const wff_model *m);
+const wff_material *wff_model_material(const wff_model *m);
 
 /* Create a model from a mesh file (.geo or .msh, see mesh.h; mesh_options
  * may be NULL) and a material file: at rest, no preload (wff_model_set_preload

@@ -40,14 +40,14 @@ long model_of_mesh(wff_mesh *mesh, const string *mat)
 {
     const char *fn = "wovenffModel";
     wff_error err;
-    wff_model *m = (wff_model *)calloc(1, sizeof(wff_model));
+    wff_model *m = wff_model_new();
     if (!m) {
         wff_mesh_free(mesh);
         wff_ff_fail(fn, "out of memory");
     }
     // renumbered for speed; every call keeps the FreeFEM mesh's numbering
     if (wff_model_create_ordered(m, mesh, mat->c_str(), 1, &err)) {
-        free(m);
+        free(m); /* (a failed creation leaves nothing to free inside) */
         wff_ff_fail(fn, err);
     }
     return wff_ff_model_add(m);
@@ -120,7 +120,7 @@ const char *group_of(long id, long label, const char *fn, wff_model **m)
 {
     *m = wff_ff_model(id, fn);
     wff_error err;
-    const char *name = wff_mesh_label_group(&(*m)->mesh, label, &err);
+    const char *name = wff_mesh_label_group(wff_model_mesh(*m), label, &err);
     if (!name)
         wff_ff_model_fail(fn, err.message, id);
     return name;

@@ -22,7 +22,7 @@ namespace {
 string *ffKernel(Stack stack, const long &id)
 {
     const wff_model *m = wff_ff_model(id, "wovenffKernel");
-    return Add2StackOfPtr2Free(stack, new string(wff_material_kernel(&m->mat)));
+    return Add2StackOfPtr2Free(stack, new string(wff_material_kernel(wff_model_material(m))));
 }
 
 } // namespace

@@ -43,15 +43,15 @@ void require_size(const char *fn, const char *name, const KN<double> *v, long n,
 // The array's entries, after checking it has exactly model id's DOF count.
 double *dofs(const char *fn, const char *name, const wff_model *m, KN<double> *v, long id)
 {
-    require_size(fn, name, v, m->n_dofs, kLayout, id);
+    require_size(fn, name, v, wff_model_dof_count(m), kLayout, id);
     return &(*v)[0];
 }
 
 // An output array sized to the model's DOFs.
 double *dofs_out(const wff_model *m, KN<double> *v)
 {
-    if (v->N() != m->n_dofs)
-        v->resize(m->n_dofs);
+    if (v->N() != wff_model_dof_count(m))
+        v->resize(wff_model_dof_count(m));
     return &(*v)[0];
 }
 
@@ -86,7 +86,7 @@ long ffMass(const long &id, KN<double> *const &M)
 {
     const wff_model *m = wff_ff_model(id, "wovenffMass");
     wff_model_masses(m, dofs_out(m, M));
-    return m->n_dofs;
+    return wff_model_dof_count(m);
 }
 
 double loop_stable_step(long id, const double *u)
@@ -124,21 +124,21 @@ long ffDofKinds(const long &id, KN<double> *const &K)
 {
     const wff_model *m = wff_ff_model(id, "wovenffDofKinds");
     wff_model_dof_kinds(m, dofs_out(m, K), nullptr);
-    return m->n_dofs;
+    return wff_model_dof_count(m);
 }
 
 long ffDofKindsV(const long &id, KN<double> *const &K, KN<double> *const &Vp)
 {
     const wff_model *m = wff_ff_model(id, "wovenffDofKinds");
     wff_model_dof_kinds(m, dofs_out(m, K), dofs_out(m, Vp));
-    return m->n_dofs;
+    return wff_model_dof_count(m);
 }
 
 long ffContactSearch(const long &id, KN<double> *const &U)
 {
     const char *fn = "wovenffContactSearch";
     wff_model *m = wff_ff_model(id, fn);
-    if (!m->projectile.active)
+    if (!wff_model_has_projectile(m))
         wff_ff_model_fail(fn, "no projectile: set one with wovenffProjectile first", id);
     return wff_model_contact_search(m, dofs(fn, "U", m, U, id));
 }

@@ -49,8 +49,7 @@ wff_model *wff_ff_model(long id, const char *fn)
 void wff_ff_model_free(long id, const char *fn)
 {
     wff_model *m = wff_ff_model(id, fn);
-    wff_model_free(m);
-    free(m);
+    wff_model_delete(m);
     table()[id].model = nullptr;
 }
 

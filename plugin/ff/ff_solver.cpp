@@ -86,7 +86,7 @@ long ffModel(string *const &meshFile, string *const &materialFile, string *const
         return wff_ff_model_from_freefem_msh(meshFile->c_str(), materialFile, settings);
     if (wff_mesh_options_parse(settings->c_str(), &opt, &err))
         fail("wovenffModel", err);
-    wff_model *m = (wff_model *)calloc(1, sizeof(wff_model));
+    wff_model *m = wff_model_new();
     if (!m)
         fail("wovenffModel", "out of memory");
     if (wff_model_create(m, meshFile->c_str(), &opt, materialFile->c_str(), &err)) {
@@ -105,7 +105,7 @@ long ffFree(const long &id)
 pmesh ffMesh(Stack stack, const long &id)
 {
     const wff_model *m = model_of(id, "wovenffMesh");
-    const wff_mesh &g = m->mesh;
+    const wff_mesh &g = *wff_model_mesh(m);
     int nt = g.n_tris + 2 * g.n_quads;
     std::vector<int> tri(3 * (size_t)nt), region((size_t)nt);
     wff_mesh_triangulate(&g, tri.data(), region.data());
@@ -229,7 +229,7 @@ long ffAdvance(const long &id, const double &t_end)
     wff_error err;
     if (wff_model_advance(m, t_end, 2000000000L, &err))
         fail("wovenffAdvance", err, id);
-    return m->step;
+    return wff_model_step_count(m);
 }
 
 long ffState(const long &id, KN<double> *const &out)
@@ -263,11 +263,11 @@ string *ffStateNames(Stack stack, const long &id)
 long ffField(const long &id, string *const &name, KN<double> *const &out)
 {
     const wff_model *m = model_of(id, "wovenffField");
-    out->resize(m->n_nodes);
+    out->resize(wff_model_node_count(m));
     wff_error err;
     if (wff_model_nodal_field(m, name->c_str(), &(*out)[0], &err))
         fail("wovenffField", err, id);
-    return m->n_nodes;
+    return wff_model_node_count(m);
 }
 
 long ffNearestNode(const long &id, const double &x, const double &y)
@@ -315,7 +315,7 @@ long ffLoadState(const long &id, string *const &path)
     wff_error err;
     if (wff_model_load_state(m, path->c_str(), &err))
         fail("wovenffLoadState", err, id);
-    return m->step;
+    return wff_model_step_count(m);
 }
 
 long ffEnergySplit(const long &id, KN<double> *const &out)
@@ -332,7 +332,7 @@ long ffEnergySplit(const long &id, KN<double> *const &out)
 string *ffMechNames(Stack stack, const long &id)
 {
     const wff_model *m = model_of(id, "wovenffMechNames");
-    const wff_cell_type *cell = m->mat.cell;
+    const wff_cell_type *cell = wff_model_material(m)->cell;
     std::string names;
     for (int k = 0; k < cell->n_mech && k < WFF_MECH_MAX; k++)
         names += std::string(k ? " " : "") + cell->mech_names[k];

@@ -32,10 +32,10 @@ long ffGetVector(const long &id, string *const &which, KN<double> *const &out)
     wff_error err;
     if (*which != "u" && *which != "v")
         wff_ff_model_fail(fn, "unknown state vector '" + *which + "' (known: u, v)", id);
-    out->resize(m->n_dofs);
+    out->resize(wff_model_dof_count(m));
     if (wff_model_get_vector(m, which->c_str(), &(*out)[0], &err))
         wff_ff_model_fail(fn, err.message, id);
-    return m->n_dofs;
+    return wff_model_dof_count(m);
 }
 
 long ffSetVector(const long &id, string *const &which, KN<double> *const &in)
@@ -44,22 +44,22 @@ long ffSetVector(const long &id, string *const &which, KN<double> *const &in)
     wff_model *m = wff_ff_model(id, fn);
     if (*which != "u" && *which != "v")
         wff_ff_model_fail(fn, "unknown state vector '" + *which + "' (known: u, v)", id);
-    if (!in || in->N() != m->n_dofs)
-        wff_ff_model_fail(fn, *which + " must have " + std::to_string(m->n_dofs) +
+    if (!in || in->N() != wff_model_dof_count(m))
+        wff_ff_model_fail(fn, *which + " must have " + std::to_string(wff_model_dof_count(m)) +
                                   " entries (5 per node: ux uy uz dA1 dA2, node-major, as "
                                   "fespace [P1,P1,P1,P1,P1]), got " +
                                   std::to_string(in ? (long)in->N() : 0L), id);
     wff_error err;
     if (wff_model_set_vector(m, which->c_str(), &(*in)[0], &err))
         wff_ff_model_fail(fn, err.message, id);
-    return m->n_dofs;
+    return wff_model_dof_count(m);
 }
 
 long ffElementField(const long &id, string *const &name, KN<double> *const &out)
 {
     const char *fn = "wovenffElementField";
     const wff_model *m = wff_ff_model(id, fn);
-    long n = m->el.n_tris + 2L * m->el.n_quads;
+    long n = wff_model_triangle_count(m) + 2L * wff_model_quad_count(m);
     out->resize(n);
     wff_error err;
     if (wff_model_element_field(m, name->c_str(), &(*out)[0], &err))

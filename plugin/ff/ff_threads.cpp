@@ -23,7 +23,7 @@ long ffDefaultThreads() { return wff_default_threads(); }
 
 long ffThreads(const long &id)
 {
-    return wff_ff_model(id, "wovenffThreads")->el.n_threads;
+    return wff_model_thread_count(wff_ff_model(id, "wovenffThreads"));
 }
 
 double ffWallClock()

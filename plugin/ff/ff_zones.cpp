@@ -92,7 +92,7 @@ long ffZoneElements(const long &id, KN<double> *const &selected, string *const &
 {
     const char *fn = "wovenffZoneElements";
     wff_model *m = wff_ff_model(id, fn);
-    long n_el = m->el.n_tris + m->el.n_quads;
+    long n_el = wff_model_triangle_count(m) + wff_model_quad_count(m);
     if (selected->N() != n_el)
         wff_ff_model_fail(fn, "the selection has " + std::to_string(selected->N()) +
                           " values: one per element of the model, " + std::to_string(n_el), id);
