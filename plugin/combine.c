@@ -77,10 +77,10 @@ static const char *const zones_dynamic = "zones keep the amplitudes dynamic";
 
 static const combine_rule rules[] = {
     {"remesh", has_erosion, NULL, transfer_no_erosion, "remesh.c wff_model_remesh"},
+    {"remesh", has_pack, NULL, "a mesh transfer does not carry a pack; use one or the other",
+     "remesh.c wff_model_remesh (a pack's zones)"},
     {"remesh", has_zones, NULL, transfer_no_zones, "remesh.c wff_model_remesh"},
     {"remesh", NULL, "zones", transfer_no_zones, "remesh.c wff_model_remesh"},
-    {"remesh", has_pack, NULL, "a mesh transfer does not carry a pack; use one or the other",
-     NULL},
     {"remesh", NULL, "checkpoint", checkpoint_no_transfer, NULL},
     {"remesh", NULL, "restart", checkpoint_no_transfer, NULL},
     {"checkpoint", has_pack, NULL, checkpoint_no_pack, "checkpoint.c wff_model_save"},
@@ -88,6 +88,9 @@ static const combine_rule rules[] = {
     {"static_amplitudes", has_erosion, NULL,
      "the balanced amplitudes of a point whose yarns have failed are not solved for; keep the "
      "amplitudes dynamic", NULL},
+    {"static_amplitudes", has_pack, NULL,
+     "a pack keeps a zone per ply, and zones keep the amplitudes dynamic",
+     "model.c static_amplitudes (a pack's zones)"},
     {"static_amplitudes", has_zones, NULL, zones_dynamic, "model.c static_amplitudes, zones.c"},
     {"static_amplitudes", NULL, "zones", zones_dynamic, "model.c static_amplitudes, zones.c"},
     {"static_amplitudes", has_no_amplitudes, NULL, "there are no amplitudes to balance",
