@@ -57,10 +57,13 @@ for cell in linear basket; do
     [ -d "$tmp/${cell}_refused" ] && [ "$(ls -A "$tmp/${cell}_refused")" != "" ] \
         && { echo "${cell}_refused: the refused run left files in its folder"; fail=1; }
 done
-refuse with_adapt "-failure on with -adapt 5: a mesh transfer does not carry the eroded elements" \
-    -- $short -failure on -adapt 5
-refuse with_zonal "-failure on with -zonal 0.05" -- $short -failure on -zonal 0.05
-refuse with_static "-failure on with -amplitudes static" -- $short -failure on -amplitudes static
+# (what -failure on cannot go with, the model answers: plugin/combine.c, wovenffRefuses)
+refuse with_adapt "-adapt 5: the model has yarn failure with erosion on" \
+    "a mesh transfer does not carry the eroded elements" "(the model: -failure on)" -- $short -failure on -adapt 5
+refuse with_zonal "-zonal 0.05: the model has yarn failure with erosion on" "would never break" \
+    "(the model: -failure on)" -- $short -failure on -zonal 0.05
+refuse with_static "-amplitudes static: the model has yarn failure with erosion on" \
+    "(the model: -failure on)" -- $short -failure on -amplitudes static
 refuse band_negative "key 'failure_band_length' = -1e-3: must be >= 0 m" -- $short -failure on \
     -set failure_band_length=-1e-3
 refuse erosion_alone "-erosion either is a setting of -failure on" -- $short -erosion either
