@@ -9,8 +9,8 @@
  * refusal of the same thing, which stays as the guard of the state reached
  * (NULL: the rule is this table's alone, it was only in the scene scripts).
  * The table is in the order the rules are tried; the first that applies is
- * the answer. A later "parts" ops table per step phase can carry these rows
- * unchanged: each row is one feature, one cause, one reason. */
+ * the answer. Where a part of the step answers for itself (part.h: a
+ * checkpoint refused by the pack), the row asks the parts, as the core does. */
 #include "wovenff/combine.h"
 
 #include <stdio.h>
@@ -18,6 +18,7 @@
 
 #include "erosion.h"
 #include "pack.h"
+#include "part.h"
 #include "solver_internal.h"
 
 /* What the model has that a rule may refuse; 1 with a description in what. */
@@ -38,6 +39,13 @@ static int has_pack(const wff_model *m, char *what, size_t size)
         return 0;
     snprintf(what, size, "the model is a pack of %d plies", wff_pack_plies(m));
     return 1;
+}
+
+/* A part of the step that a checkpoint cannot hold (part.h: the pack's ply
+ * contact): the parts' own answer, the one checkpoint.c refuses with. */
+static int parts_refuse_checkpoint(const wff_model *m, char *what, size_t size)
+{
+    return wff_parts_refuse_checkpoint(m, what, size);
 }
 
 static int has_zones(const wff_model *m, char *what, size_t size)
@@ -68,8 +76,7 @@ static const char *const transfer_no_erosion =
     "a mesh transfer does not carry the eroded elements (nor yarn damage); use one or the other";
 static const char *const transfer_no_zones =
     "a mesh transfer does not carry the zones; use one or the other";
-static const char *const checkpoint_no_pack =
-    "the checkpoint format does not hold a pack's ply contact state; run it whole";
+static const char *const checkpoint_no_part = "run it whole";
 static const char *const checkpoint_no_transfer =
     "a checkpoint holds one mesh's state, and a restart rebuilds the model from the mesh "
     "file; use one or the other";
@@ -83,8 +90,10 @@ static const combine_rule rules[] = {
     {"remesh", NULL, "zones", transfer_no_zones, "remesh.c wff_model_remesh"},
     {"remesh", NULL, "checkpoint", checkpoint_no_transfer, NULL},
     {"remesh", NULL, "restart", checkpoint_no_transfer, NULL},
-    {"checkpoint", has_pack, NULL, checkpoint_no_pack, "checkpoint.c wff_model_save"},
-    {"restart", has_pack, NULL, checkpoint_no_pack, "checkpoint.c wff_model_load_state"},
+    {"checkpoint", parts_refuse_checkpoint, NULL, checkpoint_no_part,
+     "checkpoint.c wff_model_save (the same parts' answer)"},
+    {"restart", parts_refuse_checkpoint, NULL, checkpoint_no_part,
+     "checkpoint.c wff_model_load_state (the same parts' answer)"},
     {"static_amplitudes", has_erosion, NULL,
      "the balanced amplitudes of a point whose yarns have failed are not solved for; keep the "
      "amplitudes dynamic", NULL},

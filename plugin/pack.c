@@ -361,8 +361,8 @@ static int pack_refuses_checkpoint(const wff_model *m, char *why, size_t size)
 {
     if (!m->pack || m->pack->n < 2)
         return 0;
-    snprintf(why, size, "a pack of %d plies (its ply contact state is not in the format)",
-             m->pack->n);
+    snprintf(why, size, "the model is a pack of %d plies: its ply contact state is not in the "
+             "checkpoint format", m->pack->n);
     return 1;
 }
 
