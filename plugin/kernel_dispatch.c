@@ -120,7 +120,7 @@ const wff_cell_type *wff_kernel_cell(const wff_kernel *k, const wff_cell_type *c
     if (!k->cells_start || !k->cells_stop || !cell || !wff_kernel_of_cell(cell))
         return NULL;
     for (const wff_cell_type *const *c = k->cells_start; c < k->cells_stop; c++)
-        if (strcmp((*c)->name, cell->name) == 0)
+        if (strcmp(wff_cell_name((*c)), wff_cell_name(cell)) == 0)
             return *c;
     return NULL;
 }
@@ -160,7 +160,7 @@ int wff_kernel_apply(wff_material *mat, const char *request, wff_error *err)
         if (!asked || !*asked || strcmp(asked, "auto") == 0)
             return 0; /* a cell built into no variant (made at run time) runs as it is */
         return wff_fail(err, "kernel '%s': cell '%s' has no build for it", k->name,
-                        mat->cell ? mat->cell->name : "(none)");
+                        mat->cell ? wff_cell_name(mat->cell) : "(none)");
     }
     mat->cell = cell;
     return 0;

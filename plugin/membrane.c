@@ -244,9 +244,9 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
         note_bad_sums(sums, e, 0, WFF_POINT_NONFINITE);
         return;
     }
-    if (mat->cell->evaluate_shared && !em->reference_path) {
+    if (wff_cell_has_shared(mat) && !em->reference_path) {
         int bad = 0;
-        int status = mat->cell->evaluate_shared(mat->params, Fe, 3, dA, third,
+        int status = wff_cell_evaluate_shared(mat, Fe, 3, dA, third,
                                                 state + ns * 3 * e, dt, P, R, &W, &Dis,
                                                 &Fail, &bad);
         double sum = W + R[0] + R[1] + R[2] + R[3] + R[4] + R[5];
@@ -262,7 +262,7 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
         for (int q = 0; q < WFF_TRI_POINTS; q++) {
             wff_point_result r;
             double *ps = state + ns * (3 * e + q);
-            int status = point_ok(mat->cell->evaluate(mat->params, Fe, dA + 2 * q, ps, dt, &r),
+            int status = point_ok(wff_material_evaluate(mat, Fe, dA + 2 * q, ps, dt, &r),
                                   Fe, dA + 2 * q, &r);
             if (status != WFF_POINT_OK) {
                 note_bad_sums(sums, e, q, status);
@@ -279,7 +279,7 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
             Fail += r.failure_dissipated / 3;
         }
     }
-    tri_scatter(el, em, e, P, R, mat->cell->n_amplitudes, f);
+    tri_scatter(el, em, e, P, R, wff_cell_amplitudes(mat->cell), f);
     sums->energy += el->tri_area[e] * W;
     sums->dissipated += el->tri_area[e] * Dis;
     sums->failure += el->tri_area[e] * Fail;
@@ -330,7 +330,7 @@ tri_block_forces_n(const wff_elements *el, const wff_element_material *em, const
         check += F0 + F1 + F2 + F3 + F4 + F5;
         finite[j] = check - check == 0; /* false for NaN and ±inf (isfinite does not vectorise) */
     }
-    if (mat->cell->evaluate_tri_block(mat->params, dt, &blk) != 0)
+    if (wff_cell_tri_block(mat, dt, &blk) != 0)
         return -1;
     /* per lane, vectorised: nodal force coefficients −A P_mesh (P_mesh = P F_preᵀ/J_pre),
      * amplitude force weights, and whether the lane is sound */
@@ -354,7 +354,7 @@ tri_block_forces_n(const wff_elements *el, const wff_element_material *em, const
             sum += blk.residual[q][0][j] + blk.residual[q][1][j];
         ok[j] = finite[j] & !blk.degenerate[j] & (sum - sum == 0);
     }
-    const int amplitudes = mat->cell->n_amplitudes;
+    const int amplitudes = wff_cell_amplitudes(mat->cell);
     const unsigned char *eroded = el->eroded;
     for (int j = 0; j < n; j++) {
         int e = e0 + j;
@@ -529,7 +529,7 @@ tri_block_static_forces_n(const wff_elements *el, const wff_element_material *em
             blk.dA[q][1][j] = tb.dA[1][j];
         }
     }
-    if (mat->cell->evaluate_tri_block(mat->params, dt, &blk) != 0)
+    if (wff_cell_tri_block(mat, dt, &blk) != 0)
         return -1;
     const double zero[6] = {0, 0, 0, 0, 0, 0};
     const unsigned char *eroded = el->eroded;
@@ -609,7 +609,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
                          wff_force_totals *totals)
 {
     const wff_material *mat = em->mat;
-    const int amplitudes = mat->cell->n_amplitudes;
+    const int amplitudes = wff_cell_amplitudes(mat->cell);
     const int ns = mat->n_state;
     totals->internal_energy = totals->dissipated = totals->failure_dissipated = 0;
     totals->bad_element = -1;
@@ -627,7 +627,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
     wff_force_totals part_bad[WFF_MAX_THREADS];
     for (int t = 0; t < threads; t++)
         part_bad[t].bad_element = -1;
-    const int use_block = mat->cell->evaluate_tri_block && !em->reference_path;
+    const int use_block = wff_cell_has_tri_block(mat) && !em->reference_path;
     const int n_blocks = (el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK;
     int team = 1; /* OpenMP may start fewer threads than asked (thread limit, dynamic):
                      only the buffers of threads that ran are summed */
@@ -709,7 +709,7 @@ void wff_elements_forces(const wff_elements *el, const wff_element_material *em,
             int iterations = 0;
             int status = point_ok(em->static_amplitudes
                                       ? wff_balance_point(mat, Fe, pdA, ps, dt, &r, &iterations)
-                                      : mat->cell->evaluate(mat->params, Fe, dA, ps, dt, &r),
+                                      : wff_material_evaluate(mat, Fe, dA, ps, dt, &r),
                                   Fe, pdA, &r);
             totals->amplitude_iterations += iterations;
             if (status != WFF_POINT_OK) {

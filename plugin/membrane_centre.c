@@ -76,7 +76,7 @@ int wff_element_center_eval_state(const wff_elements *el, const wff_element_mate
     if (em->static_amplitudes)
         static_mean_dA(el, e, dA);
     preload_apply(em, F, Fe);
-    return em->mat->cell->evaluate(em->mat->params, Fe, dA, held, 0, out);
+    return wff_material_evaluate(em->mat, Fe, dA, held, 0, out);
 }
 
 /* An element's stable step from its size and its cell's wave speeds:
@@ -137,7 +137,7 @@ static int tri_block_stable_step(const wff_elements *el, const wff_element_mater
         blk.dA[0][j] = dA0;
         blk.dA[1][j] = dA1;
     }
-    if (mat->cell->wave_speeds_block(mat->params, mat->areal_density, &blk) != 0)
+    if (wff_cell_wave_block(mat, &blk) != 0)
         return -1;
     const unsigned char *eroded = el->eroded;
     for (int j = 0; j < n; j++) {
@@ -163,7 +163,7 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
     int threads = wff_elements_team(el);
     /* triangles in blocks through the cell's vectorised wave speeds where it has them
      * (not for static amplitudes, whose mean ΔA is the points', nor the reference path) */
-    const int use_block = mat->cell->wave_speeds_block && !em->static_amplitudes &&
+    const int use_block = wff_cell_has_wave_block(mat) && !em->static_amplitudes &&
                           !em->reference_path;
     const int n_blocks = use_block ? (el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK : 0;
     int first_scalar = use_block ? el->n_tris : 0;
@@ -190,7 +190,7 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
             if (em->static_amplitudes)
                 static_mean_dA(el, e, dA);
             preload_apply(em, F, Fe);
-            mat->cell->wave_speeds(mat->params, mat->areal_density, Fe, dA, &speed, &omega);
+            wff_cell_wave_speeds(mat, Fe, dA, &speed, &omega);
             double dt = element_stable_dt(el->size[e], speed, omega, amplitude_factor,
                                           em->static_amplitudes);
             if (!(dt >= mine)) { /* also catches NaN */

@@ -14,9 +14,9 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
 {
     const wff_cell_type *cell = em->mat->cell;
     const int ns = em->mat->n_state;
-    for (int k = 0; k < cell->n_mech; k++)
+    for (int k = 0; k < wff_cell_n_mech(cell); k++)
         mech[k] = 0;
-    if (!cell->energy_split)
+    if (!wff_cell_has_energy_split(cell))
         return;
     double point[WFF_MECH_MAX];
     for (int e = 0; e < el->n_tris; e++) {
@@ -31,8 +31,8 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
             double dA[2] = {u[D * node[q] + 3], u[D * node[q] + 4]};
             if (em->static_amplitudes) /* the point's own balanced amplitudes */
                 memcpy(dA, el->point_dA + 6 * e + 2 * q, sizeof dA);
-            cell->energy_split(em->mat->params, Fe, dA, state + ns * (3 * e + q), point);
-            for (int k = 0; k < cell->n_mech; k++)
+            wff_cell_energy_split(em->mat, Fe, dA, state + ns * (3 * e + q), point);
+            for (int k = 0; k < wff_cell_n_mech(cell); k++)
                 mech[k] += w * point[k];
         }
     }
@@ -42,10 +42,10 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
         for (int q = 0; q < WFF_QUAD_POINTS; q++) {
             double N[4], dA[2], F[6], Fe[6];
             quad_point_kinematics(el, em, X, u, e, q, N, dA, F, Fe);
-            cell->energy_split(em->mat->params, Fe, dA,
+            wff_cell_energy_split(em->mat, Fe, dA,
                                state + ns * (3 * el->n_tris + 4 * e + q), point);
             double w = el->quad_weight[4 * e + q] / em->J_pre;
-            for (int k = 0; k < cell->n_mech; k++)
+            for (int k = 0; k < wff_cell_n_mech(cell); k++)
                 mech[k] += w * point[k];
         }
     }

@@ -81,7 +81,7 @@ quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_
     const wff_material *mat = em->mat;
     const double *Fp = em->F_pre;
     const double inv_J = 1 / em->J_pre;
-    const int amplitudes = mat->cell->n_amplitudes;
+    const int amplitudes = wff_cell_amplitudes(mat->cell);
     double *sq = state + ns * WFF_TRI_POINTS * el->n_tris; /* the quads' points' states */
     const int *quad = el->quad;
     double dx[3][3][WFF_BLOCK];  /* a₁, a₂, a₁₂ of x (3 components) */
@@ -160,7 +160,7 @@ quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_
             for (int j = 0; j < WFF_BLOCK; j++)
                 blk.state[i][j] = sq[ns * (4 * (e0 + (j < n ? j : n - 1)) + q) + i];
         }
-        mat->cell->evaluate_point_block(mat->params, dt, &blk); /* accepted: asked before the pass */
+        wff_cell_point_block(mat, dt, &blk); /* accepted: asked before the pass */
         /* per lane: the point's force −P_mesh adj(J)ᵀ ∇_ξ N_b (P_mesh = P F_preᵀ / J_pre)
          * and amplitude force w N_b R_k / J_pre on each node b, where the point is
          * sound (a failed point adds nothing, as on the plain path) */
@@ -258,7 +258,7 @@ static int cell_takes_points(const wff_element_material *em, double dt)
         probe.F[3][j] = em->F_pre[3];
     }
     probe.n = WFF_BLOCK;
-    return em->mat->cell->evaluate_point_block(em->mat->params, dt, &probe) == 0;
+    return wff_cell_point_block(em->mat, dt, &probe) == 0;
 }
 
 int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em,
@@ -266,7 +266,7 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
                           double *f, double *energy, double *dissipated, double *failure,
                           wff_force_totals *totals)
 {
-    if (el->n_quads == 0 || !em->mat->cell->evaluate_point_block || em->reference_path ||
+    if (el->n_quads == 0 || !wff_cell_has_point_block(em->mat) || em->reference_path ||
         em->static_amplitudes || !cell_takes_points(em, dt))
         return -1;
     quad_gauss gauss;

@@ -174,7 +174,7 @@ typedef struct wff_material {
                                             P_kk * yarn_spacing[k] (set by parse) */
     int n_state;                         /* internal state variables per point, a prefix
                                             of the cell's state_names (set by parse;
-                                            <= cell->n_state_max) */
+                                            <= the cell's n_state_max) */
     double params[WFF_CELL_PARAMS_MAX];  /* the cell's own parameter struct */
     char source[256];                    /* where it came from, for messages */
 } wff_material;
@@ -326,13 +326,10 @@ const wff_cell_type *wff_cell_at(int index);            /* 0 <= index < count */
         __attribute__((used, section("wff_cells"), aligned(sizeof(void *)))) \
         = &(table)
 
-/* Convenience: evaluate a material point with a loaded material. */
-static inline int wff_material_evaluate(const wff_material *mat, const double F[6],
-                                        const double dA[2], const double *state, double dt,
-                                        wff_point_result *out)
-{
-    return mat->cell->evaluate(mat->params, F, dA, state, dt, out);
-}
+/* Evaluate a material point with a loaded material: its cell's evaluate
+ * (plugin/cell_ops.c; the other ops' wrappers are in wovenff/cell_ops.h). */
+int wff_material_evaluate(const wff_material *mat, const double F[6], const double dA[2],
+                          const double *state, double dt, wff_point_result *out);
 
 /* The state every point starts from (all zeros), for evaluations at rest. */
 static const double wff_rest_state[WFF_STATE_MAX] = {0};
@@ -347,4 +344,7 @@ int wff_material_state_index(const wff_material *mat, const char *name);
 #ifdef __cplusplus
 }
 #endif
+
+/* The wrappers through which everything else uses a cell (plugin/cell_ops.c). */
+#include "wovenff/cell_ops.h"
 #endif
