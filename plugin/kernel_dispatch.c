@@ -3,12 +3,14 @@
  * cell, and the membrane entry points wff_elements_forces and
  * wff_elements_stable_step, which run the variant of their material's cell.
  *
- * The Makefile compiles every kernel source once per variant and
- * tools/kernel_variant.sh renames the copies: the entry points become
- * wff_elements_forces__baseline, __avx2, __avx512 (declared below), each
- * variant's cells register in their own linker section wff_cells__avx2, ...
- * (the baseline's in "wff_cells", the registry of registry.c). Constant
- * tables only; knows no cell and no model, only the entry points' types. */
+ * The Makefile compiles every kernel source once per variant with
+ * -DWFF_KERNEL_VARIANT=VARIANT, and the sources name their copies
+ * (include/wovenff/kernel_name.h): the entry points are defined as
+ * WFF_KERNEL_NAME(wff_elements_forces), i.e. wff_elements_forces__baseline,
+ * __avx2, __avx512 (declared below), each variant's cells register in their
+ * own linker section wff_cells__avx2, ... (the baseline's in "wff_cells", the
+ * registry of registry.c). Constant tables only; knows no cell and no model,
+ * only the entry points' types. */
 #include "wovenff/kernel.h"
 #include "wovenff/membrane.h"
 

@@ -6,6 +6,7 @@
 #include "wovenff/membrane.h"
 #include "wovenff/balance.h"
 #include "membrane_geometry.h"
+#include "membrane_quad.h" /* this build's entry points */
 
 #include <math.h>
 #include <stdlib.h>
@@ -16,8 +17,11 @@
 
 #define D WFF_DOFS_PER_NODE
 
-void wff_element_center_state(const wff_elements *el, const double *X, const double *u, int e,
-                              double F[6], double dA[2])
+/* wff_element_center_state, this build's own (the stable step's; out of line,
+ * as the public function it was). */
+static __attribute__((noinline)) void center_state(const wff_elements *el, const double *X,
+                                                   const double *u, int e, double F[6],
+                                                   double dA[2])
 {
     if (e < el->n_tris) {
         const int *node = el->tri + 3 * e;
@@ -54,6 +58,15 @@ static void static_mean_dA(const wff_elements *el, int e, double dA[2])
     }
 }
 
+/* The functions the rest of the library calls (for output): defined once, by
+ * the baseline build (kernel_name.h). */
+#if WFF_KERNEL_PRIMARY
+void wff_element_center_state(const wff_elements *el, const double *X, const double *u, int e,
+                              double F[6], double dA[2])
+{
+    center_state(el, X, u, e, F, dA);
+}
+
 int wff_element_center_eval(const wff_elements *el, const wff_element_material *em,
                             const double *X, const double *u, const double *state, int e,
                             wff_point_result *out)
@@ -72,12 +85,13 @@ int wff_element_center_eval_state(const wff_elements *el, const wff_element_mate
                                   wff_point_result *out)
 {
     double F[6], Fe[6], dA[2];
-    wff_element_center_state(el, X, u, e, F, dA);
+    center_state(el, X, u, e, F, dA);
     if (em->static_amplitudes)
         static_mean_dA(el, e, dA);
     preload_apply(em, F, Fe);
     return wff_material_evaluate(em->mat, Fe, dA, held, 0, out);
 }
+#endif
 
 /* An element's stable step from its size and its cell's wave speeds:
  * membrane waves alone: dt_m = h/c; amplitude oscillator alone: dt_A = 2/ω.
@@ -153,8 +167,9 @@ static int tri_block_stable_step(const wff_elements *el, const wff_element_mater
     return 0;
 }
 
-double wff_elements_stable_step(const wff_elements *el, const wff_element_material *em,
-                                const double *X, const double *u, int *worst)
+double WFF_KERNEL_NAME(wff_elements_stable_step)(const wff_elements *el,
+                                                 const wff_element_material *em,
+                                                 const double *X, const double *u, int *worst)
 {
     const wff_material *mat = em->mat;
     double amplitude_factor = em->amplitude_mass_factor > 0 ? em->amplitude_mass_factor : 1;
@@ -186,7 +201,7 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
             if (wff_element_eroded(el, e)) /* sets no step */
                 continue;
             double F[6], Fe[6], dA[2], speed, omega;
-            wff_element_center_state(el, X, u, e, F, dA);
+            center_state(el, X, u, e, F, dA);
             if (em->static_amplitudes)
                 static_mean_dA(el, e, dA);
             preload_apply(em, F, Fe);

@@ -261,10 +261,11 @@ static int cell_takes_points(const wff_element_material *em, double dt)
     return wff_cell_point_block(em->mat, dt, &probe) == 0;
 }
 
-int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em,
-                          const double *X, const double *u, double *state, double dt,
-                          double *f, double *energy, double *dissipated, double *failure,
-                          wff_force_totals *totals)
+int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
+                                           const wff_element_material *em, const double *X,
+                                           const double *u, double *state, double dt,
+                                           double *f, double *energy, double *dissipated,
+                                           double *failure, wff_force_totals *totals)
 {
     if (el->n_quads == 0 || !wff_cell_has_point_block(em->mat) || em->reference_path ||
         em->static_amplitudes || !cell_takes_points(em, dt))

@@ -80,6 +80,7 @@
 #define WOVENFF_CELL_H
 
 #include "wovenff/error.h"
+#include "wovenff/kernel_name.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -316,14 +317,16 @@ struct wff_cell_type {
 };
 
 /* Registry. Cells register with WFF_REGISTER_CELL in their own file; the
- * linker gathers the entries (constant data, no start-up code). */
+ * linker gathers the entries (constant data, no start-up code) into the
+ * section WFF_CELLS_SECTION: "wff_cells", the registry's, or a kernel
+ * variant's own ("wff_cells__avx2", ...; kernel_name.h). */
 const wff_cell_type *wff_cell_find(const char *name);   /* NULL if unknown */
 int wff_cell_count(void);
 const wff_cell_type *wff_cell_at(int index);            /* 0 <= index < count */
 
 #define WFF_REGISTER_CELL(table)                                              \
     static const wff_cell_type *const wff_cell_entry_##table                  \
-        __attribute__((used, section("wff_cells"), aligned(sizeof(void *)))) \
+        __attribute__((used, section(WFF_CELLS_SECTION), aligned(sizeof(void *)))) \
         = &(table)
 
 /* Evaluate a material point with a loaded material: its cell's evaluate
