@@ -47,7 +47,8 @@ CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
 # build/kernel/VARIANT.o; plugin/kernel_dispatch.c picks one per model at run
 # time (WOVENFF_KERNEL).
 KERNEL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard plugin/cells/*.c) plugin/membrane.c \
-                                         plugin/membrane_quad.c plugin/membrane_centre.c)
+                                         plugin/membrane_tri.c plugin/membrane_quad.c \
+                                         plugin/membrane_centre.c)
 KERNEL_VARIANTS := baseline avx2 avx512
 KERNEL_ARCH_baseline = $(KERNEL_ARCH)
 KERNEL_ARCH_avx2 := -march=x86-64-v3

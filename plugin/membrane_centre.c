@@ -122,32 +122,20 @@ static int tri_block_stable_step(const wff_elements *el, const wff_element_mater
                                  double amplitude_factor, double *mine, int *mine_e)
 {
     const wff_material *mat = em->mat;
-    const double *Fp = em->F_pre;
     wff_wave_block blk;
 #pragma omp simd
     for (int j = 0; j < WFF_BLOCK; j++) {
         int e = e0 + (j < n ? j : n - 1);
         const int *node = el->tri + 3 * e;
-        const double *g = el->tri_grad + 6 * e;
-        double F0 = 0, F1 = 0, F2 = 0, F3 = 0, F4 = 0, F5 = 0, dA0 = 0, dA1 = 0;
+        double F[6], Fe[6], dA0 = 0, dA1 = 0;
+        tri_deformation(el, em, X, u, e, F, Fe);
         for (int a = 0; a < 3; a++) {
             const double *ua = u + D * node[a];
-            double x = X[2 * node[a]] + ua[0], y = X[2 * node[a] + 1] + ua[1], z = ua[2];
-            F0 += x * g[2 * a];
-            F1 += x * g[2 * a + 1];
-            F2 += y * g[2 * a];
-            F3 += y * g[2 * a + 1];
-            F4 += z * g[2 * a];
-            F5 += z * g[2 * a + 1];
             dA0 += ua[3] / 3;
             dA1 += ua[4] / 3;
         }
-        blk.F[0][j] = F0 * Fp[0] + F1 * Fp[2];
-        blk.F[1][j] = F0 * Fp[1] + F1 * Fp[3];
-        blk.F[2][j] = F2 * Fp[0] + F3 * Fp[2];
-        blk.F[3][j] = F2 * Fp[1] + F3 * Fp[3];
-        blk.F[4][j] = F4 * Fp[0] + F5 * Fp[2];
-        blk.F[5][j] = F4 * Fp[1] + F5 * Fp[3];
+        for (int i = 0; i < 6; i++)
+            blk.F[i][j] = Fe[i];
         blk.dA[0][j] = dA0;
         blk.dA[1][j] = dA1;
     }

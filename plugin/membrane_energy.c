@@ -24,8 +24,7 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
         if (wff_element_eroded(el, e)) /* no stored energy */
             continue;
         double F[6], Fe[6];
-        deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
-        preload_apply(em, F, Fe);
+        tri_deformation(el, em, X, u, e, F, Fe);
         double w = el->tri_area[e] / 3 / em->J_pre;
         for (int q = 0; q < WFF_TRI_POINTS; q++) {
             double dA[2] = {u[D * node[q] + 3], u[D * node[q] + 4]};

@@ -24,6 +24,21 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
                                            double *f, double *energy, double *dissipated,
                                            double *failure, wff_force_totals *totals);
 
+/* The two halves of the force pass wff_elements_forces (membrane.c), each
+ * adding its elements' forces into f, Σ A W, Σ A × dissipation and Σ A ×
+ * failure dissipation (not yet divided by J_pre) into *energy, *dissipated,
+ * *failure, its Newton iterations and first bad point into totals: the
+ * triangles (membrane_tri.c; the first bad one wins over the quads'), then
+ * the quads (membrane_quad.c: wff_quad_block_forces, else point by point). */
+void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_material *em,
+                                     const double *X, const double *u, double *state,
+                                     double dt, double *f, double *energy, double *dissipated,
+                                     double *failure, wff_force_totals *totals);
+void WFF_KERNEL_NAME(wff_quad_forces)(const wff_elements *el, const wff_element_material *em,
+                                      const double *X, const double *u, double *state,
+                                      double dt, double *f, double *energy, double *dissipated,
+                                      double *failure, wff_force_totals *totals);
+
 /* The entry points as this build of the kernels defines them (kernel_name.h:
  * wff_elements_forces__avx2, ...); kernel_dispatch.c's wff_elements_forces
  * and wff_elements_stable_step call the variant of the material's cell. */
