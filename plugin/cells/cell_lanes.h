@@ -36,9 +36,9 @@
  *       POINT, TANGENT, WAVE (a cell without amplitudes has no tangent).
  *   WFF_CELL_TRI_BLOCK(prefix, params_t, accepts, ctx_t, setup, lane, finish)
  *   (prefix##_evaluate_tri_block) and its siblings below, with lanes of the
- *   cell's own: a faster lane that
- *   shares more than the op's signature shows (king_plain: one frame per
- *   triangle, its exponents as constants), with its own accepts test.
+ *   cell's own: a faster lane that shares more than the op's signature shows
+ *   (king_plain: one frame per triangle, its exponents as constants), with
+ *   its own accepts test.
  * A cell may mix them (linear_yarns: its own triangle lane, the generated
  * point and wave lanes). Nothing here allocates or keeps state. */
 #ifndef WOVENFF_CELL_LANES_H
@@ -49,9 +49,9 @@
 /* ---- the adapters' one shape ------------------------------------------ */
 
 /* int prefix##_evaluate_tri_block(const void *params, double dt, wff_tri_block *blk). */
-#define WFF_CELL_TRI_BLOCK(prefix, params_t, accepts, ctx_t, setup, lane, finish)            \
-    static int prefix##_evaluate_tri_block(const void *params, double dt,                 \
-                                           wff_tri_block *blk)                           \
+#define WFF_CELL_TRI_BLOCK(prefix, params_t, accepts, ctx_t, setup, lane, finish)          \
+    static int prefix##_evaluate_tri_block(const void *params, double dt,                  \
+                                           wff_tri_block *blk)                             \
     {                                                                                      \
         const params_t local = *(const params_t *)params, *k = &local;                     \
         if (!accepts(k))                                                                   \
@@ -66,9 +66,9 @@
     }
 
 /* int prefix##_evaluate_point_block(const void *params, double dt, wff_point_block *blk). */
-#define WFF_CELL_POINT_BLOCK(prefix, params_t, accepts, ctx_t, setup, lane, finish)          \
-    static int prefix##_evaluate_point_block(const void *params, double dt,               \
-                                             wff_point_block *blk)                       \
+#define WFF_CELL_POINT_BLOCK(prefix, params_t, accepts, ctx_t, setup, lane, finish)        \
+    static int prefix##_evaluate_point_block(const void *params, double dt,                \
+                                             wff_point_block *blk)                         \
     {                                                                                      \
         const params_t local = *(const params_t *)params, *k = &local;                     \
         if (!accepts(k))                                                                   \
@@ -84,15 +84,15 @@
 
 /* int prefix##_amplitude_tangent_block(const void *params, wff_tangent_block *blk)
  * (setup's arg is 0). */
-#define WFF_CELL_TANGENT_BLOCK(prefix, params_t, accepts, ctx_t, setup, lane, finish)        \
-    static int prefix##_amplitude_tangent_block(const void *params,                       \
-                                                wff_tangent_block *blk)                  \
+#define WFF_CELL_TANGENT_BLOCK(prefix, params_t, accepts, ctx_t, setup, lane, finish)      \
+    static int prefix##_amplitude_tangent_block(const void *params,                        \
+                                                wff_tangent_block *blk)                    \
     {                                                                                      \
         const params_t local = *(const params_t *)params, *k = &local;                     \
         if (!accepts(k))                                                                   \
             return -1;                                                                     \
         ctx_t ctx;                                                                         \
-        setup(k, 0.0, &ctx, blk);                                                     \
+        setup(k, 0.0, &ctx, blk);                                                          \
         double flag[WFF_BLOCK];                                                            \
         _Pragma("omp simd") for (int b = 0; b < WFF_BLOCK; b++)                            \
             lane(k, &ctx, blk, flag, b);                                                   \
@@ -102,15 +102,15 @@
 
 /* int prefix##_wave_speeds_block(const void *params, double areal_density,
  * wff_wave_block *blk) (setup's arg is the areal density, kg/m²). */
-#define WFF_CELL_WAVE_BLOCK(prefix, params_t, accepts, ctx_t, setup, lane, finish)           \
-    static int prefix##_wave_speeds_block(const void *params, double areal_density,       \
-                                          wff_wave_block *blk)                           \
+#define WFF_CELL_WAVE_BLOCK(prefix, params_t, accepts, ctx_t, setup, lane, finish)         \
+    static int prefix##_wave_speeds_block(const void *params, double areal_density,        \
+                                          wff_wave_block *blk)                             \
     {                                                                                      \
         const params_t local = *(const params_t *)params, *k = &local;                     \
         if (!accepts(k))                                                                   \
             return -1;                                                                     \
         ctx_t ctx;                                                                         \
-        setup(k, areal_density, &ctx, blk);                                           \
+        setup(k, areal_density, &ctx, blk);                                                \
         double flag[WFF_BLOCK];                                                            \
         _Pragma("omp simd") for (int b = 0; b < WFF_BLOCK; b++)                            \
             lane(k, &ctx, blk, flag, b);                                                   \
@@ -158,7 +158,7 @@ WFF_INLINE void wff_lanes_nothing_after(const void *k, const void *ctx,
  * with its amplitudes and states over dt; the mean stress, energy and
  * dissipations (weights 1/3), each point's residual and state; degenerate
  * where any point is. */
-#define WFF_CELL_TRI_LANE_FROM_POINT(lane, params_t, evaluate)                            \
+#define WFF_CELL_TRI_LANE_FROM_POINT(lane, params_t, evaluate)                             \
     WFF_INLINE void lane(const params_t *k, const wff_lane_arg *ctx, wff_tri_block *blk,   \
                          double flag[WFF_BLOCK], int b)                                    \
     {                                                                                      \
@@ -193,7 +193,7 @@ WFF_INLINE void wff_lanes_nothing_after(const void *k, const void *ctx,
     }
 
 /* A point lane from evaluate: one point with its own F, amplitudes and states. */
-#define WFF_CELL_POINT_LANE_FROM_POINT(lane, params_t, evaluate)                          \
+#define WFF_CELL_POINT_LANE_FROM_POINT(lane, params_t, evaluate)                           \
     WFF_INLINE void lane(const params_t *k, const wff_lane_arg *ctx, wff_point_block *blk, \
                          double flag[WFF_BLOCK], int b)                                    \
     {                                                                                      \
@@ -219,7 +219,7 @@ WFF_INLINE void wff_lanes_nothing_after(const void *k, const void *ctx,
 
 /* A tangent lane from amplitude_tangent: R and ∂R_k/∂ΔA_m at one point, its
  * state held. */
-#define WFF_CELL_TANGENT_LANE_FROM_POINT(lane, params_t, amplitude_tangent)               \
+#define WFF_CELL_TANGENT_LANE_FROM_POINT(lane, params_t, amplitude_tangent)                \
     WFF_INLINE void lane(const params_t *k, const wff_lane_arg *ctx,                       \
                          wff_tangent_block *blk, double flag[WFF_BLOCK], int b)            \
     {                                                                                      \
@@ -239,7 +239,7 @@ WFF_INLINE void wff_lanes_nothing_after(const void *k, const void *ctx,
     }
 
 /* A wave lane from wave_speeds. */
-#define WFF_CELL_WAVE_LANE_FROM_POINT(lane, params_t, wave_speeds)                        \
+#define WFF_CELL_WAVE_LANE_FROM_POINT(lane, params_t, wave_speeds)                         \
     WFF_INLINE void lane(const params_t *k, const wff_lane_arg *ctx, wff_wave_block *blk,  \
                          double flag[WFF_BLOCK], int b)                                    \
     {                                                                                      \
@@ -254,8 +254,8 @@ WFF_INLINE void wff_lanes_nothing_after(const void *k, const void *ctx,
 
 /* One generated op from the cell's pointwise function: OP is TRI, POINT,
  * TANGENT or WAVE; defines the lane prefix##_OP_lane_generated and the op. */
-#define WFF_CELL_GENERATED(OP, prefix, params_t, pointwise)                               \
-    WFF_CELL_##OP##_LANE_FROM_POINT(prefix##_##OP##_lane_generated, params_t, pointwise)  \
+#define WFF_CELL_GENERATED(OP, prefix, params_t, pointwise)                                \
+    WFF_CELL_##OP##_LANE_FROM_POINT(prefix##_##OP##_lane_generated, params_t, pointwise)   \
     WFF_CELL_##OP##_BLOCK(prefix, params_t, wff_lanes_always, wff_lane_arg,                \
                           wff_lanes_keep_arg, prefix##_##OP##_lane_generated,              \
                           wff_lanes_nothing_after)
@@ -263,10 +263,10 @@ WFF_INLINE void wff_lanes_nothing_after(const void *k, const void *ctx,
 /* Every blocked op of a cell from its pointwise functions:
  * prefix##_evaluate_tri_block, prefix##_evaluate_point_block,
  * prefix##_amplitude_tangent_block, prefix##_wave_speeds_block. */
-#define WFF_CELL_LANES(prefix, params_t, evaluate, amplitude_tangent, wave_speeds)        \
-    WFF_CELL_GENERATED(TRI, prefix, params_t, evaluate)                                   \
-    WFF_CELL_GENERATED(POINT, prefix, params_t, evaluate)                                 \
-    WFF_CELL_GENERATED(TANGENT, prefix, params_t, amplitude_tangent)                      \
+#define WFF_CELL_LANES(prefix, params_t, evaluate, amplitude_tangent, wave_speeds)         \
+    WFF_CELL_GENERATED(TRI, prefix, params_t, evaluate)                                    \
+    WFF_CELL_GENERATED(POINT, prefix, params_t, evaluate)                                  \
+    WFF_CELL_GENERATED(TANGENT, prefix, params_t, amplitude_tangent)                       \
     WFF_CELL_GENERATED(WAVE, prefix, params_t, wave_speeds)
 
 #endif
