@@ -25,7 +25,7 @@ static __attribute__((noinline)) void center_state(const wff_elements *el, const
 {
     if (e < el->n_tris) {
         const int *node = el->tri + 3 * e;
-        deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
+        tri_gradient(el, X, u, e, F);
         dA[0] = dA[1] = 0;
         for (int a = 0; a < 3; a++) {
             dA[0] += u[D * node[a] + 3] / 3;

@@ -1,7 +1,7 @@
 /* Membrane elements: the stored energy per mechanism summed over the mesh and
  * the lumped masses (include/wovenff/membrane.h) — sums for output and set-up,
  * not on the per-step path (the force pass and the stable step are in
- * membrane.c, membrane_quad.c and membrane_centre.c). */
+ * membrane_tri.c, membrane_quad.c and membrane_centre.c). */
 #include "wovenff/membrane.h"
 #include "membrane_geometry.h"
 #include "solver_internal.h" /* D, the DOFs per node */

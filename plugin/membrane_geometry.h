@@ -70,14 +70,22 @@ static inline __attribute__((always_inline)) void deformation_gradient(const dou
 }
 
 /* Triangle e at the displacement u: F = Σ_a x_a ⊗ ∇N_a over its three nodes
- * (x = X + u) and F_eff = F F_pre. The one gather of a triangle's deformation
- * gradient: every triangle pass (forces plain, blocked and static, the
- * stable step's blocks, the energy split) calls it. */
+ * (x = X + u). The one gather of a triangle's deformation gradient: every
+ * triangle pass calls it, most through tri_deformation. */
+static inline __attribute__((always_inline)) void
+tri_gradient(const wff_elements *el, const double *X, const double *u, int e, double F[6])
+{
+    deformation_gradient(X, u, el->tri + 3 * e, 3, el->tri_grad + 6 * e, F);
+}
+
+/* tri_gradient's F and F_eff = F F_pre: what the triangle passes (forces
+ * plain, blocked and static, the stable step's blocks, the energy split)
+ * evaluate the cell at. */
 static inline __attribute__((always_inline)) void
 tri_deformation(const wff_elements *el, const wff_element_material *em, const double *X,
                 const double *u, int e, double F[6], double Fe[6])
 {
-    deformation_gradient(X, u, el->tri + 3 * e, 3, el->tri_grad + 6 * e, F);
+    tri_gradient(el, X, u, e, F);
     preload_apply(em, F, Fe);
 }
 

@@ -64,7 +64,7 @@ int wff_uniaxial_static(const wff_material *mat, int family, double stretch,
 int wff_shear_static(const wff_material *mat, double gamma, double dA[2],
                      double *shear_resultant, wff_point_result *point, wff_error *err);
 
-/* The static-amplitude Newton (membrane.c; docs/model.md §13): bounds and
+/* The static-amplitude Newton (membrane_tri.c, membrane_quad.c; docs/model.md §13): bounds and
  * tolerance. Converged when the Newton step's largest component is below
  * WFF_BALANCE_STEP_TOLERANCE (the step is applied: with the exact tangent the
  * error left is of the order of its square); a step is limited to
@@ -98,7 +98,7 @@ wff_balance_newton_step(const double residual[2], const double tangent[4], doubl
 }
 
 /* Quasi-static amplitudes at one point, for the elements' static-amplitude
- * path (membrane.c; docs/model.md §13): Newton on R(F, ΔA) = 0 with the
+ * path (membrane_tri.c, membrane_quad.c; docs/model.md §13): Newton on R(F, ΔA) = 0 with the
  * cell's tangent (wff_amplitude_tangent, the state held), from the point's last ΔA
  * (dA: in and out), at most WFF_BALANCE_MAX_ITERATIONS tangents (their count
  * into *iterations); then the evaluation with the step dt into out. Returns

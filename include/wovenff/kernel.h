@@ -3,7 +3,7 @@
  *
  * The per-element kernels — every cell (plugin/cells/: evaluate,
  * evaluate_shared, evaluate_tri_block, wave_speeds, ...) and the membrane
- * passes wff_elements_forces and wff_elements_stable_step (plugin/membrane.c)
+ * passes wff_elements_forces and wff_elements_stable_step (plugin/membrane*.c)
  * — are compiled once per variant by the Makefile, each copy named in the
  * source by the variant it is (wovenff/kernel_name.h: WFF_KERNEL_NAME):
  *
