@@ -40,19 +40,19 @@ DEB_PACKAGES := freefem++ libfreefem++-dev gmsh libgmsh-dev libgsl-dev gnuplot-n
 CORE_SRC := $(sort $(wildcard plugin/*.c plugin/cells/*.c))
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
 # The per-element kernels, built once per variant (docs/architecture.md, "Kernel
-# variants"): build/kernel/VARIANT/plugin/... for -march KERNEL_ARCH_VARIANT,
-# linked into one object build/kernel/VARIANT.o (calls between kernel files
-# stay inside the variant), whose KERNEL_ENTRIES (the membrane passes)
-# tools/kernel_variant.sh renames to NAME__VARIANT, its cells kept in a
-# section of their own; plugin/kernel_dispatch.c picks one per model at run
+# variants"): build/kernel/VARIANT/plugin/... for -march KERNEL_ARCH_VARIANT
+# and -DWFF_KERNEL_VARIANT=VARIANT, which names the variant's code in the
+# source (include/wovenff/kernel_name.h: the entry points NAME__VARIANT, its
+# cells in a section of their own), linked into one object
+# build/kernel/VARIANT.o; plugin/kernel_dispatch.c picks one per model at run
 # time (WOVENFF_KERNEL).
 KERNEL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard plugin/cells/*.c) plugin/membrane.c \
-                                         plugin/membrane_quad.c plugin/membrane_centre.c)
+                                         plugin/membrane_tri.c plugin/membrane_quad.c \
+                                         plugin/membrane_centre.c)
 KERNEL_VARIANTS := baseline avx2 avx512
 KERNEL_ARCH_baseline = $(KERNEL_ARCH)
 KERNEL_ARCH_avx2 := -march=x86-64-v3
 KERNEL_ARCH_avx512 := -march=x86-64-v4
-KERNEL_ENTRIES := wff_elements_forces wff_elements_stable_step
 KERNEL_SRC := $(KERNEL_OBJ:$(BUILD)/%.o=%.c)
 KERNEL_PART_OBJ := $(foreach v,$(KERNEL_VARIANTS),$(KERNEL_SRC:%.c=$(BUILD)/kernel/$(v)/%.o))
 KERNEL_VARIANT_OBJ := $(KERNEL_VARIANTS:%=$(BUILD)/kernel/%.o)
@@ -73,7 +73,7 @@ ARGS  ?=
 # a flag changes, so a changed flag (OPT=..., KERNEL_ARCH=...) rebuilds all.
 FLAGS_FILE := $(BUILD)/flags.txt
 FLAGS_NOW  := $(CC) $(CFLAGS) | $(KERNEL_OPT) $(foreach v,$(KERNEL_VARIANTS),$(v): \
-              $(KERNEL_ARCH_$(v))) $(KERNEL_ENTRIES) | $(CXX) $(CXXFLAGS) | $(LDLIBS)
+              $(KERNEL_ARCH_$(v))) | $(CXX) $(CXXFLAGS) | $(LDLIBS)
 $(shell mkdir -p $(BUILD) && [ "$$(cat $(FLAGS_FILE) 2>/dev/null)" = '$(FLAGS_NOW)' ] || \
         printf '%s\n' '$(FLAGS_NOW)' > $(FLAGS_FILE))
 
@@ -85,15 +85,15 @@ $(BUILD)/plugin/%.o: plugin/%.c $(FLAGS_FILE)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) $(CORE_INC) $(DEPFLAGS) -c $< -o $@
 
-# The per-element kernels, once per variant: compiled, linked (ld -r) into one
-# object, renamed.
+# The per-element kernels, once per variant: compiled with the variant's name
+# (WFF_KERNEL_VARIANT), linked (ld -r) into one object.
 define KERNEL_VARIANT_RULE
 $(BUILD)/kernel/$(1)/%.o: %.c $(FLAGS_FILE)
 	@mkdir -p $$(dir $$@)
-	$$(CC) $$(CFLAGS) $$(KERNEL_OPT) $$(KERNEL_ARCH_$(1)) $$(CORE_INC) $$(DEPFLAGS) -c $$< -o $$@
-$(BUILD)/kernel/$(1).o: $(KERNEL_SRC:%.c=$(BUILD)/kernel/$(1)/%.o) tools/kernel_variant.sh
-	$$(LD) -r -o $$@.o $$(filter %.o,$$^)
-	sh tools/kernel_variant.sh $(1) $$@.o $$@ $$(KERNEL_ENTRIES) && rm -f $$@.o
+	$$(CC) $$(CFLAGS) $$(KERNEL_OPT) $$(KERNEL_ARCH_$(1)) -DWFF_KERNEL_VARIANT=$(1) \
+	    $$(CORE_INC) $$(DEPFLAGS) -c $$< -o $$@
+$(BUILD)/kernel/$(1).o: $(KERNEL_SRC:%.c=$(BUILD)/kernel/$(1)/%.o)
+	$$(LD) -r -o $$@ $$^
 endef
 $(foreach v,$(KERNEL_VARIANTS),$(eval $(call KERNEL_VARIANT_RULE,$(v))))
 
@@ -110,9 +110,12 @@ $(BUILD)/plugin/ff/%.o: plugin/ff/%.cpp $(FLAGS_FILE)
 	@mkdir -p $(dir $@)
 	$(CXX) $(CXXFLAGS) $(DEPFLAGS) -c $< -o $@
 
+# (the link map says which variant each function of the library belongs to:
+# tests/sh/portable_build.sh reads it)
 $(MODULE): $(MODULE_OBJ) $(CORE_OBJ)
 	@mkdir -p $(dir $@)
-	$(CXX) $(CXXFLAGS) -shared $(MODULE_OBJ) $(CORE_OBJ) $(LDLIBS) -o $@
+	$(CXX) $(CXXFLAGS) -shared $(MODULE_OBJ) $(CORE_OBJ) $(LDLIBS) -Wl,-Map=$(BUILD)/wovenff.map \
+	    -o $@
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \

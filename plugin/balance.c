@@ -68,7 +68,7 @@ static int equations(const gsl_vector *x, void *data, gsl_vector *out)
         if (pb->hold[k] == WFF_HOLD_RESULTANT) /* P_11 or P_22, as force per yarn */
             value = (r.stress[k == 0 ? 0 : 3] - pb->target[k]) * pb->mat->yarn_spacing[k];
         else
-            value = r.diag[pb->mat->cell->yarn_tension_diag[k]] - pb->target[k];
+            value = r.diag[wff_cell_yarn_tension_diag(pb->mat->cell, k)] - pb->target[k];
         gsl_vector_set(out, (size_t)(pb->na + u), value);
     }
     for (size_t i = 0; i < out->size; i++)
@@ -158,7 +158,7 @@ static void hold_state(problem *pb, const double *state)
 int wff_balance_amplitudes(const wff_material *mat, const double F[6], const double *state,
                            double dA[2], wff_error *err)
 {
-    if (mat->cell->n_amplitudes == 0) {
+    if (wff_cell_amplitudes(mat->cell) == 0) {
         dA[0] = dA[1] = 0;
         return 0;
     }
@@ -186,13 +186,13 @@ int wff_biaxial_static(const wff_material *mat, const wff_hold hold[2], const do
     for (int k = 0; k < 2; k++) {
         pb.hold[k] = hold[k];
         pb.target[k] = target[k];
-        if (hold[k] == WFF_HOLD_YARN_TENSION && mat->cell->yarn_tension_diag[k] < 0)
+        if (hold[k] == WFF_HOLD_YARN_TENSION && wff_cell_yarn_tension_diag(mat->cell, k) < 0)
             return wff_fail(err, "biaxial static state: cell '%s' reports no yarn tension",
-                            mat->cell->name);
+                            wff_cell_name(mat->cell));
         if (hold[k] != WFF_HOLD_STRETCH)
             pb.stretch_index[pb.n_unknown_stretch++] = k;
     }
-    pb.na = mat->cell->n_amplitudes > 0 ? 2 : 0;
+    pb.na = wff_cell_amplitudes(mat->cell) > 0 ? 2 : 0;
     size_t n = (size_t)(pb.na + pb.n_unknown_stretch);
     if (n == 0) { /* everything held: nothing to solve */
         double F[6] = {target[0], 0, 0, target[1], 0, 0};

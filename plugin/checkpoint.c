@@ -70,7 +70,7 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     g = wff_fnv1a(g, m->el.tri, sizeof(int) * 3 * (size_t)m->el.n_tris);
     g = wff_fnv1a(g, m->el.quad, sizeof(int) * 4 * (size_t)m->el.n_quads);
     h->mesh_hash = g;
-    const char *cell = m->mat.cell ? m->mat.cell->name : "";
+    const char *cell = m->mat.cell ? wff_cell_name(m->mat.cell) : "";
     g = wff_fnv1a(WFF_FNV_START, cell, strlen(cell));
     g = wff_fnv1a(g, &m->mat.areal_density, sizeof(double));
     g = wff_fnv1a(g, m->mat.params, sizeof m->mat.params);

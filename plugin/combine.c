@@ -58,9 +58,9 @@ static int has_zones(const wff_model *m, char *what, size_t size)
 
 static int has_no_amplitudes(const wff_model *m, char *what, size_t size)
 {
-    if (m->mat.cell->n_amplitudes > 0)
+    if (wff_cell_amplitudes(m->mat.cell) > 0)
         return 0;
-    snprintf(what, size, "the model's cell '%s' has no crimp amplitudes", m->mat.cell->name);
+    snprintf(what, size, "the model's cell '%s' has no crimp amplitudes", wff_cell_name(m->mat.cell));
     return 1;
 }
 

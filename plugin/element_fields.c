@@ -42,10 +42,10 @@ static int field_code(const wff_model *m, const char *name)
         if (strcmp(name, wff_model_state_name(m, j)) == 0)
             return EF_STATE + j;
     for (int k = 0; k < 2; k++)
-        if (strcmp(name, k ? "T2" : "T1") == 0 && cell->yarn_tension_diag[k] >= 0)
+        if (strcmp(name, k ? "T2" : "T1") == 0 && wff_cell_yarn_tension_diag(cell, k) >= 0)
             return EF_TENSION + k;
-    for (int d = 0; d < cell->n_diag; d++)
-        if (strcmp(name, cell->diag_names[d]) == 0)
+    for (int d = 0; d < wff_cell_n_diag(cell); d++)
+        if (strcmp(name, wff_cell_diag_name(cell, d)) == 0)
             return EF_DIAG + d;
     return -1;
 }
@@ -66,14 +66,14 @@ static int unknown(const wff_model *m, const char *name, wff_error *err)
         snprintf(known + used, sizeof known - used, " %s", wff_model_state_name(m, j));
     }
     for (int k = 0; k < 2; k++)
-        if (cell->yarn_tension_diag[k] >= 0 && field_code(m, k ? "T2" : "T1") < EF_DIAG) {
+        if (wff_cell_yarn_tension_diag(cell, k) >= 0 && field_code(m, k ? "T2" : "T1") < EF_DIAG) {
             size_t used = strlen(known);
             snprintf(known + used, sizeof known - used, " T%d", k + 1);
         }
-    for (int d = 0; d < cell->n_diag; d++)
-        if (field_code(m, cell->diag_names[d]) == EF_DIAG + d) {
+    for (int d = 0; d < wff_cell_n_diag(cell); d++)
+        if (field_code(m, wff_cell_diag_name(cell, d)) == EF_DIAG + d) {
             size_t used = strlen(known);
-            snprintf(known + used, sizeof known - used, " %s", cell->diag_names[d]);
+            snprintf(known + used, sizeof known - used, " %s", wff_cell_diag_name(cell, d));
         }
     return wff_fail(err, "unknown element field '%s' (known: %s)", name, known);
 }
@@ -148,8 +148,8 @@ int wff_model_element_values_model(const wff_model *m, const char *name, double 
             else if (code == EF_W)
                 value = r.energy;
             else if (code < EF_DIAG) /* (a zone's cell: its own tension, 0 if none) */
-                value = em->mat->cell->yarn_tension_diag[code - EF_TENSION] >= 0
-                            ? r.diag[em->mat->cell->yarn_tension_diag[code - EF_TENSION]] : 0;
+                value = wff_cell_yarn_tension_diag(em->mat->cell, code - EF_TENSION) >= 0
+                            ? r.diag[wff_cell_yarn_tension_diag(em->mat->cell, code - EF_TENSION)] : 0;
             else
                 value = wff_zones_diag(m, e, code - EF_DIAG) >= 0
                             ? r.diag[wff_zones_diag(m, e, code - EF_DIAG)] : 0;

@@ -6,7 +6,6 @@
  * arrays and the cells through their tables (damage_state); nothing of the
  * integrator's step, contact, output files or FreeFEM. */
 #include "erosion.h"
-#include "membrane_geometry.h"
 #include "zones.h"
 
 #include <math.h>
@@ -17,7 +16,7 @@
 /* Index in mat's points of family k's damage, or −1 when they carry none. */
 static int damage_index(const wff_material *mat, int k)
 {
-    int i = mat->cell->damage_state[k];
+    int i = wff_cell_damage_state(mat->cell, k);
     return i >= 0 && i < mat->n_state ? i : -1;
 }
 
@@ -31,7 +30,7 @@ static int materials_damage(const wff_model *m, const wff_cell_type **lacking)
         const wff_material *mat = wff_model_zone_material(m, z);
         if (!mat || (z > 0 && wff_model_zone_size(m, z) == 0))
             continue;
-        if (mat->cell->damage_state[0] < 0 || mat->cell->damage_state[1] < 0) {
+        if (wff_cell_damage_state(mat->cell, 0) < 0 || wff_cell_damage_state(mat->cell, 1) < 0) {
             if (!*lacking)
                 *lacking = mat->cell;
             continue;
@@ -92,11 +91,11 @@ int wff_erosion_set(wff_model *m, double value, wff_error *err)
     if (lacking)
         return wff_fail(err, "erosion = %d: cell '%s' has no yarn failure (no damage "
                         "state): its elements could never erode; use a cell with failure "
-                        "or erosion = 0", rule, lacking->name);
+                        "or erosion = 0", rule, wff_cell_name(lacking));
     if (!carry)
         return wff_fail(err, "erosion = %d: the material (%s, cell '%s') has yarn failure "
                         "off (failure = 0): its points carry no damage; set failure = 1 in "
-                        "the material file", rule, m->mat.source, m->mat.cell->name);
+                        "the material file", rule, m->mat.source, wff_cell_name(m->mat.cell));
     return wff_erosion_on(m, rule, err);
 }
 
@@ -105,41 +104,6 @@ int wff_erosion_default(wff_model *m, wff_error *err)
     if (damage_index(&m->mat, 0) < 0 || damage_index(&m->mat, 1) < 0)
         return 0;
     return wff_erosion_on(m, WFF_EROSION_BOTH, err);
-}
-
-double wff_element_stored_energy(const wff_elements *el, const wff_element_material *em,
-                                 const double *X, const double *u, const double *state,
-                                 int n_state, int e)
-{
-    const wff_material *mat = em->mat;
-    const double *s = state + (size_t)n_state * wff_element_first_point(el->n_tris, e);
-    double F[6], Fe[6], energy = 0;
-    wff_point_result r;
-    if (e < el->n_tris) {
-        const int *node = el->tri + 3 * e;
-        deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
-        preload_apply(em, F, Fe);
-        double W = 0;
-        for (int q = 0; q < WFF_TRI_POINTS; q++) {
-            double dA[2] = {u[D * node[q] + 3], u[D * node[q] + 4]};
-            if (em->static_amplitudes)
-                memcpy(dA, el->point_dA + 6 * e + 2 * q, sizeof dA);
-            if (mat->cell->evaluate(mat->params, Fe, dA, s + n_state * q, 0, &r) ==
-                    WFF_POINT_OK && isfinite(r.energy))
-                W += r.energy / 3;
-        }
-        energy = el->tri_area[e] * W;
-    } else {
-        int qe = e - el->n_tris;
-        for (int q = 0; q < WFF_QUAD_POINTS; q++) {
-            double N[4], dA[2];
-            quad_point_kinematics(el, em, X, u, qe, q, N, dA, F, Fe);
-            if (mat->cell->evaluate(mat->params, Fe, dA, s + n_state * q, 0, &r) ==
-                    WFF_POINT_OK && isfinite(r.energy))
-                energy += el->quad_weight[4 * qe + q] * r.energy;
-        }
-    }
-    return energy / em->J_pre;
 }
 
 /* Whether element e's points have ruptured as the rule asks. */

@@ -35,12 +35,6 @@ extern const wff_part_ops wff_erosion_part;
  * the pass's list allocated (kept if they are); -1 (err set) if out of
  * memory. */
 int wff_erosion_on(wff_model *m, int rule, wff_error *err);
-/* Stored energy of element e (J, model part: Σ w W / J_pre, every point at
- * dt = 0 with its own state, n_state per point in state), as the force pass
- * integrates it. */
-double wff_element_stored_energy(const wff_elements *el, const wff_element_material *em,
-                                 const double *X, const double *u, const double *state,
-                                 int n_state, int e);
 /* Mean over element e's points of yarn family k's damage (0 .. 1), 0 when its
  * material carries none. */
 double wff_element_damage(const wff_model *m, int e, int k);

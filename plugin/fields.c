@@ -40,13 +40,13 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
             return wff_model_amplitude(m, k, out, err);
     const wff_cell_type *cell = m->mat.cell;
     int diag = -1;
-    for (int d = 0; d < cell->n_diag; d++)
-        if (strcmp(name, cell->diag_names[d]) == 0)
+    for (int d = 0; d < wff_cell_n_diag(cell); d++)
+        if (strcmp(name, wff_cell_diag_name(cell, d)) == 0)
             diag = d;
     /* generic names for the yarn tensions, whatever the cell calls them */
     for (int k = 0; k < 2; k++)
         if (strcmp(name, k ? "yarn_tension2" : "yarn_tension1") == 0)
-            diag = cell->yarn_tension_diag[k];
+            diag = wff_cell_yarn_tension_diag(cell, k);
     /* damage and erosion: the element values (erosion.c), whatever a cell's
      * diagnostics are called */
     if (strcmp(name, "damage1") == 0 || strcmp(name, "damage2") == 0 ||
@@ -130,7 +130,7 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
 int wff_model_energy_split(const wff_model *m, double *out)
 {
     const wff_cell_type *cell = m->mat.cell;
-    int n = cell->n_mech < WFF_MECH_MAX ? cell->n_mech : WFF_MECH_MAX;
+    int n = wff_cell_n_mech(cell) < WFF_MECH_MAX ? wff_cell_n_mech(cell) : WFF_MECH_MAX;
     double mech[WFF_MECH_MAX] = {0};
     if (n > 0)
         wff_zones_energy_split(m, m->u, m->state, mech);

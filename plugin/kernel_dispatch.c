@@ -3,12 +3,14 @@
  * cell, and the membrane entry points wff_elements_forces and
  * wff_elements_stable_step, which run the variant of their material's cell.
  *
- * The Makefile compiles every kernel source once per variant and
- * tools/kernel_variant.sh renames the copies: the entry points become
- * wff_elements_forces__baseline, __avx2, __avx512 (declared below), each
- * variant's cells register in their own linker section wff_cells__avx2, ...
- * (the baseline's in "wff_cells", the registry of registry.c). Constant
- * tables only; knows no cell and no model, only the entry points' types. */
+ * The Makefile compiles every kernel source once per variant with
+ * -DWFF_KERNEL_VARIANT=VARIANT, and the sources name their copies
+ * (include/wovenff/kernel_name.h): the entry points are defined as
+ * WFF_KERNEL_NAME(wff_elements_forces), i.e. wff_elements_forces__baseline,
+ * __avx2, __avx512 (declared below), each variant's cells register in their
+ * own linker section wff_cells__avx2, ... (the baseline's in "wff_cells", the
+ * registry of registry.c). Constant tables only; knows no cell and no model,
+ * only the entry points' types. */
 #include "wovenff/kernel.h"
 #include "wovenff/membrane.h"
 
@@ -120,7 +122,7 @@ const wff_cell_type *wff_kernel_cell(const wff_kernel *k, const wff_cell_type *c
     if (!k->cells_start || !k->cells_stop || !cell || !wff_kernel_of_cell(cell))
         return NULL;
     for (const wff_cell_type *const *c = k->cells_start; c < k->cells_stop; c++)
-        if (strcmp((*c)->name, cell->name) == 0)
+        if (strcmp(wff_cell_name((*c)), wff_cell_name(cell)) == 0)
             return *c;
     return NULL;
 }
@@ -160,7 +162,7 @@ int wff_kernel_apply(wff_material *mat, const char *request, wff_error *err)
         if (!asked || !*asked || strcmp(asked, "auto") == 0)
             return 0; /* a cell built into no variant (made at run time) runs as it is */
         return wff_fail(err, "kernel '%s': cell '%s' has no build for it", k->name,
-                        mat->cell ? mat->cell->name : "(none)");
+                        mat->cell ? wff_cell_name(mat->cell) : "(none)");
     }
     mat->cell = cell;
     return 0;

@@ -147,39 +147,39 @@ int wff_material_parse_text(const char *text, const char *source_name, wff_mater
     if (kv_read(text, &kv, err))
         return -1;
 
-    wff_kv_entry *cell = kv_lookup(&kv, "cell");
-    if (!cell)
+    wff_kv_entry *cell_key = kv_lookup(&kv, "cell");
+    if (!cell_key)
         return wff_fail(err, "%s: missing key 'cell' (the unit-cell name, e.g. cell = %s)",
-                        source_name, wff_cell_count() ? wff_cell_at(0)->name : "?");
-    cell->used = 1;
-    mat->cell = wff_cell_find(cell->value);
+                        source_name, wff_cell_count() ? wff_cell_name(wff_cell_at(0)) : "?");
+    cell_key->used = 1;
+    mat->cell = wff_cell_find(cell_key->value);
     if (!mat->cell) {
         char known[256] = "";
         for (int i = 0; i < wff_cell_count(); i++) {
             size_t used = strlen(known);
             snprintf(known + used, sizeof known - used, "%s%s", i ? ", " : "",
-                     wff_cell_at(i)->name);
+                     wff_cell_name(wff_cell_at(i)));
         }
         return wff_fail(err, "%s:%d: key 'cell': unknown unit cell '%s' (known: %s)",
-                        source_name, cell->line, cell->value, known);
+                        source_name, cell_key->line, cell_key->value, known);
     }
     if (wff_kv_number(&kv, "rho_A", &mat->areal_density, err))
         return -1;
     if (!(mat->areal_density > 0))
         return wff_kv_reject(&kv, "rho_A", err, "areal density must be > 0 kg/m^2");
-    mat->n_state = mat->cell->n_state_max; /* parse may carry fewer (a prefix) */
-    if (mat->cell->parse(&kv, mat, err))
+    mat->n_state = wff_cell_n_state_max(mat->cell); /* parse may carry fewer (a prefix) */
+    if (wff_cell_parse(&kv, mat, err))
         return -1;
-    if (mat->n_state < 0 || mat->n_state > mat->cell->n_state_max ||
-        mat->cell->n_state_max > WFF_STATE_MAX)
+    if (mat->n_state < 0 || mat->n_state > wff_cell_n_state_max(mat->cell) ||
+        wff_cell_n_state_max(mat->cell) > WFF_STATE_MAX)
         return wff_fail(err, "%s: cell '%s' set %d internal states per point (at most "
                         "n_state_max %d <= WFF_STATE_MAX %d): a bug in the cell",
-                        source_name, mat->cell->name, mat->n_state, mat->cell->n_state_max,
+                        source_name, wff_cell_name(mat->cell), mat->n_state, wff_cell_n_state_max(mat->cell),
                         WFF_STATE_MAX);
     for (int i = 0; i < kv.n; i++)
         if (!kv.entry[i].used)
             return wff_fail(err, "%s:%d: unknown key '%s' for cell '%s'", source_name,
-                            kv.entry[i].line, kv.entry[i].key, mat->cell->name);
+                            kv.entry[i].line, kv.entry[i].key, wff_cell_name(mat->cell));
     return 0;
 }
 
@@ -395,7 +395,7 @@ int wff_material_override(const char *path, const char *overrides, const char *o
 int wff_material_state_index(const wff_material *mat, const char *name)
 {
     for (int i = 0; i < mat->n_state; i++)
-        if (strcmp(mat->cell->state_names[i], name) == 0)
+        if (strcmp(wff_cell_state_name(mat->cell, i), name) == 0)
             return i;
     return -1;
 }

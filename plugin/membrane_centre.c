@@ -6,6 +6,7 @@
 #include "wovenff/membrane.h"
 #include "wovenff/balance.h"
 #include "membrane_geometry.h"
+#include "membrane_quad.h" /* this build's entry points */
 
 #include <math.h>
 #include <stdlib.h>
@@ -16,12 +17,15 @@
 
 #define D WFF_DOFS_PER_NODE
 
-void wff_element_center_state(const wff_elements *el, const double *X, const double *u, int e,
-                              double F[6], double dA[2])
+/* wff_element_center_state, this build's own (the stable step's; out of line,
+ * as the public function it was). */
+static __attribute__((noinline)) void center_state(const wff_elements *el, const double *X,
+                                                   const double *u, int e, double F[6],
+                                                   double dA[2])
 {
     if (e < el->n_tris) {
         const int *node = el->tri + 3 * e;
-        deformation_gradient(X, u, node, 3, el->tri_grad + 6 * e, F);
+        tri_gradient(el, X, u, e, F);
         dA[0] = dA[1] = 0;
         for (int a = 0; a < 3; a++) {
             dA[0] += u[D * node[a] + 3] / 3;
@@ -54,6 +58,15 @@ static void static_mean_dA(const wff_elements *el, int e, double dA[2])
     }
 }
 
+/* The functions the rest of the library calls (for output): defined once, by
+ * the baseline build (kernel_name.h). */
+#if WFF_KERNEL_PRIMARY
+void wff_element_center_state(const wff_elements *el, const double *X, const double *u, int e,
+                              double F[6], double dA[2])
+{
+    center_state(el, X, u, e, F, dA);
+}
+
 int wff_element_center_eval(const wff_elements *el, const wff_element_material *em,
                             const double *X, const double *u, const double *state, int e,
                             wff_point_result *out)
@@ -72,12 +85,13 @@ int wff_element_center_eval_state(const wff_elements *el, const wff_element_mate
                                   wff_point_result *out)
 {
     double F[6], Fe[6], dA[2];
-    wff_element_center_state(el, X, u, e, F, dA);
+    center_state(el, X, u, e, F, dA);
     if (em->static_amplitudes)
         static_mean_dA(el, e, dA);
     preload_apply(em, F, Fe);
-    return em->mat->cell->evaluate(em->mat->params, Fe, dA, held, 0, out);
+    return wff_material_evaluate(em->mat, Fe, dA, held, 0, out);
 }
+#endif
 
 /* An element's stable step from its size and its cell's wave speeds:
  * membrane waves alone: dt_m = h/c; amplitude oscillator alone: dt_A = 2/ω.
@@ -108,36 +122,24 @@ static int tri_block_stable_step(const wff_elements *el, const wff_element_mater
                                  double amplitude_factor, double *mine, int *mine_e)
 {
     const wff_material *mat = em->mat;
-    const double *Fp = em->F_pre;
     wff_wave_block blk;
 #pragma omp simd
     for (int j = 0; j < WFF_BLOCK; j++) {
         int e = e0 + (j < n ? j : n - 1);
         const int *node = el->tri + 3 * e;
-        const double *g = el->tri_grad + 6 * e;
-        double F0 = 0, F1 = 0, F2 = 0, F3 = 0, F4 = 0, F5 = 0, dA0 = 0, dA1 = 0;
+        double F[6], Fe[6], dA0 = 0, dA1 = 0;
+        tri_deformation(el, em, X, u, e, F, Fe);
         for (int a = 0; a < 3; a++) {
             const double *ua = u + D * node[a];
-            double x = X[2 * node[a]] + ua[0], y = X[2 * node[a] + 1] + ua[1], z = ua[2];
-            F0 += x * g[2 * a];
-            F1 += x * g[2 * a + 1];
-            F2 += y * g[2 * a];
-            F3 += y * g[2 * a + 1];
-            F4 += z * g[2 * a];
-            F5 += z * g[2 * a + 1];
             dA0 += ua[3] / 3;
             dA1 += ua[4] / 3;
         }
-        blk.F[0][j] = F0 * Fp[0] + F1 * Fp[2];
-        blk.F[1][j] = F0 * Fp[1] + F1 * Fp[3];
-        blk.F[2][j] = F2 * Fp[0] + F3 * Fp[2];
-        blk.F[3][j] = F2 * Fp[1] + F3 * Fp[3];
-        blk.F[4][j] = F4 * Fp[0] + F5 * Fp[2];
-        blk.F[5][j] = F4 * Fp[1] + F5 * Fp[3];
+        for (int i = 0; i < 6; i++)
+            blk.F[i][j] = Fe[i];
         blk.dA[0][j] = dA0;
         blk.dA[1][j] = dA1;
     }
-    if (mat->cell->wave_speeds_block(mat->params, mat->areal_density, &blk) != 0)
+    if (wff_cell_wave_block(mat, &blk) != 0)
         return -1;
     const unsigned char *eroded = el->eroded;
     for (int j = 0; j < n; j++) {
@@ -153,8 +155,9 @@ static int tri_block_stable_step(const wff_elements *el, const wff_element_mater
     return 0;
 }
 
-double wff_elements_stable_step(const wff_elements *el, const wff_element_material *em,
-                                const double *X, const double *u, int *worst)
+double WFF_KERNEL_NAME(wff_elements_stable_step)(const wff_elements *el,
+                                                 const wff_element_material *em,
+                                                 const double *X, const double *u, int *worst)
 {
     const wff_material *mat = em->mat;
     double amplitude_factor = em->amplitude_mass_factor > 0 ? em->amplitude_mass_factor : 1;
@@ -163,7 +166,7 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
     int threads = wff_elements_team(el);
     /* triangles in blocks through the cell's vectorised wave speeds where it has them
      * (not for static amplitudes, whose mean ΔA is the points', nor the reference path) */
-    const int use_block = mat->cell->wave_speeds_block && !em->static_amplitudes &&
+    const int use_block = wff_cell_has_wave_block(mat) && !em->static_amplitudes &&
                           !em->reference_path;
     const int n_blocks = use_block ? (el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK : 0;
     int first_scalar = use_block ? el->n_tris : 0;
@@ -186,11 +189,11 @@ double wff_elements_stable_step(const wff_elements *el, const wff_element_materi
             if (wff_element_eroded(el, e)) /* sets no step */
                 continue;
             double F[6], Fe[6], dA[2], speed, omega;
-            wff_element_center_state(el, X, u, e, F, dA);
+            center_state(el, X, u, e, F, dA);
             if (em->static_amplitudes)
                 static_mean_dA(el, e, dA);
             preload_apply(em, F, Fe);
-            mat->cell->wave_speeds(mat->params, mat->areal_density, Fe, dA, &speed, &omega);
+            wff_cell_wave_speeds(mat, Fe, dA, &speed, &omega);
             double dt = element_stable_dt(el->size[e], speed, omega, amplitude_factor,
                                           em->static_amplitudes);
             if (!(dt >= mine)) { /* also catches NaN */

@@ -1,11 +1,15 @@
 /* Element kinematics internal to the membrane code: the bilinear quad's
  * reference geometry (shape functions, Gauss points, gradients), the
- * deformation gradient and the preload; the force passes (membrane.c) and the
- * centre state and stable step (membrane_centre.c) both use them. */
+ * deformation gradient and the preload (a triangle's written once:
+ * tri_deformation), and the checks of a point's result every force pass
+ * makes; the force passes (membrane_tri.c, membrane_quad.c), the centre state
+ * and stable step (membrane_centre.c) and the energy sums use them. */
 #ifndef WOVENFF_MEMBRANE_GEOMETRY_H
 #define WOVENFF_MEMBRANE_GEOMETRY_H
 
 #include "wovenff/membrane.h"
+
+#include <math.h>
 
 /* Bilinear quad: corners (ξ, η) = (−1,−1), (1,−1), (1,1), (−1,1); Gauss points ±1/√3. */
 static const double quad_corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
@@ -62,6 +66,66 @@ static inline __attribute__((always_inline)) void deformation_gradient(const dou
             F[2 * i] += x[i] * grad[2 * a];
             F[2 * i + 1] += x[i] * grad[2 * a + 1];
         }
+    }
+}
+
+/* Triangle e at the displacement u: F = Σ_a x_a ⊗ ∇N_a over its three nodes
+ * (x = X + u). The one gather of a triangle's deformation gradient: every
+ * triangle pass calls it, most through tri_deformation. */
+static inline __attribute__((always_inline)) void
+tri_gradient(const wff_elements *el, const double *X, const double *u, int e, double F[6])
+{
+    deformation_gradient(X, u, el->tri + 3 * e, 3, el->tri_grad + 6 * e, F);
+}
+
+/* tri_gradient's F and F_eff = F F_pre: what the triangle passes (forces
+ * plain, blocked and static, the stable step's blocks, the energy split)
+ * evaluate the cell at. */
+static inline __attribute__((always_inline)) void
+tri_deformation(const wff_elements *el, const wff_element_material *em, const double *X,
+                const double *u, int e, double F[6], double Fe[6])
+{
+    tri_gradient(el, X, u, e, F);
+    preload_apply(em, F, Fe);
+}
+
+/* P_mesh = P F_preᵀ / J_pre, added with weight w into acc */
+static inline __attribute__((always_inline)) void preload_pull_add(const wff_element_material *em, const double P[6], double w,
+                             double acc[6])
+{
+    const double *Fp = em->F_pre;
+    double s = w / em->J_pre;
+    for (int i = 0; i < 3; i++) {
+        acc[2 * i] += s * (P[2 * i] * Fp[0] + P[2 * i + 1] * Fp[1]);
+        acc[2 * i + 1] += s * (P[2 * i] * Fp[2] + P[2 * i + 1] * Fp[3]);
+    }
+}
+
+/* WFF_POINT_NONFINITE for a NaN or infinite state (F_eff, ΔA) or result, else the cell's status:
+ * a NaN state is not a degenerate one (cells report both as degenerate). */
+static inline int point_ok(int status, const double Fe[6], const double dA[2],
+                           const wff_point_result *r)
+{
+    double state = dA[0] + dA[1];
+    for (int i = 0; i < 6; i++)
+        state += Fe[i];
+    if (!isfinite(state))
+        return WFF_POINT_NONFINITE;
+    if (status != WFF_POINT_OK)
+        return status;
+    double sum = r->energy + r->residual[0] + r->residual[1];
+    for (int i = 0; i < 6; i++)
+        sum += r->stress[i];
+    return isfinite(sum) ? WFF_POINT_OK : WFF_POINT_NONFINITE;
+}
+
+/* The first bad point of a pass (the lowest element, then point, in its order). */
+static inline void note_bad(wff_force_totals *t, int e, int q, int status)
+{
+    if (t->bad_element < 0) {
+        t->bad_element = e;
+        t->bad_point = q;
+        t->bad_status = status;
     }
 }
 

@@ -1,4 +1,7 @@
-/* Quads on the blocked fast path (docs/model.md §8, §11). A bilinear quad's
+/* Quads: their part of the internal-force pass (wff_quad_forces), on the
+ * blocked fast path where the cell takes it, else point by point.
+ *
+ * The blocked fast path (docs/model.md §8, §11). A bilinear quad's
  * four 2×2 Gauss points each have their own F, so nothing is shared per
  * element as on triangles: a block holds WFF_BLOCK quads, one a lane; their
  * nodes are gathered once, F at each Gauss point follows from the bilinear
@@ -11,8 +14,10 @@
  *
  * It knows the element geometry (wff_elements) and the cell's ops table only:
  * nothing of the integrator, contact, I/O or the binding. The plain per-point
- * reference path stays in membrane.c (wff_elements_forces). */
+ * reference path is wff_quad_forces, at the end. */
+#include "wovenff/balance.h"
 #include "membrane_quad.h"
+#include "membrane_geometry.h"
 
 #include <math.h>
 #include <string.h>
@@ -24,14 +29,14 @@
 
 /* The bilinear quad at its 2×2 Gauss points: corners (ξ_a, η_a) = (−1,−1), (1,−1),
  * (1,1), (−1,1), points (ξ_q, η_q) = (±1/√3, ±1/√3) in the same order
- * (membrane.c's quad_shape). N[q][a] = N_a, dN[q][a][r] = ∂N_a/∂ξ_r at point q. */
-typedef struct quad_gauss {
+ * (membrane_geometry.h's quad_shape). N[q][a] = N_a, dN[q][a][r] = ∂N_a/∂ξ_r at point q. */
+typedef struct quad_table {
     double xi[WFF_QUAD_POINTS], eta[WFF_QUAD_POINTS];
     double N[WFF_QUAD_POINTS][4];
     double dN[WFF_QUAD_POINTS][4][2];
-} quad_gauss;
+} quad_table;
 
-static void quad_gauss_init(quad_gauss *t)
+static void quad_table_init(quad_table *t)
 {
     static const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
     const double g = 0.57735026918962576451; /* 1/√3 */
@@ -74,14 +79,14 @@ static void note_bad_point(quad_sums *s, int e, int q, int status)
  * the cell; forces are summed per lane and node, f updated once per node at
  * the end. Lanes past n repeat the last quad (a valid state, results dropped). */
 static inline __attribute__((always_inline)) void
-quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_gauss *t,
+quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_table *t,
              const double *X, const double *u, double *state, double dt, double *f, int e0,
              int n, quad_sums *sums, const int ns)
 {
     const wff_material *mat = em->mat;
     const double *Fp = em->F_pre;
     const double inv_J = 1 / em->J_pre;
-    const int amplitudes = mat->cell->n_amplitudes;
+    const int amplitudes = wff_cell_amplitudes(mat->cell);
     double *sq = state + ns * WFF_TRI_POINTS * el->n_tris; /* the quads' points' states */
     const int *quad = el->quad;
     double dx[3][3][WFF_BLOCK];  /* a₁, a₂, a₁₂ of x (3 components) */
@@ -160,7 +165,7 @@ quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_
             for (int j = 0; j < WFF_BLOCK; j++)
                 blk.state[i][j] = sq[ns * (4 * (e0 + (j < n ? j : n - 1)) + q) + i];
         }
-        mat->cell->evaluate_point_block(mat->params, dt, &blk); /* accepted: asked before the pass */
+        wff_cell_point_block(mat, dt, &blk); /* accepted: asked before the pass */
         /* per lane: the point's force −P_mesh adj(J)ᵀ ∇_ξ N_b (P_mesh = P F_preᵀ / J_pre)
          * and amplitude force w N_b R_k / J_pre on each node b, where the point is
          * sound (a failed point adds nothing, as on the plain path) */
@@ -230,7 +235,7 @@ quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_
 /* quad_block_n with one state per point (a constant: its loops fold away), and with
  * the material's n_state. */
 static __attribute__((noinline)) void
-quad_block_one(const wff_elements *el, const wff_element_material *em, const quad_gauss *t,
+quad_block_one(const wff_elements *el, const wff_element_material *em, const quad_table *t,
                const double *X, const double *u, double *state, double dt, double *f, int e0,
                int n, quad_sums *sums)
 {
@@ -238,7 +243,7 @@ quad_block_one(const wff_elements *el, const wff_element_material *em, const qua
 }
 
 static __attribute__((noinline)) void
-quad_block_any(const wff_elements *el, const wff_element_material *em, const quad_gauss *t,
+quad_block_any(const wff_elements *el, const wff_element_material *em, const quad_table *t,
                const double *X, const double *u, double *state, double dt, double *f, int e0,
                int n, quad_sums *sums)
 {
@@ -258,19 +263,20 @@ static int cell_takes_points(const wff_element_material *em, double dt)
         probe.F[3][j] = em->F_pre[3];
     }
     probe.n = WFF_BLOCK;
-    return em->mat->cell->evaluate_point_block(em->mat->params, dt, &probe) == 0;
+    return wff_cell_point_block(em->mat, dt, &probe) == 0;
 }
 
-int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em,
-                          const double *X, const double *u, double *state, double dt,
-                          double *f, double *energy, double *dissipated, double *failure,
-                          wff_force_totals *totals)
+int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
+                                           const wff_element_material *em, const double *X,
+                                           const double *u, double *state, double dt,
+                                           double *f, double *energy, double *dissipated,
+                                           double *failure, wff_force_totals *totals)
 {
-    if (el->n_quads == 0 || !em->mat->cell->evaluate_point_block || em->reference_path ||
+    if (el->n_quads == 0 || !wff_cell_has_point_block(em->mat) || em->reference_path ||
         em->static_amplitudes || !cell_takes_points(em, dt))
         return -1;
-    quad_gauss gauss;
-    quad_gauss_init(&gauss);
+    quad_table gauss;
+    quad_table_init(&gauss);
     const int n_blocks = (el->n_quads + WFF_BLOCK - 1) / WFF_BLOCK;
     /* small meshes are not worth a thread team (membrane.h, wff_elements_team) */
     int threads = wff_elements_team(el);
@@ -319,4 +325,66 @@ int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em
         totals->bad_status = all.bad_status;
     }
     return 0;
+}
+
+/* The quads' pass: the blocked path above where it applies, else point by
+ * point (evaluate, or the static amplitudes' Newton, at each Gauss point). */
+void WFF_KERNEL_NAME(wff_quad_forces)(const wff_elements *el, const wff_element_material *em,
+                                      const double *X, const double *u, double *state,
+                                      double dt, double *f, double *energy, double *dissipated,
+                                      double *failure, wff_force_totals *totals)
+{
+    const wff_material *mat = em->mat;
+    const int amplitudes = wff_cell_amplitudes(mat->cell);
+    const int ns = mat->n_state;
+    const int quads_blocked = WFF_KERNEL_NAME(wff_quad_block_forces)(
+                                  el, em, X, u, state, dt, f, energy, dissipated, failure,
+                                  totals) == 0;
+    for (int e = 0; !quads_blocked && e < el->n_quads; e++) {
+        const int *node = el->quad + 4 * e;
+        int id = el->n_tris + e;
+        if (wff_element_eroded(el, id))
+            continue;
+        for (int q = 0; q < WFF_QUAD_POINTS; q++) {
+            const double *grad = el->quad_grad + 32 * e + 8 * q;
+            double N[4], dA[2], F[6], Fe[6], Pm[6] = {0, 0, 0, 0, 0, 0};
+            quad_point_kinematics(el, em, X, u, e, q, N, dA, F, Fe);
+            wff_point_result r;
+            double *ps = state + ns * (3 * el->n_tris + 4 * e + q);
+            int point_amplitudes = amplitudes;
+            double *pdA = dA;
+            if (em->static_amplitudes) { /* the point's own balanced amplitudes, updated in place */
+                pdA = quad_point_dA(el, e, q);
+                point_amplitudes = 0;
+            }
+            int iterations = 0;
+            int status = point_ok(em->static_amplitudes
+                                      ? wff_balance_point(mat, Fe, pdA, ps, dt, &r, &iterations)
+                                      : wff_material_evaluate(mat, Fe, dA, ps, dt, &r),
+                                  Fe, pdA, &r);
+            totals->amplitude_iterations += iterations;
+            if (status != WFF_POINT_OK) {
+                if (status == WFF_POINT_UNBALANCED && totals->bad_element < 0) {
+                    totals->bad_residual = fmax(fabs(r.residual[0]), fabs(r.residual[1]));
+                    totals->bad_iterations = iterations;
+                }
+                note_bad(totals, id, q, status);
+                continue;
+            }
+            for (int i = 0; i < ns; i++)
+                ps[i] = r.state[i];
+            double w = el->quad_weight[4 * e + q];
+            preload_pull_add(em, r.stress, 1.0, Pm);
+            for (int b = 0; b < 4; b++) {
+                double *fb = f + D * node[b];
+                for (int i = 0; i < 3; i++)
+                    fb[i] -= w * (Pm[2 * i] * grad[2 * b] + Pm[2 * i + 1] * grad[2 * b + 1]);
+                for (int k = 0; k < point_amplitudes; k++)
+                    fb[3 + k] += w * N[b] * r.residual[k] / em->J_pre;
+            }
+            *energy += w * r.energy;
+            *dissipated += w * r.dissipated;
+            *failure += w * r.failure_dissipated;
+        }
+    }
 }

@@ -1,6 +1,7 @@
 /* The blocked quad4 force pass (plugin/membrane_quad.c) and the thread-buffer
- * reduction both passes share, internal to the membrane code: wff_elements_forces calls it and falls back to its plain
- * per-point loop when it declines. */
+ * reduction both passes share, internal to the membrane code (the kernels):
+ * wff_elements_forces calls it and falls back to its plain per-point loop
+ * when it declines. */
 #ifndef WOVENFF_MEMBRANE_QUAD_H
 #define WOVENFF_MEMBRANE_QUAD_H
 
@@ -17,10 +18,32 @@
  * meshes, the same bits for a given count. Returns 0, or −1 with nothing done
  * when the fast path does not apply (no evaluate_point_block, the reference
  * path asked for, static amplitudes, or the cell declines its parameters). */
-int wff_quad_block_forces(const wff_elements *el, const wff_element_material *em,
-                          const double *X, const double *u, double *state, double dt,
-                          double *f, double *energy, double *dissipated, double *failure,
-                          wff_force_totals *totals);
+int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
+                                           const wff_element_material *em, const double *X,
+                                           const double *u, double *state, double dt,
+                                           double *f, double *energy, double *dissipated,
+                                           double *failure, wff_force_totals *totals);
+
+/* The two halves of the force pass wff_elements_forces (membrane.c), each
+ * adding its elements' forces into f, Σ A W, Σ A × dissipation and Σ A ×
+ * failure dissipation (not yet divided by J_pre) into *energy, *dissipated,
+ * *failure, its Newton iterations and first bad point into totals: the
+ * triangles (membrane_tri.c; the first bad one wins over the quads'), then
+ * the quads (membrane_quad.c: wff_quad_block_forces, else point by point). */
+void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_material *em,
+                                     const double *X, const double *u, double *state,
+                                     double dt, double *f, double *energy, double *dissipated,
+                                     double *failure, wff_force_totals *totals);
+void WFF_KERNEL_NAME(wff_quad_forces)(const wff_elements *el, const wff_element_material *em,
+                                      const double *X, const double *u, double *state,
+                                      double dt, double *f, double *energy, double *dissipated,
+                                      double *failure, wff_force_totals *totals);
+
+/* The entry points as this build of the kernels defines them (kernel_name.h:
+ * wff_elements_forces__avx2, ...); kernel_dispatch.c's wff_elements_forces
+ * and wff_elements_stable_step call the variant of the material's cell. */
+__typeof__(wff_elements_forces) WFF_KERNEL_NAME(wff_elements_forces);
+__typeof__(wff_elements_stable_step) WFF_KERNEL_NAME(wff_elements_stable_step);
 
 /* Inside a force pass's parallel region, past its element loop's barrier: the
  * extra threads' buffers (el->thread_f) added into f, each thread a slice of

@@ -155,7 +155,7 @@ int wff_model_setup(wff_model *m, wff_error *err)
     wff_elements_masses(&m->el, &m->em, m->n_nodes, m->mass);
     wff_model_sum_fabric_mass(m);
     /* amplitude DOFs of a cell without amplitudes stay put */
-    if (m->mat.cell->n_amplitudes == 0)
+    if (wff_cell_amplitudes(m->mat.cell) == 0)
         for (int n = 0; n < m->n_nodes; n++)
             m->dof_kind[D * n + 3] = m->dof_kind[D * n + 4] = WFF_DOF_FIXED;
     m->dt_factor = 0.8;
@@ -187,7 +187,7 @@ int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[
     wff_model_sum_fabric_mass(m);
     if (m->clamp.n && wff_clamp_share(m, err)) /* the new masses: order of calls free */
         return -1;
-    if (m->mat.cell->n_amplitudes)
+    if (wff_cell_amplitudes(m->mat.cell))
         for (int n = 0; n < m->n_nodes; n++) {
             m->u[D * n + 3] = dA0[0];
             m->u[D * n + 4] = dA0[1];
@@ -292,7 +292,7 @@ static int set_group_dofs(wff_model *m, const char *group, dof_setting *s, const
                         "free, fixed or prescribed, once)%s", what, group,
                         dof_names[s->component], wff_model_user_node(m, n) + 1, m->mesh.xy[2 * n],
                         m->mesh.xy[2 * n + 1], dof_names[s->component], was,
-                        s->component >= 3 && m->mat.cell->n_amplitudes == 0
+                        s->component >= 3 && wff_cell_amplitudes(m->mat.cell) == 0
                             ? " (the cell has no amplitudes: they are fixed)"
                         : s->component == WFF_UZ && m->clamp.n
                             ? " (a friction clamp fixes u_z of its nodes)" : "");
@@ -537,9 +537,9 @@ static int check_static_amplitudes(const wff_model *m, double value, wff_error *
     if (value == 1 && m->zones)
         return wff_fail(err, "static_amplitudes: the model has zonal materials; zones keep "
                         "the amplitudes dynamic");
-    if (value == 1 && m->mat.cell->n_amplitudes == 0)
+    if (value == 1 && wff_cell_amplitudes(m->mat.cell) == 0)
         return wff_fail(err, "static_amplitudes: cell '%s' has no amplitudes",
-                        m->mat.cell->name);
+                        wff_cell_name(m->mat.cell));
     return 0;
 }
 

@@ -33,7 +33,7 @@ static int dynamic_segment(const wff_material *mat, const double F_a[6], const d
                            wff_error *err)
 {
     double membrane_speed, omega;
-    mat->cell->wave_speeds(mat->params, mat->areal_density, F_a, s->dA, &membrane_speed,
+    wff_cell_wave_speeds(mat, F_a, s->dA, &membrane_speed,
                            &omega);
     if (!(omega > 0) || !isfinite(omega))
         return wff_fail(err, "no finite amplitude frequency (omega = %g rad/s) at F = "
@@ -95,9 +95,9 @@ int wff_point_path_segment(const wff_material *mat, const double F_a[6], const d
         return wff_fail(err, "step safety %g must be in (0, 1] and flow substeps %d >= 1",
                         mode->step_safety, mode->flow_substeps);
     if (mode->dynamic_amplitudes) {
-        if (mat->cell->n_amplitudes == 0)
+        if (wff_cell_amplitudes(mat->cell) == 0)
             return wff_fail(err, "cell '%s' (material %s) has no amplitudes to make dynamic",
-                            mat->cell->name, mat->source);
+                            wff_cell_name(mat->cell), mat->source);
         return dynamic_segment(mat, F_a, F_b, duration, mode, state, err);
     }
     if (mode->shear_flow)
@@ -115,9 +115,9 @@ int wff_point_path_record(const wff_material *mat, const double F[6],
     rec->stretch[0] = sqrt(F[0] * F[0] + F[2] * F[2] + F[4] * F[4]);
     rec->stretch[1] = sqrt(F[1] * F[1] + F[3] * F[3] + F[5] * F[5]);
     rec->shear_angle = asin(g1g2 / (rec->stretch[0] * rec->stretch[1]));
-    rec->n_mech = cell->energy_split ? cell->n_mech : 0;
+    rec->n_mech = wff_cell_has_energy_split(cell) ? wff_cell_n_mech(cell) : 0;
     if (rec->n_mech)
-        cell->energy_split(mat->params, F, state->dA, state->state, rec->mech_energy);
+        wff_cell_energy_split(mat, F, state->dA, state->state, rec->mech_energy);
     double v2 = state->velocity[0] * state->velocity[0] + state->velocity[1] * state->velocity[1];
     rec->amplitude_kinetic = 0.5 * (mat->areal_density / 6) * v2;
     return 0;

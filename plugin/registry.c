@@ -25,7 +25,7 @@ const wff_cell_type *wff_cell_at(int index)
 const wff_cell_type *wff_cell_find(const char *name)
 {
     for (int i = 0; i < wff_cell_count(); i++)
-        if (strcmp(__start_wff_cells[i]->name, name) == 0)
+        if (strcmp(wff_cell_name(__start_wff_cells[i]), name) == 0)
             return __start_wff_cells[i];
     return NULL;
 }

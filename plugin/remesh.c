@@ -391,7 +391,7 @@ static int transfer_state(const wff_model *m, wff_model *nm, const locator *L,
     const int ns = m->n_state;
     int is_damage[WFF_STATE_MAX] = {0};
     for (int k = 0; k < 2; k++) {
-        int d = m->mat.cell->damage_state[k];
+        int d = wff_cell_damage_state(m->mat.cell, k);
         if (d >= 0 && d < ns)
             is_damage[d] = 1;
     }
@@ -536,7 +536,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     nm.fabric_mass = 0;
     for (int n = 0; n < nm.n_nodes; n++)
         nm.fabric_mass += nm.mass[D * n];
-    if (nm.mat.cell->n_amplitudes == 0)
+    if (wff_cell_amplitudes(nm.mat.cell) == 0)
         for (int n = 0; n < nm.n_nodes; n++)
             nm.dof_kind[D * n + 3] = nm.dof_kind[D * n + 4] = WFF_DOF_FIXED;
     if (replay_bcs(m, &nm, err)) /* (they zero or set the velocities of their DOFs) */

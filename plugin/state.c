@@ -49,7 +49,7 @@ static void state_energy(const wff_model *m, double *kinetic, double *stored)
 static int check_vector(const wff_model *m, int w, const double *in, wff_error *err)
 {
     const char *vec = w ? "v" : "u";
-    int no_amplitudes = m->mat.cell->n_amplitudes == 0;
+    int no_amplitudes = wff_cell_amplitudes(m->mat.cell) == 0;
     for (int i = 0; i < m->n_dofs; i++) { /* (in: the model's order; named in the user's) */
         int node = wff_model_user_node(m, i / D) + 1, c = i % D, ui = D * (node - 1) + c;
         if (!isfinite(in[i]))
@@ -57,7 +57,7 @@ static int check_vector(const wff_model *m, int w, const double *in, wff_error *
                             node, component_names[c], in[i]);
         if (no_amplitudes && c >= WFF_DA1 && in[i] != 0)
             return wff_fail(err, "%s[%d] (node %d, %s) = %g: cell '%s' has no amplitudes (must "
-                            "be 0)", vec, ui, node, component_names[c], in[i], m->mat.cell->name);
+                            "be 0)", vec, ui, node, component_names[c], in[i], wff_cell_name(m->mat.cell));
         if (!w)
             continue;
         if (m->dof_kind[i] == WFF_DOF_FIXED && in[i] != 0)
@@ -161,11 +161,11 @@ int wff_model_amplitude(const wff_model *m, int k, double *out, wff_error *err)
     const wff_cell_type *cell = m->mat.cell;
     if (k < 0 || k > 1)
         return wff_fail(err, "amplitude %d: must be 1 or 2", k + 1);
-    if (!cell->reference_geometry || cell->n_amplitudes == 0)
+    if (!wff_cell_has_reference_geometry(cell) || wff_cell_amplitudes(cell) == 0)
         return wff_fail(err, "A%d: cell '%s' has no reference crimp amplitude A%d0 (no "
-                        "reference_geometry)", k + 1, cell->name, k + 1);
+                        "reference_geometry)", k + 1, wff_cell_name(cell), k + 1);
     double pitch0[2], amplitude0[2];
-    cell->reference_geometry(m->mat.params, pitch0, amplitude0);
+    wff_cell_reference_geometry(&m->mat, pitch0, amplitude0);
     for (int n = 0; n < m->n_nodes; n++)
         out[wff_model_user_node(m, n)] = amplitude0[k] + m->u[D * n + WFF_DA1 + k];
     return 0;

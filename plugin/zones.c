@@ -156,7 +156,7 @@ static const wff_material *state_material(const wff_model *m)
 const char *wff_model_state_name(const wff_model *m, int i)
 {
     const wff_material *mat = state_material(m);
-    return i >= 0 && i < mat->n_state ? mat->cell->state_names[i] : "";
+    return i >= 0 && i < mat->n_state ? wff_cell_state_name(mat->cell, i) : "";
 }
 
 /* A zone of material mat: its states must be a prefix of the model's (the
@@ -169,12 +169,12 @@ static int zone_states_fit(wff_model *m, const wff_material *mat, const char *pa
     const wff_material *have = state_material(m);
     int common = mat->n_state < have->n_state ? mat->n_state : have->n_state;
     for (int i = 0; i < common; i++)
-        if (strcmp(mat->cell->state_names[i], have->cell->state_names[i]) != 0)
+        if (strcmp(wff_cell_state_name(mat->cell, i), wff_cell_state_name(have->cell, i)) != 0)
             return wff_fail(err, "zone material '%s': cell '%s' carries state %d '%s' where "
                             "the model's points carry '%s' (cell '%s'): a zone's states must "
                             "be a prefix of the model's or extend them", path,
-                            mat->cell->name, i + 1, mat->cell->state_names[i],
-                            have->cell->state_names[i], have->cell->name);
+                            wff_cell_name(mat->cell), i + 1, wff_cell_state_name(mat->cell, i),
+                            wff_cell_state_name(have->cell, i), wff_cell_name(have->cell));
     if (mat->n_state <= m->n_state)
         return 0;
     size_t np = wff_elements_point_count(&m->el);
@@ -332,7 +332,7 @@ static int match_preload(wff_model *m, int k, wff_error *err)
     }
     return wff_fail(err, "zone %d (%s): no diagonal preload of cell '%s' gives the model's "
                     "preload membrane forces %g, %g N/m (cell '%s' at stretch %g, %g)", k,
-                    z->mat.source, z->mat.cell->name, target[0], target[1], m->mat.cell->name,
+                    z->mat.source, wff_cell_name(z->mat.cell), target[0], target[1], wff_cell_name(m->mat.cell),
                     a_model[0], a_model[1]);
 }
 
@@ -418,15 +418,15 @@ static int zone_elements_model(wff_model *m, const unsigned char *selected,
     if (wff_material_load(material_path, &mat, err) ||
         wff_kernel_apply(&mat, wff_material_kernel(&m->mat), err))
         return -1;
-    if (mat.cell->n_amplitudes > 0 && m->mat.cell->n_amplitudes == 0)
+    if (wff_cell_amplitudes(mat.cell) > 0 && wff_cell_amplitudes(m->mat.cell) == 0)
         return wff_fail(err, "zone material '%s': cell '%s' has crimp amplitudes and the "
                         "model's cell '%s' has none (its amplitude DOFs are fixed): give "
                         "the model the cell with amplitudes and the zones the others",
-                        material_path, mat.cell->name, m->mat.cell->name);
-    if (preload == WFF_ZONE_PRELOAD_MATCHED && mat.cell->n_amplitudes > 0)
+                        material_path, wff_cell_name(mat.cell), wff_cell_name(m->mat.cell));
+    if (preload == WFF_ZONE_PRELOAD_MATCHED && wff_cell_amplitudes(mat.cell) > 0)
         return wff_fail(err, "zone material '%s': a matched preload is for a cell without "
                         "amplitudes (cell '%s' has them: use the shared preload)",
-                        material_path, mat.cell->name);
+                        material_path, wff_cell_name(mat.cell));
     int plies = m->pack ? wff_pack_plies(m) : 1;
     int used[WFF_PLIES_MAX] = {0}, needed = 0;
     for (int e = 0; e < n_el; e++)
@@ -714,7 +714,7 @@ void wff_zones_energy_split(const wff_model *m, const double *u, const double *s
     }
     zones_eroded_copy(m);
     const wff_cell_type *base = m->mat.cell;
-    for (int j = 0; j < base->n_mech && j < WFF_MECH_MAX; j++)
+    for (int j = 0; j < wff_cell_n_mech(base) && j < WFF_MECH_MAX; j++)
         mech[j] = 0;
     for (int k = 0; k < Z->n; k++) {
         wff_zone *z = (wff_zone *)&Z->zone[k]; /* its state scratch only */
@@ -727,9 +727,9 @@ void wff_zones_energy_split(const wff_model *m, const double *u, const double *s
         wff_elements_energy_split(&z->el, &em, m->mesh.xy, u, zone_points(m, k, (double *)state),
                                   part);
         const wff_cell_type *cell = em.mat->cell;
-        for (int i = 0; i < cell->n_mech && i < WFF_MECH_MAX; i++)
-            for (int j = 0; j < base->n_mech && j < WFF_MECH_MAX; j++)
-                if (strcmp(cell->mech_names[i], base->mech_names[j]) == 0)
+        for (int i = 0; i < wff_cell_n_mech(cell) && i < WFF_MECH_MAX; i++)
+            for (int j = 0; j < wff_cell_n_mech(base) && j < WFF_MECH_MAX; j++)
+                if (strcmp(wff_cell_mech_name(cell, i), wff_cell_mech_name(base, j)) == 0)
                     mech[j] += part[i];
     }
 }
@@ -766,8 +766,8 @@ int wff_zones_diag(const wff_model *m, int e, int diag)
     const wff_cell_type *base = m->mat.cell;
     if (cell == base)
         return diag;
-    for (int d = 0; d < cell->n_diag; d++)
-        if (strcmp(cell->diag_names[d], base->diag_names[diag]) == 0)
+    for (int d = 0; d < wff_cell_n_diag(cell); d++)
+        if (strcmp(wff_cell_diag_name(cell, d), wff_cell_diag_name(base, diag)) == 0)
             return d;
     return -1;
 }
@@ -781,7 +781,7 @@ uint64_t wff_zones_fingerprint(const wff_model *m, uint64_t g)
     g = wff_fnv1a(g, Z->element_zone, sizeof(int) * (size_t)Z->n_el);
     for (int k = 1; k < Z->n; k++) {
         const wff_zone *z = &Z->zone[k];
-        g = wff_fnv1a(g, z->mat.cell->name, strlen(z->mat.cell->name));
+        g = wff_fnv1a(g, wff_cell_name(z->mat.cell), strlen(wff_cell_name(z->mat.cell)));
         g = wff_fnv1a(g, &z->mat.areal_density, sizeof(double));
         g = wff_fnv1a(g, z->mat.params, sizeof z->mat.params);
         g = wff_fnv1a(g, &z->preload, sizeof(int));

@@ -12,6 +12,7 @@
 #include <math.h>
 
 #include "wovenff/cell.h"
+#include "wovenff/cell_ops.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -63,7 +64,7 @@ int wff_uniaxial_static(const wff_material *mat, int family, double stretch,
 int wff_shear_static(const wff_material *mat, double gamma, double dA[2],
                      double *shear_resultant, wff_point_result *point, wff_error *err);
 
-/* The static-amplitude Newton (membrane.c; docs/model.md §13): bounds and
+/* The static-amplitude Newton (membrane_tri.c, membrane_quad.c; docs/model.md §13): bounds and
  * tolerance. Converged when the Newton step's largest component is below
  * WFF_BALANCE_STEP_TOLERANCE (the step is applied: with the exact tangent the
  * error left is of the order of its square); a step is limited to
@@ -72,36 +73,8 @@ int wff_shear_static(const wff_material *mat, double gamma, double dA[2],
 #define WFF_BALANCE_STEP_TOLERANCE 1e-13 /* m: amplitudes are ~1e-5 m */
 #define WFF_BALANCE_STEP_LIMIT 1e-5      /* m */
 
-/* R_k and ∂R_k/∂ΔA_m (tangent[2k + m]) at one point, state held: the cell's
- * amplitude_tangent, or for a cell without it forward differences of
- * evaluate() with a 1 nm step (the static path's Jacobian before the op).
- * Returns the cell's status (WFF_POINT_DEGENERATE: outputs NaN). */
-static inline int wff_amplitude_tangent(const wff_material *mat, const double F[6],
-                                        const double dA[2], const double *state,
-                                        double residual[2], double tangent[4])
-{
-    const wff_cell_type *cell = mat->cell;
-    if (cell->amplitude_tangent)
-        return cell->amplitude_tangent(mat->params, F, dA, state, residual, tangent);
-    const double h = 1e-9; /* m */
-    wff_point_result r0, r1, r2;
-    int status = cell->evaluate(mat->params, F, dA, state, 0, &r0);
-    residual[0] = r0.residual[0];
-    residual[1] = r0.residual[1];
-    if (status != WFF_POINT_OK) {
-        for (int i = 0; i < 4; i++)
-            tangent[i] = NAN;
-        return status;
-    }
-    const double d1[2] = {dA[0] + h, dA[1]}, d2[2] = {dA[0], dA[1] + h};
-    cell->evaluate(mat->params, F, d1, state, 0, &r1);
-    cell->evaluate(mat->params, F, d2, state, 0, &r2);
-    tangent[0] = (r1.residual[0] - r0.residual[0]) / h;
-    tangent[1] = (r2.residual[0] - r0.residual[0]) / h;
-    tangent[2] = (r1.residual[1] - r0.residual[1]) / h;
-    tangent[3] = (r2.residual[1] - r0.residual[1]) / h;
-    return WFF_POINT_OK;
-}
+/* wff_amplitude_tangent (R_k and ∂R_k/∂ΔA_m at one point, the cell's op or
+ * forward differences of evaluate()) is in wovenff/cell_ops.h. */
 
 /* One Newton update ΔA −= K⁻¹R (K = tangent, row-major), limited to
  * WFF_BALANCE_STEP_LIMIT, applied to dA when `apply`. Returns the full
@@ -125,7 +98,7 @@ wff_balance_newton_step(const double residual[2], const double tangent[4], doubl
 }
 
 /* Quasi-static amplitudes at one point, for the elements' static-amplitude
- * path (membrane.c; docs/model.md §13): Newton on R(F, ΔA) = 0 with the
+ * path (membrane_tri.c, membrane_quad.c; docs/model.md §13): Newton on R(F, ΔA) = 0 with the
  * cell's tangent (wff_amplitude_tangent, the state held), from the point's last ΔA
  * (dA: in and out), at most WFF_BALANCE_MAX_ITERATIONS tangents (their count
  * into *iterations); then the evaluation with the step dt into out. Returns
@@ -152,7 +125,7 @@ wff_balance_point(const wff_material *mat, const double Fe[6], double dA[2], con
         converged = big < WFF_BALANCE_STEP_TOLERANCE;
     }
     *iterations = it;
-    int status = mat->cell->evaluate(mat->params, Fe, dA, state, dt, out);
+    int status = wff_material_evaluate(mat, Fe, dA, state, dt, out);
     if (status == WFF_POINT_OK && !converged && isfinite(out->residual[0] + out->residual[1]))
         return WFF_POINT_UNBALANCED;
     return status;
@@ -168,7 +141,7 @@ wff_balance_point(const wff_material *mat, const double Fe[6], double dA[2], con
 static inline int wff_balance_block(const wff_material *mat, wff_tangent_block *blk,
                                     int iterations[WFF_BLOCK], int converged[WFF_BLOCK])
 {
-    if (!mat->cell->amplitude_tangent_block)
+    if (!wff_cell_has_tangent_block(mat))
         return -1;
     int active[WFF_BLOCK];
     for (int b = 0; b < WFF_BLOCK; b++) {
@@ -177,7 +150,7 @@ static inline int wff_balance_block(const wff_material *mat, wff_tangent_block *
         converged[b] = 0;
     }
     for (int it = 0; it < WFF_BALANCE_MAX_ITERATIONS; it++) {
-        if (mat->cell->amplitude_tangent_block(mat->params, blk) != 0)
+        if (wff_cell_tangent_block(mat, blk) != 0)
             return -1; /* on the parameters: only ever at the first iteration */
         int any = 0;
 #ifndef __cplusplus /* (the C++ binding sees this header without OpenMP) */

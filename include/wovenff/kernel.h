@@ -3,9 +3,9 @@
  *
  * The per-element kernels — every cell (plugin/cells/: evaluate,
  * evaluate_shared, evaluate_tri_block, wave_speeds, ...) and the membrane
- * passes wff_elements_forces and wff_elements_stable_step (plugin/membrane.c)
- * — are compiled once per variant by the Makefile (tools/kernel_variant.sh
- * keeps the copies apart):
+ * passes wff_elements_forces and wff_elements_stable_step (plugin/membrane*.c)
+ * — are compiled once per variant by the Makefile, each copy named in the
+ * source by the variant it is (wovenff/kernel_name.h: WFF_KERNEL_NAME):
  *
  *   baseline   -march=x86-64-v2 (SSE4.2): any x86-64 machine since ~2009
  *   avx2       -march=x86-64-v3 (AVX2, FMA, BMI2)

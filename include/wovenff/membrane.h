@@ -229,6 +229,14 @@ void wff_elements_energy_split(const wff_elements *el, const wff_element_materia
 void wff_elements_masses(const wff_elements *el, const wff_element_material *em, int n_nodes,
                          double *mass);
 
+/* Stored energy of element e (J, model part: Σ w W / J_pre, every point at
+ * dt = 0 with its own state, n_state per point in state), as the force pass
+ * integrates it (plugin/membrane_energy.c; erosion's measure of what an eroded
+ * element held). */
+double wff_element_stored_energy(const wff_elements *el, const wff_element_material *em,
+                                 const double *X, const double *u, const double *state,
+                                 int n_state, int e);
+
 /* Stable explicit step over all elements at the current state: per element
  * 1/sqrt(1/dt_m² + 1/dt_A²) with dt_m = size/c (membrane waves) and
  * dt_A = 2/ω (amplitude oscillator), the bound for the two coupled.

@@ -362,7 +362,7 @@ void wff_model_energies(const wff_model *m, wff_energies *out);
  * scene checks with it, before the loop, that a run takes at least one step). */
 double wff_model_step_estimate(const wff_model *m);
 
-/* Stored energy per mechanism of the cell (names: m->mat.cell->mech_names),
+/* Stored energy per mechanism of the cell (names: wff_cell_mech_name),
  * whole specimen (× symmetry_factor), J, at the current state with γᶠ held.
  * Fills out[0 .. n_mech−1] (all zeros if the cell has no energy split) and
  * returns n_mech (at most WFF_MECH_MAX). */

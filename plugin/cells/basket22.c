@@ -73,6 +73,7 @@
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
 #include "cell_laws.h"
+#include "cell_lanes.h"
 #include "yarn_failure.h"
 
 #include <math.h>
@@ -248,8 +249,8 @@ static double basket_energy_but_shear(const basket_point *pt)
 /* One material point (header: residual, stress, energy): P = (1/(16 p1⁰ p2⁰))
  * Σ_k Q_k ⊗ G_k with Q_k from wff_q_coefficients (yarn term 4 (T_k (1 + cosβ_k)
  * − M_bk sinβ_k/L_k), four shear couples, spar pulls N_m); dt > 0 advances γᶠ. */
-static int basket_evaluate(const void *params, const double F[6], const double dA[2],
-                           const double *state, double dt, wff_point_result *out)
+WFF_INLINE int basket_evaluate(const void *params, const double F[6], const double dA[2],
+                               const double *state, double dt, wff_point_result *out)
 {
     const double gamma_f = state[STATE_GAMMA_F];
     const basket_params *k = params;
@@ -339,9 +340,9 @@ static void basket_energy_split(const void *params, const double F[6], const dou
  * the spars and the shear springs; speed = sqrt(S/ρ_A). Amplitudes:
  * Gershgorin bound of the 2×2 Hessian ∂²W_cell/∂A_k∂A_m over the lumped mass
  * ρ_A/6 per unit area. */
-static void basket_wave_speeds(const void *params, double areal_density, const double F[6],
-                               const double dA[2], double *membrane_speed,
-                               double *amplitude_omega)
+WFF_INLINE void basket_wave_speeds(const void *params, double areal_density,
+                                   const double F[6], const double dA[2],
+                                   double *membrane_speed, double *amplitude_omega)
 {
     /* undamaged (§20): damage only lowers the yarn terms, so these stay upper bounds */
     const basket_params *k = params;
@@ -430,8 +431,9 @@ static int basket_parse(wff_kv *kv, wff_material *mat, wff_error *err)
  * sinα_k = A_k/d_k, ∂e_m/∂A_n = (A_1 + A_2)/e_m, so the pair term's slope is
  *   Σ_m F_Pm/e_m − (A_1 + A_2)² Σ_m [(−∂F_Pm/∂e_m)/e_m² + F_Pm/e_m³],
  * and ∂F_I/∂A_m = −∂F_I/∂I:  ∂R_k/∂ΔA_m = 4 (−∂F_I/∂I − ∂F_k^N/∂A_m)/(16 p1⁰ p2⁰). */
-static int basket_amplitude_tangent(const void *params, const double F[6], const double dA[2],
-                                    const double *state, double residual[2], double tangent[4])
+WFF_INLINE int basket_amplitude_tangent(const void *params, const double F[6],
+                                        const double dA[2], const double *state,
+                                        double residual[2], double tangent[4])
 {
     const basket_params *k = params;
     basket_point pt;
@@ -472,6 +474,13 @@ static int basket_amplitude_tangent(const void *params, const double F[6], const
     return WFF_POINT_OK;
 }
 
+/* The blocked ops, generated from basket_evaluate, basket_amplitude_tangent and
+ * basket_wave_speeds (cell_lanes.h): basket_evaluate_tri_block,
+ * basket_evaluate_point_block, basket_amplitude_tangent_block,
+ * basket_wave_speeds_block. */
+WFF_CELL_LANES(basket, basket_params, basket_evaluate, basket_amplitude_tangent,
+               basket_wave_speeds)
+
 static void basket_reference_geometry(const void *params, double pitch0[2], double amplitude0[2])
 {
     const basket_params *k = params;
@@ -498,7 +507,11 @@ static const wff_cell_type basket_2x2 = {
     .wave_speeds = basket_wave_speeds,
     .energy_split = basket_energy_split,
     .evaluate_shared = NULL,
+    .evaluate_tri_block = basket_evaluate_tri_block,
     .reference_geometry = basket_reference_geometry,
+    .evaluate_point_block = basket_evaluate_point_block,
     .amplitude_tangent = basket_amplitude_tangent,
+    .amplitude_tangent_block = basket_amplitude_tangent_block,
+    .wave_speeds_block = basket_wave_speeds_block,
 };
 WFF_REGISTER_CELL(basket_2x2);

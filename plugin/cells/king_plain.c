@@ -60,6 +60,7 @@
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
 #include "cell_laws.h"
+#include "cell_lanes.h"
 #include "yarn_failure.h"
 
 #include <math.h>
@@ -471,31 +472,38 @@ static void king_wave_speeds(const void *params, double areal_density, const dou
                         membrane_speed, amplitude_omega);
 }
 
-/* Lane b of a wave-speed block (king_wave_speeds_at, c = 2 and n = 1). */
-WFF_INLINE void king_wave_lane(const king_params *k, double areal_density, wff_wave_block *blk,
-                               int b)
+/* The blocked kernels run king_point_at with c = 2 and n = 1 as constants
+ * (branch-free, vectorised); other exponents, and yarn failure, go back to the
+ * general path (the wave speeds keep the undamaged bounds, so failure does
+ * not matter to them; the tangent has no flow). */
+WFF_INLINE int king_blocks_accept(const king_params *k)
 {
+    return k->locking_exponent == 2 && k->flow_exponent == 1 && k->failure.enabled == 0;
+}
+
+WFF_INLINE int king_wave_accepts(const king_params *k)
+{
+    return k->locking_exponent == 2 && k->flow_exponent == 1;
+}
+
+WFF_INLINE int king_tangent_accepts(const king_params *k)
+{
+    return k->locking_exponent == 2 && k->failure.enabled == 0;
+}
+
+/* Lane b of a wave-speed block (king_wave_speeds_at, c = 2 and n = 1); ctx
+ * holds the areal density. */
+WFF_INLINE void king_wave_lane(const king_params *k, const wff_lane_arg *ctx, wff_wave_block *blk,
+                               double flag[WFF_BLOCK], int b)
+{
+    (void)flag;
     const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
                          blk->F[3][b], blk->F[4][b], blk->F[5][b]};
     const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
     double speed, omega;
-    king_wave_speeds_at(k, areal_density, F, dA, 2.0, 1.0, &speed, &omega);
+    king_wave_speeds_at(k, ctx->value, F, dA, 2.0, 1.0, &speed, &omega);
     blk->membrane_speed[b] = speed;
     blk->amplitude_omega[b] = omega;
-}
-
-/* The stable-step scan's blocked path: king_wave_speeds on WFF_BLOCK states in
- * one vectorised loop; declines on c and n as king_evaluate_tri_block does
- * (yarn failure does not change the bounds). */
-static int king_wave_speeds_block(const void *params, double areal_density, wff_wave_block *blk)
-{
-    const king_params local = *(const king_params *)params, *k = &local;
-    if (k->locking_exponent != 2 || k->flow_exponent != 1)
-        return -1;
-#pragma omp simd
-    for (int b = 0; b < WFF_BLOCK; b++)
-        king_wave_lane(k, areal_density, blk, b);
-    return 0;
 }
 
 /* Shared-kinematics fast path (docs/model.md §11): n points sharing one F, the
@@ -547,27 +555,42 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
     return WFF_POINT_OK;
 }
 
+/* What the lanes of a triangle block share (king_tri_setup): the flow step
+ * and the stress scale p_k⁰/(4 p1⁰ p2⁰)/3. */
+typedef struct king_tri_ctx {
+    wff_shear_flow flow;
+    double scale[FAMILIES];
+} king_tri_ctx;
+
+WFF_INLINE void king_tri_setup(const king_params *k, double dt, king_tri_ctx *ctx,
+                               const wff_tri_block *blk)
+{
+    (void)blk;
+    ctx->flow = king_flow(k, dt);
+    const double inv_cell = 1 / k->cell_area, third = 1.0 / 3.0;
+    ctx->scale[0] = k->pitch0[0] * inv_cell * third;
+    ctx->scale[1] = k->pitch0[1] * inv_cell * third;
+}
+
 /* Lane b of a block: one triangle's three nodal points (weights 1/3) sharing
- * one F. A function of its own so that its locals are plain scalars once
- * inlined (inside an `omp simd` body they would become per-lane arrays). */
-WFF_INLINE void king_tri_lane(const king_params *k, const wff_shear_flow *flow,
-                              const double scale[FAMILIES], wff_tri_block *blk,
-                              double degenerate[WFF_BLOCK], int b)
+ * one F, the frame computed once (docs/model.md §11), king_point_at three
+ * times, the stress from the summed Q_k coefficients; its degenerate test as
+ * a double in flag[b] (cell_lanes.h). */
+WFF_INLINE void king_tri_lane(const king_params *k, const king_tri_ctx *ctx, wff_tri_block *blk,
+                              double flag[WFF_BLOCK], int b)
 {
     const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
                          blk->F[3][b], blk->F[4][b], blk->F[5][b]};
     wff_yarn_frame fr;
     (void)wff_yarn_kinematics(k->pitch0, F, &fr);
-    /* its test as a double: an int in the lane loop would make gcc take 16 lanes for
-     * 512-bit vectors, more than the block has, and fall back to 256-bit halves */
-    degenerate[b] = fr.p[0] > 0 && fr.p[1] > 0 && fr.sin_t > 0 ? 0.0 : 1.0;
+    flag[b] = fr.p[0] > 0 && fr.p[1] > 0 && fr.sin_t > 0 ? 0.0 : 1.0;
     double q[FAMILIES][FAMILIES] = {{0, 0}, {0, 0}}, energy = 0, dissipated = 0;
 #pragma GCC unroll 3
     for (int p = 0; p < 3; p++) {
         const double dA[2] = {blk->dA[p][0][b], blk->dA[p][1][b]};
         king_point pt;
-        king_point_at(k, &fr, dA, blk->state[p][STATE_GAMMA_F][b], NULL, 0, flow, 2.0, 1.0,
-                      &pt);
+        king_point_at(k, &fr, dA, blk->state[p][STATE_GAMMA_F][b], NULL, 0, &ctx->flow, 2.0,
+                      1.0, &pt);
         blk->residual[p][0][b] = pt.residual[0];
         blk->residual[p][1][b] = pt.residual[1];
         blk->state[p][STATE_GAMMA_F][b] = pt.gamma_f;
@@ -580,7 +603,7 @@ WFF_INLINE void king_tri_lane(const king_params *k, const wff_shear_flow *flow,
         dissipated += pt.dissipated;
     }
     double stress[6];
-    wff_stress_from_q(&fr, q, scale, stress);
+    wff_stress_from_q(&fr, q, ctx->scale, stress);
 #pragma GCC unroll 6
     for (int i = 0; i < 6; i++)
         blk->stress[i][b] = stress[i];
@@ -590,49 +613,50 @@ WFF_INLINE void king_tri_lane(const king_params *k, const wff_shear_flow *flow,
     blk->failure_dissipated[b] = 0;
 }
 
-/* Blocked fast path (docs/model.md §11): WFF_BLOCK triangles at once, one
- * loop over the lanes with the whole model inside (king_tri_lane: the frame,
- * king_point_at three times, the stress), so gcc vectorises it (libmvec's
- * atan and exp, sqrt and divisions in vector registers). The same functions
- * as king_evaluate and king_evaluate_shared, with c = 2 and n = 1 passed as
- * constants; any other parameter set goes back to the general path. */
-static int king_evaluate_tri_block(const void *params, double dt, wff_tri_block *blk)
+WFF_INLINE void king_tri_finish(const king_params *k, const king_tri_ctx *ctx,
+                                const double flag[WFF_BLOCK], wff_tri_block *blk)
 {
-    /* a local copy: stores into the block cannot alias it, so the parameters
-     * stay in registers across the lanes */
-    const king_params local = *(const king_params *)params, *k = &local;
-    if (k->locking_exponent != 2 || k->flow_exponent != 1 || k->failure.enabled != 0)
-        return -1;
-    const wff_shear_flow flow = king_flow(k, dt);
-    const double inv_cell = 1 / k->cell_area, third = 1.0 / 3.0;
-    const double scale[FAMILIES] = {k->pitch0[0] * inv_cell * third,
-                                    k->pitch0[1] * inv_cell * third};
-    double degenerate[WFF_BLOCK];
-#pragma omp simd
+    (void)k;
+    (void)ctx;
     for (int b = 0; b < WFF_BLOCK; b++)
-        king_tri_lane(k, &flow, scale, blk, degenerate, b);
-    for (int b = 0; b < WFF_BLOCK; b++)
-        blk->degenerate[b] = degenerate[b] != 0;
-    return 0;
+        blk->degenerate[b] = flag[b] != 0;
+}
+
+/* What the lanes of a point block share: the flow step and the stress scale
+ * p_k⁰/(4 p1⁰ p2⁰). */
+typedef struct king_point_ctx {
+    wff_shear_flow flow;
+    double scale[FAMILIES];
+} king_point_ctx;
+
+WFF_INLINE void king_point_setup(const king_params *k, double dt, king_point_ctx *ctx,
+                                 const wff_point_block *blk)
+{
+    (void)blk;
+    ctx->flow = king_flow(k, dt);
+    const double inv_cell = 1 / k->cell_area;
+    ctx->scale[0] = k->pitch0[0] * inv_cell;
+    ctx->scale[1] = k->pitch0[1] * inv_cell;
 }
 
 /* Lane b of a point block: one material point with its own F (a quad's Gauss
  * point), king_point_at once, its stress; plain scalars once inlined. */
-WFF_INLINE void king_point_lane(const king_params *k, const wff_shear_flow *flow,
-                                const double scale[FAMILIES], wff_point_block *blk, int b)
+WFF_INLINE void king_point_lane(const king_params *k, const king_point_ctx *ctx,
+                                wff_point_block *blk, double flag[WFF_BLOCK], int b)
 {
+    (void)flag;
     const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
                          blk->F[3][b], blk->F[4][b], blk->F[5][b]};
     wff_yarn_frame fr;
     blk->degenerate[b] = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
     const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
     king_point pt;
-    king_point_at(k, &fr, dA, blk->state[STATE_GAMMA_F][b], NULL, 0, flow, 2.0, 1.0, &pt);
+    king_point_at(k, &fr, dA, blk->state[STATE_GAMMA_F][b], NULL, 0, &ctx->flow, 2.0, 1.0, &pt);
     blk->residual[0][b] = pt.residual[0];
     blk->residual[1][b] = pt.residual[1];
     blk->state[STATE_GAMMA_F][b] = pt.gamma_f;
     double stress[6];
-    wff_stress_from_q(&fr, pt.q, scale, stress);
+    wff_stress_from_q(&fr, pt.q, ctx->scale, stress);
 #pragma GCC unroll 6
     for (int i = 0; i < 6; i++)
         blk->stress[i][b] = stress[i];
@@ -640,24 +664,6 @@ WFF_INLINE void king_point_lane(const king_params *k, const wff_shear_flow *flow
     blk->energy[b] = pt.energy * inv_cell;
     blk->dissipated[b] = pt.dissipated * inv_cell;
     blk->failure_dissipated[b] = 0;
-}
-
-/* Blocked independent points (docs/model.md §11): WFF_BLOCK points at once,
- * the whole model inside one loop over the lanes, as king_evaluate_tri_block
- * does for triangles; c = 2 and n = 1 as constants, other parameter sets go
- * back to king_evaluate. */
-static int king_evaluate_point_block(const void *params, double dt, wff_point_block *blk)
-{
-    const king_params local = *(const king_params *)params, *k = &local;
-    if (k->locking_exponent != 2 || k->flow_exponent != 1 || k->failure.enabled != 0)
-        return -1;
-    const wff_shear_flow flow = king_flow(k, dt);
-    const double inv_cell = 1 / k->cell_area;
-    const double scale[FAMILIES] = {k->pitch0[0] * inv_cell, k->pitch0[1] * inv_cell};
-#pragma omp simd
-    for (int b = 0; b < WFF_BLOCK; b++)
-        king_point_lane(k, &flow, scale, blk, b);
-    return 0;
 }
 
 /* The amplitude residual and its exact tangent at one point (king_residual_tangent_at);
@@ -678,9 +684,12 @@ static int king_amplitude_tangent(const void *params, const double F[6], const d
     return WFF_POINT_OK;
 }
 
-/* Lane b of a tangent block (a function of its own, as king_tri_lane). */
-WFF_INLINE void king_tangent_lane(const king_params *k, wff_tangent_block *blk, int b)
+/* Lane b of a tangent block: king_residual_tangent_at with c = 2. */
+WFF_INLINE void king_tangent_lane(const king_params *k, const wff_lane_arg *ctx,
+                                  wff_tangent_block *blk, double flag[WFF_BLOCK], int b)
 {
+    (void)ctx;
+    (void)flag;
     const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
                          blk->F[3][b], blk->F[4][b], blk->F[5][b]};
     const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
@@ -695,19 +704,17 @@ WFF_INLINE void king_tangent_lane(const king_params *k, wff_tangent_block *blk, 
         blk->tangent[i][b] = tangent[i];
 }
 
-/* Blocked tangent: WFF_BLOCK points in one vectorised lane loop, c = 2 as a
- * constant (king_evaluate_tri_block's rule); other parameters, and yarn
- * failure, decline. */
-static int king_amplitude_tangent_block(const void *params, wff_tangent_block *blk)
-{
-    const king_params local = *(const king_params *)params, *k = &local;
-    if (k->locking_exponent != 2 || k->failure.enabled != 0)
-        return -1;
-#pragma omp simd
-    for (int b = 0; b < WFF_BLOCK; b++)
-        king_tangent_lane(k, blk, b);
-    return 0;
-}
+/* The blocked ops (cell_lanes.h), each one vectorised loop over the lanes
+ * above: king_evaluate_tri_block, king_evaluate_point_block,
+ * king_amplitude_tangent_block, king_wave_speeds_block. */
+WFF_CELL_TRI_BLOCK(king, king_params, king_blocks_accept, king_tri_ctx, king_tri_setup,
+                   king_tri_lane, king_tri_finish)
+WFF_CELL_POINT_BLOCK(king, king_params, king_blocks_accept, king_point_ctx, king_point_setup,
+                     king_point_lane, wff_lanes_nothing_after)
+WFF_CELL_TANGENT_BLOCK(king, king_params, king_tangent_accepts, wff_lane_arg,
+                       wff_lanes_keep_arg, king_tangent_lane, wff_lanes_nothing_after)
+WFF_CELL_WAVE_BLOCK(king, king_params, king_wave_accepts, wff_lane_arg, wff_lanes_keep_arg,
+                    king_wave_lane, wff_lanes_nothing_after)
 
 /* docs/model.md §9: the material file's keys, checked; derived reference
  * quantities L_k⁰, β_k⁰, d_k⁰ (at θ⁰ = 90°) and the cell area; the yarn

@@ -48,6 +48,7 @@
 #include "wovenff/cell.h"
 #include "wovenff/material.h"
 #include "cell_laws.h"
+#include "cell_lanes.h"
 #include "yarn_failure.h"
 
 #include <math.h>
@@ -148,8 +149,8 @@ static void linear_point_fail(const linear_params *c, const double *state, doubl
 
 /* P = Σ_k Q_k ⊗ E_k, Q_k = N_k ĝ_k + G γ/(λ_k sinθ) (ĝ_l − cosθ ĝ_k): the
  * shared Q coefficients with the yarn term N_k, the couple G γ, no spars. */
-static int linear_evaluate(const void *params, const double F[6], const double dA[2],
-                           const double *state, double dt, wff_point_result *out)
+WFF_INLINE int linear_evaluate(const void *params, const double F[6], const double dA[2],
+                               const double *state, double dt, wff_point_result *out)
 {
     (void)dA; /* no amplitudes */
     const linear_params *c = params;
@@ -222,11 +223,36 @@ static int linear_evaluate_shared(const void *params, const double F[6], int n_p
     return WFF_POINT_OK;
 }
 
-/* Lane b of a block: linear_evaluate's formulas for one triangle. A function
- * of its own so that its locals are plain scalars once inlined (inside an
- * `omp simd` body they would become per-lane arrays). */
-WFF_INLINE void linear_tri_lane(const linear_params *c, double slack, wff_tri_block *blk, int b)
+/* What the lanes of a triangle block share: tension_only as a double. */
+typedef struct linear_tri_ctx {
+    double slack;
+} linear_tri_ctx;
+
+/* Blocks of linear triangles (the far field of a zonal model): no state,
+ * residuals and dissipation 0; a material with yarn failure goes back to the
+ * general path. */
+WFF_INLINE int linear_tri_accepts(const linear_params *c)
 {
+    return c->failure.enabled == 0;
+}
+
+WFF_INLINE void linear_tri_setup(const linear_params *c, double dt, linear_tri_ctx *ctx,
+                                 wff_tri_block *blk)
+{
+    (void)dt; /* no flow */
+    ctx->slack = c->tension_only;
+    memset(blk->residual, 0, sizeof blk->residual); /* (outside the lanes' loop: a store
+                                                     gcc makes a memset stops it vectorising) */
+    memset(blk->dissipated, 0, sizeof blk->dissipated);
+    memset(blk->failure_dissipated, 0, sizeof blk->failure_dissipated);
+}
+
+/* Lane b of a block: linear_evaluate's formulas for one triangle. */
+WFF_INLINE void linear_tri_lane(const linear_params *c, const linear_tri_ctx *ctx,
+                                wff_tri_block *blk, double flag[WFF_BLOCK], int b)
+{
+    (void)flag;
+    const double slack = ctx->slack;
     const double unit_pitch[FAMILIES] = {1, 1}, no_spars[FAMILIES] = {0, 0},
                  unit_scale[FAMILIES] = {1, 1};
     const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
@@ -251,26 +277,13 @@ WFF_INLINE void linear_tri_lane(const linear_params *c, double slack, wff_tri_bl
     blk->energy[b] = energy + 0.5 * c->shear_stiffness * fr.gamma * fr.gamma;
 }
 
-/* Fast path for blocks of linear triangles (the far field of a zonal model):
- * one loop over the lanes, vectorised by gcc (libmvec's atan, sqrt and
- * divisions in vector registers); no state, residuals and dissipation 0.
- * Declines a material with yarn failure. */
-static int linear_evaluate_tri_block(const void *params, double dt, wff_tri_block *blk)
-{
-    (void)dt; /* no flow */
-    const linear_params local = *(const linear_params *)params; /* stays in registers */
-    if (local.failure.enabled != 0)
-        return -1;
-    const double slack = local.tension_only;
-    memset(blk->residual, 0, sizeof blk->residual); /* (outside the lanes' loop: a store
-                                                     gcc makes a memset stops it vectorising) */
-    memset(blk->dissipated, 0, sizeof blk->dissipated);
-    memset(blk->failure_dissipated, 0, sizeof blk->failure_dissipated);
-#pragma omp simd
-    for (int b = 0; b < WFF_BLOCK; b++)
-        linear_tri_lane(&local, slack, blk, b);
-    return 0;
-}
+/* The blocked ops (cell_lanes.h), one vectorised loop over the lanes each:
+ * linear_evaluate_tri_block with the lane above; linear_evaluate_point_block
+ * (quads' Gauss points) and linear_wave_speeds_block generated from
+ * linear_evaluate and linear_wave_speeds. */
+WFF_CELL_TRI_BLOCK(linear, linear_params, linear_tri_accepts, linear_tri_ctx, linear_tri_setup,
+                   linear_tri_lane, wff_lanes_nothing_after)
+WFF_CELL_GENERATED(POINT, linear, linear_params, linear_evaluate)
 
 static void linear_energy_split(const void *params, const double F[6], const double dA[2],
                                 const double *state, double *mech)
@@ -296,9 +309,9 @@ static void linear_energy_split(const void *params, const double F[6], const dou
  *                derivatives of the angle at most (1 + 1/sinθ)/λ² (in-plane 1/λ²,
  *                out-of-plane cotθ/λ², across the two yarns 1/(λ_1 λ_2 sinθ)).
  * No amplitudes: amplitude_omega = 0. */
-static void linear_wave_speeds(const void *params, double areal_density, const double F[6],
-                               const double dA[2], double *membrane_speed,
-                               double *amplitude_omega)
+WFF_INLINE void linear_wave_speeds(const void *params, double areal_density,
+                                   const double F[6], const double dA[2],
+                                   double *membrane_speed, double *amplitude_omega)
 {
     /* undamaged (§20): damage only lowers the yarn terms, so this stays an upper bound */
     (void)dA;
@@ -322,6 +335,8 @@ static void linear_wave_speeds(const void *params, double areal_density, const d
     }
     *membrane_speed = sqrt(membrane / areal_density);
 }
+
+WFF_CELL_GENERATED(WAVE, linear, linear_params, linear_wave_speeds)
 
 static int linear_parse(wff_kv *kv, wff_material *mat, wff_error *err)
 {
@@ -374,5 +389,7 @@ static const wff_cell_type linear_yarns = {
     .energy_split = linear_energy_split,
     .evaluate_shared = linear_evaluate_shared,
     .evaluate_tri_block = linear_evaluate_tri_block,
+    .evaluate_point_block = linear_evaluate_point_block,
+    .wave_speeds_block = linear_wave_speeds_block,
 };
 WFF_REGISTER_CELL(linear_yarns);

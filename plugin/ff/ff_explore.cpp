@@ -121,29 +121,29 @@ std::vector<Column> columns(const wff_material &mat, const wff_point_record &rec
                                {"gamma_f", "rad", g >= 0 ? s.state[g] : 0.0}};
     for (int i = 0; i < mat.n_state; i++)
         if (i != g)
-            out.push_back({c->state_names[i], c->state_units[i], s.state[i]});
+            out.push_back({wff_cell_state_name(c, i), wff_cell_state_unit(c, i), s.state[i]});
     out.insert(out.end(), {{"P11", "N/m", rec.point.stress[0]},
                            {"P22", "N/m", rec.point.stress[3]},
                            {"P12", "N/m", rec.point.stress[1]}});
-    if (c->n_amplitudes > 0)
+    if (wff_cell_amplitudes(c) > 0)
         out.insert(out.end(), {{"R1", "N/m^2", rec.point.residual[0]},
                                {"R2", "N/m^2", rec.point.residual[1]},
                                {"dA1", "m", s.dA[0]},
                                {"dA2", "m", s.dA[1]},
                                {"dA1_static", "m", dA_static[0]},
                                {"dA2_static", "m", dA_static[1]}});
-    for (int i = 0; i < c->n_diag; i++) {
+    for (int i = 0; i < wff_cell_n_diag(c); i++) {
         bool listed = false;
         for (const Column &col : out)
-            listed = listed || col.name == c->diag_names[i];
+            listed = listed || col.name == wff_cell_diag_name(c, i);
         if (!listed)
-            out.push_back({c->diag_names[i], c->diag_units[i], rec.point.diag[i]});
+            out.push_back({wff_cell_diag_name(c, i), wff_cell_diag_unit(c, i), rec.point.diag[i]});
     }
     out.push_back({"W", "J/m^2", rec.point.energy});
-    if (c->n_amplitudes > 0)
+    if (wff_cell_amplitudes(c) > 0)
         out.push_back({"K_amp", "J/m^2", rec.amplitude_kinetic});
     for (int i = 0; i < rec.n_mech; i++)
-        out.push_back({std::string("E_") + c->mech_names[i], "J/m^2", rec.mech_energy[i]});
+        out.push_back({std::string("E_") + wff_cell_mech_name(c, i), "J/m^2", rec.mech_energy[i]});
     return out;
 }
 
@@ -154,7 +154,7 @@ std::vector<Column> column_names(const char *fn, const M &material)
     wff_material scratch;
     const wff_material &mat = *wff_ff_material_arg(fn, material, &scratch);
     wff_point_record rec = {};
-    rec.n_mech = mat.cell->energy_split ? mat.cell->n_mech : 0;
+    rec.n_mech = wff_cell_has_energy_split(mat.cell) ? wff_cell_n_mech(mat.cell) : 0;
     const wff_point_state s = {};
     const double none[2] = {0, 0};
     return columns(mat, rec, s, none);
@@ -243,7 +243,7 @@ template <class M>
 long ffCellAmplitudes(const M &material)
 {
     wff_material scratch;
-    return wff_ff_material_arg("wovenffCellAmplitudes", material, &scratch)->cell->n_amplitudes;
+    return wff_cell_amplitudes(wff_ff_material_arg("wovenffCellAmplitudes", material, &scratch)->cell);
 }
 
 template <class M>
@@ -254,12 +254,12 @@ long ffReferenceGeometry(const M &material, KN<double> *const &out)
         wff_ff_fail(fn, "no output array");
     wff_material scratch;
     const wff_material &mat = *wff_ff_material_arg(fn, material, &scratch);
-    if (!mat.cell->reference_geometry) {
+    if (!wff_cell_has_reference_geometry(mat.cell)) {
         out->resize(0);
         return 0;
     }
     double pitch0[2], amplitude0[2];
-    mat.cell->reference_geometry(mat.params, pitch0, amplitude0);
+    wff_cell_reference_geometry(&mat, pitch0, amplitude0);
     out->resize(4);
     (*out)[0] = pitch0[0];
     (*out)[1] = pitch0[1];

@@ -78,10 +78,10 @@ void require_amplitudes_in_model(const char *fn, const wff_material &mat, const 
                                  const char *where = "")
 {
     const wff_cell_type *c = mat.cell;
-    if (c->n_amplitudes <= 0 || !c->reference_geometry)
+    if (wff_cell_amplitudes(c) <= 0 || !wff_cell_has_reference_geometry(c))
         return;
     double pitch0[2], amplitude0[2];
-    c->reference_geometry(mat.params, pitch0, amplitude0);
+    wff_cell_reference_geometry(&mat, pitch0, amplitude0);
     for (int k = 0; k < 2; k++)
         if (!(std::fabs(dA[k]) < pitch0[k])) {
             char msg[300 + sizeof mat.source];
@@ -173,7 +173,7 @@ void point(const char *fn, const M &material, KN<double> *Fv, KN<double> *dAv, d
     state_from_gamma_f(*mat, gamma_f, state);
     if (wff_material_evaluate(mat, F, dA, state, dt, r) != WFF_POINT_OK)
         fail_degenerate(fn, "", F, *mat);
-    const int n_diag = mat->cell->n_diag;
+    const int n_diag = wff_cell_n_diag(mat->cell);
     out->resize(kOutFixed + n_diag + extra);
     for (int i = 0; i < 6; i++)
         (*out)[i] = r->stress[i];
@@ -231,7 +231,7 @@ double ffPoints(const M &material, KN<double> *const &Fv, KN<double> *const &dAv
         wff_ff_fail(fn, "out must be an array of its own (it is resized), not F, dA or gammaf");
     wff_material scratch;
     const wff_material *mat = material_for(fn, material, out, &scratch);
-    const long cols = kOutFixed + mat->cell->n_diag;
+    const long cols = kOutFixed + wff_cell_n_diag(mat->cell);
     out->resize(n * cols);
     const char *const f_names[6] = {"F11", "F12", "F21", "F22", "F31", "F32"};
     for (long p = 0; p < n; p++) {
@@ -276,7 +276,7 @@ double ffPoints(const M &material, KN<double> *const &Fv, KN<double> *const &dAv
         row[6] = r.residual[0];
         row[7] = r.residual[1];
         row[8] = r.energy;
-        for (int i = 0; i < mat->cell->n_diag; i++)
+        for (int i = 0; i < wff_cell_n_diag(mat->cell); i++)
             row[kOutFixed + i] = r.diag[i];
     }
     return (double)n;
@@ -286,8 +286,8 @@ double ffPoints(const M &material, KN<double> *const &Fv, KN<double> *const &dAv
 const wff_cell_type *split_cell(const char *fn, const wff_material &mat)
 {
     const wff_cell_type *c = mat.cell;
-    if (!c->energy_split || c->n_mech <= 0) {
-        std::string msg = std::string("cell '") + c->name + "' (material " + mat.source +
+    if (!wff_cell_has_energy_split(c) || wff_cell_n_mech(c) <= 0) {
+        std::string msg = std::string("cell '") + wff_cell_name(c) + "' (material " + mat.source +
                           ") has no energy split per mechanism";
         wff_ff_fail(fn, msg.c_str());
     }
@@ -310,12 +310,12 @@ double ffEnergySplit(const M &material, KN<double> *const &Fv, KN<double> *const
     double mech[WFF_MECH_MAX];
     double state[WFF_STATE_MAX];
     state_from_gamma_f(mat, gamma_f, state);
-    c->energy_split(mat.params, F, dA, state, mech);
-    for (int i = 0; i < c->n_mech; i++)
+    wff_cell_energy_split(&mat, F, dA, state, mech);
+    for (int i = 0; i < wff_cell_n_mech(c); i++)
         if (!std::isfinite(mech[i]))
             fail_degenerate(fn, "", F, mat);
-    out->resize(c->n_mech);
-    for (int i = 0; i < c->n_mech; i++)
+    out->resize(wff_cell_n_mech(c));
+    for (int i = 0; i < wff_cell_n_mech(c); i++)
         (*out)[i] = mech[i];
     return 0;
 }
@@ -327,8 +327,8 @@ string *ffMechNames(Stack stack, const M &material)
     wff_material scratch;
     const wff_cell_type *c = split_cell(fn, *wff_ff_material_arg(fn, material, &scratch));
     std::string text;
-    for (int i = 0; i < c->n_mech; i++)
-        text += (i ? " " : "") + std::string(c->mech_names[i]);
+    for (int i = 0; i < wff_cell_n_mech(c); i++)
+        text += (i ? " " : "") + std::string(wff_cell_mech_name(c, i));
     return Add2StackOfPtr2Free(stack, new string(text));
 }
 
@@ -431,20 +431,20 @@ string *ffCellInfo(Stack stack, const M &material)
 {
     wff_material scratch;
     const wff_cell_type *c = wff_ff_material_arg("wovenffCellInfo", material, &scratch)->cell;
-    std::string text = std::string("cell ") + c->name + ": " + c->summary + "\n" +
+    std::string text = std::string("cell ") + wff_cell_name(c) + ": " + wff_cell_summary(c) + "\n" +
                        "wovenffPoint out layout (index name unit):\n";
     char line[120];
-    for (int i = 0; i < kOutFixed + c->n_diag; i++) {
+    for (int i = 0; i < kOutFixed + wff_cell_n_diag(c); i++) {
         bool fixed = i < kOutFixed;
         snprintf(line, sizeof line, "  %2d %-6s %s\n", i,
-                 fixed ? kOutNames[i] : c->diag_names[i - kOutFixed],
-                 fixed ? kOutUnits[i] : c->diag_units[i - kOutFixed]);
+                 fixed ? kOutNames[i] : wff_cell_diag_name(c, i - kOutFixed),
+                 fixed ? kOutUnits[i] : wff_cell_diag_unit(c, i - kOutFixed));
         text += line;
     }
-    if (c->energy_split && c->n_mech > 0) {
+    if (wff_cell_has_energy_split(c) && wff_cell_n_mech(c) > 0) {
         text += "wovenffPointEnergySplit out (J/m^2):";
-        for (int i = 0; i < c->n_mech; i++)
-            text += std::string(" ") + c->mech_names[i];
+        for (int i = 0; i < wff_cell_n_mech(c); i++)
+            text += std::string(" ") + wff_cell_mech_name(c, i);
         text += "\n";
     }
     return Add2StackOfPtr2Free(stack, new string(text));

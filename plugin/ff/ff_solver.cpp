@@ -334,8 +334,8 @@ string *ffMechNames(Stack stack, const long &id)
     const wff_model *m = model_of(id, "wovenffMechNames");
     const wff_cell_type *cell = wff_model_material(m)->cell;
     std::string names;
-    for (int k = 0; k < cell->n_mech && k < WFF_MECH_MAX; k++)
-        names += std::string(k ? " " : "") + cell->mech_names[k];
+    for (int k = 0; k < wff_cell_n_mech(cell) && k < WFF_MECH_MAX; k++)
+        names += std::string(k ? " " : "") + wff_cell_mech_name(cell, k);
     return Add2StackOfPtr2Free(stack, new string(names));
 }
 

@@ -1,20 +1,27 @@
 #!/bin/sh
 # The portable build: wovenff.so and every object of the C core hold no
 # instruction beyond x86-64-v2 outside the kernel variants chosen at run time
-# (include/wovenff/kernel.h): a function named NAME__avx2 may use up to
-# x86-64-v3 (AVX2, FMA, BMI), one named NAME__avx512 anything; every other
+# (include/wovenff/kernel.h): a function of the avx2 variant may use up to
+# x86-64-v3 (AVX2, FMA, BMI), one of the avx512 variant anything; every other
 # function, none of AVX (VEX or EVEX encodings, %ymm, %zmm, mask registers),
 # BMI1/2, LZCNT, MOVBE or ADX. libmvec's vector functions likewise: the SSE4
-# ones (_ZGVb) anywhere, the AVX2 ones (_ZGVc, _ZGVd) only from __avx2 and
-# __avx512 code, the AVX-512 ones (_ZGVe) only from __avx512 code. And the
+# ones (_ZGVb) anywhere, the AVX2 ones (_ZGVc, _ZGVd) only from avx2 and
+# avx512 code, the AVX-512 ones (_ZGVe) only from avx512 code. And the
 # variants are what they claim: AVX-512 code in the avx512 variant, AVX2 code
 # in the avx2 one, the entry points of all three in the library.
+# Which variant a function belongs to: its object (build/kernel/VARIANT.o, the
+# variant's kernels linked together), and in the library the address range
+# the link map (build/wovenff.map, written beside it) gives that object's
+# code. Static functions keep their names in every variant (king_evaluate is
+# in all three), so a name alone does not say.
 # Run from the repository root after make (make test does). With an argument:
 # that library alone (e.g. an older build, to see what it holds).
 root=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$root" || exit 1
 lib=${1:-build/wovenff.so}
 [ -f "$lib" ] || { echo "portable_build: $lib missing (run make first)"; exit 1; }
+map=${lib%.so}.map
+[ -f "$map" ] || { echo "portable_build: the link map $map missing (the Makefile writes it)"; exit 1; }
 objects=""
 if [ $# -eq 0 ]; then
     # the objects the library is linked from, as the Makefile lists them (the core's
@@ -25,14 +32,38 @@ if [ $# -eq 0 ]; then
 fi
 fail=0
 
-# Disassembly of one file → "FILE FUNCTION LEVEL-NEEDED INSTRUCTION" for every
-# instruction beyond x86-64-v2, where LEVEL-NEEDED is v3 or v4, then a summary
-# line "= FILE functions N avx2 N avx512 N zmm N ymm N".
+# The kernel variants' code in the library: "START END VARIANT" (decimal) for
+# every text section the link map places from build/kernel/VARIANT.o.
+ranges=$(mktemp)
+awk 'function hex(s,  i, n) { n = 0; s = tolower(s); sub(/^0x/, "", s)
+         for (i = 1; i <= length(s); i++) n = n * 16 + index("0123456789abcdef", substr(s, i, 1)) - 1
+         return n }
+     /^ \.text/ { if (NF == 1) { getline; $0 = "x " $0 } }
+     /^ \.text|^x / && $4 ~ /kernel\/(baseline|avx2|avx512)\.o$/ {
+         v = $4; sub(/.*kernel\//, "", v); sub(/\.o$/, "", v)
+         printf "%.0f %.0f %s\n", hex($2), hex($2) + hex($3), v }' "$map" >"$ranges"
+
+# Disassembly of one file → "FILE FUNCTION VARIANT LEVEL-NEEDED INSTRUCTION"
+# for every instruction beyond x86-64-v2, where VARIANT is baseline, avx2,
+# avx512 or "-" (no variant) and LEVEL-NEEDED is v3 or v4, then a summary line
+# "= FILE functions N avx2 N avx512 N zmm N ymm N".
 scan() {
-    objdump -d --no-show-raw-insn "$1" | awk -v file="$1" '
+    fixed=-
+    case "$1" in */kernel/baseline.o) fixed=baseline ;; */kernel/avx2.o) fixed=avx2 ;;
+                 */kernel/avx512.o) fixed=avx512 ;; esac
+    objdump -d --no-show-raw-insn "$1" | awk -v file="$1" -v fixed="$fixed" -v lib="$lib" \
+        -v ranges="$ranges" '
+    function hex(s,  i, n) { n = 0; s = tolower(s)
+        for (i = 1; i <= length(s); i++) n = n * 16 + index("0123456789abcdef", substr(s, i, 1)) - 1
+        return n }
+    BEGIN { if (file == lib) while ((getline line < ranges) > 0) { split(line, r, " ")
+                nr++; lo[nr] = r[1]; hi[nr] = r[2]; rv[nr] = r[3] } }
     /^[0-9a-f]+ <.*>:$/ {
         fn = substr($2, 2, length($2) - 3); funcs++
-        if (fn ~ /__avx2$/) n2++; else if (fn ~ /__avx512$/) n5++
+        variant = fixed
+        if (file == lib) { a = hex($1); variant = "-"
+            for (i = 1; i <= nr; i++) if (a >= lo[i] && a < hi[i]) { variant = rv[i]; break } }
+        if (variant == "avx2") n2++; else if (variant == "avx512") n5++
         next
     }
     fn ~ /@plt$/ { next } # a PLT stub: a jump to the function it names
@@ -60,7 +91,7 @@ scan() {
         # libmvec: the vector width a call needs
         if (ins ~ /<_ZGVe/) level = "v4"
         else if (ins ~ /<_ZGV[cd]/ && level == "") level = "v3"
-        if (level != "") print file, fn, level, ins
+        if (level != "") print file, fn, variant, level, ins
     }
     END {
         for (f in zmm) nz++
@@ -69,13 +100,13 @@ scan() {
     }'
 }
 
-out=$(mktemp); trap 'rm -f "$out"' EXIT
+out=$(mktemp); trap 'rm -f "$out" "$ranges"' EXIT
 for f in "$lib" $objects; do scan "$f"; done >"$out"
 
-# what each function may use: __avx512 anything, __avx2 up to v3, the rest v2
-bad=$(awk '!/^=/ && !($2 ~ /__avx512$/) && !($2 ~ /__avx2$/ && $3 == "v3")' "$out")
+# what each function may use: avx512 anything, avx2 up to v3, the rest v2
+bad=$(awk '!/^=/ && $3 != "avx512" && !($3 == "avx2" && $4 == "v3")' "$out")
 if [ -n "$bad" ]; then
-    echo "instructions beyond x86-64-v2 outside the kernel variants (file function level instruction):"
+    echo "instructions beyond x86-64-v2 outside the kernel variants (file function variant level instruction):"
     printf '%s\n' "$bad" | head -40
     echo "($(printf '%s\n' "$bad" | wc -l) in all)"
     fail=1
@@ -90,9 +121,9 @@ echo "portable_build: $lib: $funcs functions, $avx2 of them avx2 and $avx512 avx
      "$beyond instructions beyond x86-64-v2, $outside of them outside the variants"
 
 # the variants are what they claim
-zmm512=$(awk -v lib="$lib" '$1 == lib && $2 ~ /__avx512$/ && /%zmm/' "$out" | wc -l)
-ymm2=$(awk -v lib="$lib" '$1 == lib && $2 ~ /__avx2$/ && /%ymm/' "$out" | wc -l)
-mvec512=$(awk -v lib="$lib" '$1 == lib && $2 ~ /__avx512$/ && /<_ZGVe/' "$out" | wc -l)
+zmm512=$(awk -v lib="$lib" '$1 == lib && $3 == "avx512" && /%zmm/' "$out" | wc -l)
+ymm2=$(awk -v lib="$lib" '$1 == lib && $3 == "avx2" && /%ymm/' "$out" | wc -l)
+mvec512=$(awk -v lib="$lib" '$1 == lib && $3 == "avx512" && /<_ZGVe/' "$out" | wc -l)
 echo "portable_build: $zmm512 zmm instructions and $mvec512 calls to libmvec's AVX-512 functions" \
      "in the avx512 variant, $ymm2 ymm instructions in the avx2 variant"
 [ "$zmm512" -gt 0 ] && [ "$mvec512" -gt 0 ] || { echo "the avx512 variant holds no AVX-512 code"; fail=1; }
