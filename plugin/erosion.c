@@ -1,9 +1,11 @@
-/* erosion.c: element erosion (plugin/erosion.h): the setting, the scan after
- * a force pass that marks elements whose yarns have ruptured and moves their
- * stored energy to the eroded energy, and the damage the output and the mesh
- * transfer read. The element kernels (membrane.c, membrane_quad.c,
- * membrane_centre.c) only skip what el->eroded marks. Knows the model's
- * arrays and the cells through their tables (damage_state); nothing of the
+/* erosion.c: element erosion (plugin/erosion.h), a part of the step
+ * (part.h): the setting, the scan after a force pass that marks elements
+ * whose yarns have ruptured and moves their stored energy (the element
+ * layer's wff_element_stored_energy) to the eroded energy, the mesh-transfer
+ * refusal and carry, and the damage the output and the mesh transfer read.
+ * The element kernels (membrane_tri.c, membrane_quad.c, membrane_centre.c)
+ * only skip what el->eroded marks. Knows the model's arrays and the cells
+ * through their wrappers (cell_ops.h: damage_state); nothing of the
  * integrator's step, contact, output files or FreeFEM. */
 #include "erosion.h"
 #include "zones.h"

@@ -286,7 +286,7 @@ static void point_position(const wff_mesh *mesh, int e, int q, double p[2], doub
         return;
     }
     static const double sign[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-    const double g = 0.57735026918962576451; /* 1/√3, membrane.c's order */
+    const double g = 0.57735026918962576451; /* 1/√3, membrane_quad.c's order */
     const int *node = mesh->quad + 4 * (e - mesh->n_tris);
     p[0] = p[1] = 0;
     for (int a = 0; a < 4; a++) {
