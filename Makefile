@@ -46,7 +46,7 @@ CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
 # cells in a section of their own), linked into one object
 # build/kernel/VARIANT.o; plugin/kernel_dispatch.c picks one per model at run
 # time (WOVENFF_KERNEL).
-KERNEL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard plugin/cells/*.c) plugin/membrane.c \
+KERNEL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard plugin/cells/*.c) plugin/membrane_forces.c \
                                          plugin/membrane_tri.c plugin/membrane_quad.c \
                                          plugin/membrane_centre.c)
 KERNEL_VARIANTS := baseline avx2 avx512

@@ -24,7 +24,7 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
                                            double *f, double *energy, double *dissipated,
                                            double *failure, wff_force_totals *totals);
 
-/* The two halves of the force pass wff_elements_forces (membrane.c), each
+/* The two halves of the force pass wff_elements_forces (membrane_forces.c), each
  * adding its elements' forces into f, Σ A W, Σ A × dissipation and Σ A ×
  * failure dissipation (not yet divided by J_pre) into *energy, *dissipated,
  * *failure, its Newton iterations and first bad point into totals: the

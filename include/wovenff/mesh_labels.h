@@ -16,7 +16,8 @@
 #ifndef WOVENFF_MESH_LABELS_H
 #define WOVENFF_MESH_LABELS_H
 
-#include "wovenff/mesh.h"
+#include "wovenff/error.h"
+#include "wovenff/mesh_arrays.h"
 
 #ifdef __cplusplus
 extern "C" {

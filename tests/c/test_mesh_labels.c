@@ -4,6 +4,7 @@
  * telling FreeFEM's format from gmsh's. Files under $WFF_TEST_TMP. */
 #include "check.h"
 #include "test_tmp.h"
+#include "wovenff/mesh.h"
 #include "wovenff/mesh_labels.h"
 
 #include <stdlib.h>

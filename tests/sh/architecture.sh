@@ -78,7 +78,7 @@ awk "$srcof"'
     { o = $1; sub(/:$/, "", o); sym = $2; type = $3
       if (type == "U" || type == "w" || type == "v") { und[++nu] = file(o) " " sym; next }
       f = file(o); kernel = (o ~ /^build\/kernel\//)
-      # a kernel entry is defined in kernel_dispatch.c and in membrane.c: the core object wins
+      # a kernel entry is defined in kernel_dispatch.c and in membrane_forces.c: the core object wins
       if (!(sym in def) || (defk[sym] && !kernel)) { def[sym] = f; defk[sym] = kernel }
       if (kernel) kdef[sym] = f }
     END { for (i = 1; i <= nu; i++) { split(und[i], a, " "); s = a[2]; d = ""
