@@ -75,7 +75,22 @@ static inline __attribute__((always_inline)) void deformation_gradient(const dou
 static inline __attribute__((always_inline)) void
 tri_gradient(const wff_elements *el, const double *X, const double *u, int e, double F[6])
 {
-    deformation_gradient(X, u, el->tri + 3 * e, 3, el->tri_grad + 6 * e, F);
+    /* in scalars, deformation_gradient's sums in its order (the same bits): inside
+     * the blocked passes' `omp simd` gathers the lanes' loads stay vector gathers */
+    const int *node = el->tri + 3 * e;
+    const double *g = el->tri_grad + 6 * e;
+    double F0 = 0, F1 = 0, F2 = 0, F3 = 0, F4 = 0, F5 = 0;
+    for (int a = 0; a < 3; a++) {
+        const double *ua = u + WFF_DOFS_PER_NODE * node[a];
+        const double x = X[2 * node[a]] + ua[0], y = X[2 * node[a] + 1] + ua[1], z = ua[2];
+        F0 += x * g[2 * a];
+        F1 += x * g[2 * a + 1];
+        F2 += y * g[2 * a];
+        F3 += y * g[2 * a + 1];
+        F4 += z * g[2 * a];
+        F5 += z * g[2 * a + 1];
+    }
+    F[0] = F0, F[1] = F1, F[2] = F2, F[3] = F3, F[4] = F4, F[5] = F5;
 }
 
 /* tri_gradient's F and F_eff = F F_pre: what the triangle passes (forces
