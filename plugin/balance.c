@@ -233,6 +233,53 @@ int wff_preload_equal_force(const wff_material *mat, double yarn_force,
     return wff_biaxial_static(mat, hold, target, wff_rest_state, state, err);
 }
 
+int wff_preload_forces(const wff_material *mat, const double a[2], const double dA[2],
+                       double sigma[2])
+{
+    const double F[6] = {a[0], 0, 0, a[1], 0, 0};
+    wff_point_result r;
+    if (wff_material_evaluate(mat, F, dA, wff_rest_state, 0, &r) != WFF_POINT_OK)
+        return -1;
+    sigma[0] = r.stress[0] / a[1];
+    sigma[1] = r.stress[3] / a[0];
+    return isfinite(sigma[0]) && isfinite(sigma[1]) ? 0 : -1;
+}
+
+int wff_preload_matched(const wff_material *mat, const double target[2], const double a0[2],
+                        double a_out[2])
+{
+    const double none[2] = {0, 0};
+    double a[2] = {a0[0], a0[1]}, s[2];
+    double scale = fmax(fmax(fabs(target[0]), fabs(target[1])), 1e-3); /* N/m */
+    for (int it = 0; it < 100; it++) { /* Newton on diag(a1, a2), central-difference Jacobian */
+        if (wff_preload_forces(mat, a, none, s))
+            break;
+        double r[2] = {s[0] - target[0], s[1] - target[1]};
+        if (fabs(r[0]) <= 1e-11 * scale && fabs(r[1]) <= 1e-11 * scale) {
+            a_out[0] = a[0], a_out[1] = a[1];
+            return 0;
+        }
+        double J[2][2];
+        for (int j = 0; j < 2; j++) {
+            const double h = 1e-7 * a[j];
+            double ap[2] = {a[0], a[1]}, am[2] = {a[0], a[1]}, sp[2], sm[2];
+            ap[j] += h, am[j] -= h;
+            if (wff_preload_forces(mat, ap, none, sp) || wff_preload_forces(mat, am, none, sm))
+                it = 1000;
+            for (int i = 0; i < 2; i++)
+                J[i][j] = (sp[i] - sm[i]) / (2 * h);
+        }
+        double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+        if (it >= 1000 || !(fabs(det) > 0))
+            break;
+        double d0 = -(J[1][1] * r[0] - J[0][1] * r[1]) / det;
+        double d1 = -(-J[1][0] * r[0] + J[0][0] * r[1]) / det;
+        double big = fmax(fabs(d0) / a[0], fabs(d1) / a[1]), cut = big > 0.05 ? 0.05 / big : 1;
+        a[0] += cut * d0, a[1] += cut * d1;
+    }
+    return -1;
+}
+
 int wff_uniaxial_static(const wff_material *mat, int family, double stretch,
                         wff_biaxial_state *state, wff_error *err)
 {

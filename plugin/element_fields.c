@@ -17,6 +17,36 @@
 #include <stdio.h>
 #include <string.h>
 
+int wff_model_element_center_eval(const wff_model *m, const double *u, int e,
+                                  wff_point_result *out)
+{
+    wff_element_material scratch;
+    const wff_element_material *em = wff_zones_element_material(m, e, &scratch);
+    const int nt = m->el.n_tris, n = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
+    const int ns = m->n_state, nz = em->mat->n_state;
+    const double *g = m->state + (size_t)ns * wff_element_first_point(nt, e);
+    double mean[WFF_STATE_MAX] = {0}; /* as wff_element_center_eval: Σ_q s_q / n */
+    for (int q = 0; q < n; q++)
+        for (int j = 0; j < nz; j++)
+            mean[j] += g[ns * q + j] / n;
+    return wff_element_center_eval_state(&m->el, em, m->mesh.xy, u, mean, e, out);
+}
+
+int wff_model_element_diag(const wff_model *m, int e, int diag)
+{
+    if (!m->zones || diag < 0)
+        return diag;
+    wff_element_material scratch;
+    const wff_cell_type *cell = wff_zones_element_material(m, e, &scratch)->mat->cell;
+    const wff_cell_type *base = m->mat.cell;
+    if (cell == base)
+        return diag;
+    for (int d = 0; d < wff_cell_n_diag(cell); d++)
+        if (strcmp(wff_cell_diag_name(cell, d), wff_cell_diag_name(base, diag)) == 0)
+            return d;
+    return -1;
+}
+
 enum { EF_P = 0, EF_LAMBDA = 6, EF_SHEAR = 8, EF_W, EF_TENSION, EF_DAMAGE = 12, EF_ERODED = 14,
        EF_STATE = 16, EF_DIAG = EF_STATE + WFF_STATE_MAX };
 
@@ -137,7 +167,7 @@ int wff_model_element_values_model(const wff_model *m, const char *name, double 
             wff_point_result r;
             wff_element_material zone;
             const wff_element_material *em = wff_zones_element_material(m, e, &zone);
-            if (wff_zones_center_eval(m, m->u, e, &r) != WFF_POINT_OK) {
+            if (wff_model_element_center_eval(m, m->u, e, &r) != WFF_POINT_OK) {
                 char what[96];
                 wff_model_element_name(m, e, what, sizeof what);
                 return wff_fail(err, "element field '%s': %s is degenerate (yarns collapsed "
@@ -151,8 +181,8 @@ int wff_model_element_values_model(const wff_model *m, const char *name, double 
                 value = wff_cell_yarn_tension_diag(em->mat->cell, code - EF_TENSION) >= 0
                             ? r.diag[wff_cell_yarn_tension_diag(em->mat->cell, code - EF_TENSION)] : 0;
             else
-                value = wff_zones_diag(m, e, code - EF_DIAG) >= 0
-                            ? r.diag[wff_zones_diag(m, e, code - EF_DIAG)] : 0;
+                value = wff_model_element_diag(m, e, code - EF_DIAG) >= 0
+                            ? r.diag[wff_model_element_diag(m, e, code - EF_DIAG)] : 0;
         }
         out[e] = value;
     }

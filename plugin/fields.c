@@ -101,8 +101,8 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
             value = M_PI_2 - atan2(sqrt(cx * cx + cy * cy + cz * cz), dot);
         } else {
             wff_point_result r;
-            wff_zones_center_eval(m, m->u, e, &r);
-            int d = wff_zones_diag(m, e, diag); /* a zone's cell may lack it: 0 there */
+            wff_model_element_center_eval(m, m->u, e, &r);
+            int d = wff_model_element_diag(m, e, diag); /* a zone's cell may lack it: 0 there */
             value = energy ? r.energy : d >= 0 ? r.diag[d] : 0;
         }
         int nn = e < m->el.n_tris ? 3 : 4;

@@ -51,5 +51,14 @@ int wff_model_element_values_model(const wff_model *m, const char *name, double 
  * element's centre (stress, W, tensions, diagnostics: 0 on an eroded element,
  * which nodal averages leave out), 0 for the kinematic and state fields. */
 int wff_element_field_evaluated(const wff_model *m, const char *name);
+/* element_fields.c: index in element e's cell's diagnostics of the model
+ * cell's diagnostic `diag` (the same name; a zone's cell may differ), or -1 when
+ * that cell has none of the name. */
+int wff_model_element_diag(const wff_model *m, int e, int diag);
+/* element_fields.c: element e (model numbering) evaluated at its centre with
+ * its zone's material and preload, each of its material's states held at the
+ * mean of the element's points (m->state), displacement u; the point status. */
+int wff_model_element_center_eval(const wff_model *m, const double *u, int e,
+                                  wff_point_result *out);
 
 #endif

@@ -16,6 +16,7 @@
 #include "zones.h"
 #include "clamp.h"
 #include "plies.h"
+#include "wovenff/balance.h"
 #include "wovenff/kernel.h"
 #include "wovenff/material.h"
 #include "wovenff/text_io.h"
@@ -273,23 +274,8 @@ static void zones_eroded_copy(const wff_model *m)
     }
 }
 
-/* Membrane forces per mesh width σ11 = P11 / λ2, σ22 = P22 / λ1 (σ = P F_preᵀ /
- * J_pre for a diagonal F_pre = diag(λ1, λ2)) of material mat at the preload
- * diag(a), amplitudes dA, γᶠ = 0. */
-static int preload_forces(const wff_material *mat, const double a[2], const double dA[2],
-                          double sigma[2])
-{
-    const double F[6] = {a[0], 0, 0, a[1], 0, 0};
-    wff_point_result r;
-    if (wff_material_evaluate(mat, F, dA, wff_rest_state, 0, &r) != WFF_POINT_OK)
-        return -1;
-    sigma[0] = r.stress[0] / a[1];
-    sigma[1] = r.stress[3] / a[0];
-    return isfinite(sigma[0]) && isfinite(sigma[1]) ? 0 : -1;
-}
-
 /* Zone k's diagonal preload whose membrane forces are the model cell's at the
- * model's preload: Newton on diag(a1, a2), central-difference Jacobian. */
+ * model's preload (balance.c's wff_preload_matched). */
 static int match_preload(wff_model *m, int k, wff_error *err)
 {
     wff_zone *z = &m->zones->zone[k];
@@ -298,37 +284,13 @@ static int match_preload(wff_model *m, int k, wff_error *err)
         return wff_fail(err, "zone %d (%s): a matched preload needs a diagonal model preload "
                         "(F_pre = [%g %g; %g %g])", k, z->mat.source, Fp[0], Fp[1], Fp[2], Fp[3]);
     const double a_model[2] = {Fp[0], Fp[3]};
-    const double dA0[2] = {m->n_nodes ? m->u[3] : 0, m->n_nodes ? m->u[4] : 0}, none[2] = {0, 0};
-    double target[2], s[2];
-    if (preload_forces(&m->mat, a_model, dA0, target))
+    const double dA0[2] = {m->n_nodes ? m->u[3] : 0, m->n_nodes ? m->u[4] : 0};
+    double target[2], a[2];
+    if (wff_preload_forces(&m->mat, a_model, dA0, target))
         return wff_fail(err, "zone %d: the model's cell fails at its preload", k);
-    double a[2] = {a_model[0], a_model[1]};
-    double scale = fmax(fmax(fabs(target[0]), fabs(target[1])), 1e-3); /* N/m */
-    for (int it = 0; it < 100; it++) {
-        if (preload_forces(&z->mat, a, none, s))
-            break;
-        double r[2] = {s[0] - target[0], s[1] - target[1]};
-        if (fabs(r[0]) <= 1e-11 * scale && fabs(r[1]) <= 1e-11 * scale) {
-            z->F_pre[0] = a[0], z->F_pre[1] = z->F_pre[2] = 0, z->F_pre[3] = a[1];
-            return 0;
-        }
-        double J[2][2];
-        for (int j = 0; j < 2; j++) {
-            const double h = 1e-7 * a[j];
-            double ap[2] = {a[0], a[1]}, am[2] = {a[0], a[1]}, sp[2], sm[2];
-            ap[j] += h, am[j] -= h;
-            if (preload_forces(&z->mat, ap, none, sp) || preload_forces(&z->mat, am, none, sm))
-                it = 1000;
-            for (int i = 0; i < 2; i++)
-                J[i][j] = (sp[i] - sm[i]) / (2 * h);
-        }
-        double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-        if (it >= 1000 || !(fabs(det) > 0))
-            break;
-        double d0 = -(J[1][1] * r[0] - J[0][1] * r[1]) / det;
-        double d1 = -(-J[1][0] * r[0] + J[0][0] * r[1]) / det;
-        double big = fmax(fabs(d0) / a[0], fabs(d1) / a[1]), cut = big > 0.05 ? 0.05 / big : 1;
-        a[0] += cut * d0, a[1] += cut * d1;
+    if (wff_preload_matched(&z->mat, target, a_model, a) == 0) {
+        z->F_pre[0] = a[0], z->F_pre[1] = z->F_pre[2] = 0, z->F_pre[3] = a[1];
+        return 0;
     }
     return wff_fail(err, "zone %d (%s): no diagonal preload of cell '%s' gives the model's "
                     "preload membrane forces %g, %g N/m (cell '%s' at stretch %g, %g)", k,
@@ -741,35 +703,6 @@ const wff_element_material *wff_zones_element_material(const wff_model *m, int e
         return &m->em;
     zone_material(m, m->zones->element_zone[e], scratch);
     return scratch;
-}
-
-int wff_zones_center_eval(const wff_model *m, const double *u, int e, wff_point_result *out)
-{
-    wff_element_material scratch;
-    const wff_element_material *em = wff_zones_element_material(m, e, &scratch);
-    const int nt = m->el.n_tris, n = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
-    const int ns = m->n_state, nz = em->mat->n_state;
-    const double *g = m->state + (size_t)ns * wff_element_first_point(nt, e);
-    double mean[WFF_STATE_MAX] = {0}; /* as wff_element_center_eval: Σ_q s_q / n */
-    for (int q = 0; q < n; q++)
-        for (int j = 0; j < nz; j++)
-            mean[j] += g[ns * q + j] / n;
-    return wff_element_center_eval_state(&m->el, em, m->mesh.xy, u, mean, e, out);
-}
-
-int wff_zones_diag(const wff_model *m, int e, int diag)
-{
-    if (!m->zones || diag < 0)
-        return diag;
-    wff_element_material scratch;
-    const wff_cell_type *cell = wff_zones_element_material(m, e, &scratch)->mat->cell;
-    const wff_cell_type *base = m->mat.cell;
-    if (cell == base)
-        return diag;
-    for (int d = 0; d < wff_cell_n_diag(cell); d++)
-        if (strcmp(wff_cell_diag_name(cell, d), wff_cell_diag_name(base, diag)) == 0)
-            return d;
-    return -1;
 }
 
 uint64_t wff_zones_fingerprint(const wff_model *m, uint64_t g)

@@ -40,17 +40,10 @@ double wff_zones_stable_step(const wff_model *m, const double *u, int *worst);
  * (one without a namesake is left out). */
 void wff_zones_energy_split(const wff_model *m, const double *u, const double *state,
                             double *mech);
-/* Element e (model numbering) evaluated at its centre with its zone's
- * material and preload, each of its material's states held at the mean of
- * the element's points (m->state), displacement u; the point status. */
-int wff_zones_center_eval(const wff_model *m, const double *u, int e, wff_point_result *out);
 /* The material and preload element e (model numbering) sees: &m->em, or
  * *scratch filled for its zone. */
 const wff_element_material *wff_zones_element_material(const wff_model *m, int e,
                                                        wff_element_material *scratch);
-/* Index in element e's cell's diagnostics of the model cell's diagnostic
- * `diag` (the same name), or -1 when that cell has none of the name. */
-int wff_zones_diag(const wff_model *m, int e, int diag);
 /* The model's preload changed: matched zone preloads solved again, masses set;
  * -1 (err set) if a match fails. */
 int wff_zones_preload_changed(wff_model *m, wff_error *err);

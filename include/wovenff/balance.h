@@ -51,6 +51,18 @@ int wff_biaxial_static(const wff_material *mat, const wff_hold hold[2], const do
 int wff_preload_equal_force(const wff_material *mat, double yarn_force,
                             wff_biaxial_state *state, wff_error *err);
 
+/* Membrane forces per mesh width σ11 = P11 / a2, σ22 = P22 / a1 (σ = P F_preᵀ /
+ * J_pre for a diagonal F_pre = diag(a1, a2)) of material mat at the preload
+ * diag(a), amplitudes dA, γᶠ = 0; -1 when the point fails or they are not
+ * finite. */
+int wff_preload_forces(const wff_material *mat, const double a[2], const double dA[2],
+                       double sigma[2]);
+/* The diagonal stretch diag(a1, a2) of mat (amplitudes 0) whose membrane forces
+ * are target (N/m), by Newton from a0 with a central-difference Jacobian: a
+ * zone's matched preload (zones.c). 0 with it in a_out, -1 if none is found. */
+int wff_preload_matched(const wff_material *mat, const double target[2], const double a0[2],
+                        double a_out[2]);
+
 /* Quasi-static uniaxial strip: family `family` (0 warp, 1 weft) stretched to
  * `stretch`, the other direction free (P_ll = 0), amplitudes balanced. */
 int wff_uniaxial_static(const wff_material *mat, int family, double stretch,
