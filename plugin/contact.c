@@ -96,6 +96,18 @@ double wff_projectile_penetration(const wff_projectile *p, const double x[3], do
     }
 }
 
+double wff_projectile_nose_length(const wff_projectile *p)
+{
+    switch (p->nose) {
+    case WFF_NOSE_FLAT:
+        return p->edge_radius;
+    case WFF_NOSE_SPHERE:
+        return 2 * p->radius;
+    default:
+        return p->radius;
+    }
+}
+
 static double penetration(const wff_projectile *p, const double x[3], double normal[3])
 {
     return wff_projectile_penetration(p, x, normal);

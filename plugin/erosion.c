@@ -175,6 +175,23 @@ double wff_element_damage(const wff_model *m, int e, int k)
     return mean;
 }
 
+int wff_element_torn(const wff_model *m, int e)
+{
+    if (wff_element_eroded(&m->el, e))
+        return 1;
+    wff_element_material scratch;
+    const wff_material *mat = wff_zones_element_material(m, e, &scratch)->mat;
+    const int n = e < m->el.n_tris ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
+    const double *s = m->state + (size_t)m->n_state * wff_element_first_point(m->el.n_tris, e);
+    for (int k = 0; k < 2; k++) {
+        int i = damage_index(mat, k);
+        for (int q = 0; i >= 0 && q < n; q++)
+            if (s[m->n_state * q + i] >= 1)
+                return 1;
+    }
+    return 0;
+}
+
 int wff_model_damaged(const wff_model *m)
 {
     if (m->n_eroded > 0)

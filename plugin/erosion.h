@@ -38,6 +38,10 @@ int wff_erosion_on(wff_model *m, int rule, wff_error *err);
 /* Mean over element e's points of yarn family k's damage (0 .. 1), 0 when its
  * material carries none. */
 double wff_element_damage(const wff_model *m, int e, int k);
+/* 1 if element e has eroded or a yarn family has ruptured (damage >= 1) at a
+ * point of it: the element no longer carries load along both yarn families
+ * there (a pack's ply_apex follows only elements that do, pack.c). */
+int wff_element_torn(const wff_model *m, int e);
 /* 1 if an element has eroded or any point has damage > 0 (a mesh transfer
  * refuses such a model when erosion is on). */
 int wff_model_damaged(const wff_model *m);

@@ -1,9 +1,9 @@
 /* operators.c: the element operators a caller's own explicit loop needs
  * (docs/freefem_api.md "Your own loop"): internal and amplitude residual
  * forces at a given state (with or without advancing γᶠ), the lumped masses,
- * the stable step at a state, one built-in step, the DOF kinds, and the
+ * the stable step at a state, one built-in step, the DOF kinds, the
  * projectile's contact and the friction clamp's correction applied to a
- * caller's arrays. Each reuses the built-in step's own code (integrator.c's
+ * caller's arrays, and the shot's verdict at a caller's state. Each reuses the built-in step's own code (integrator.c's
  * force pass and clamp correction, contact.c's search and correction), so a
  * scripted loop that calls them in the built-in order gives the built-in's
  * numbers. Knows the model; nothing of cells by name, of output fields, of
@@ -11,6 +11,7 @@
 #include "clamp.h"
 #include "contact.h"
 #include "zones.h"
+#include "wovenff/perforation.h"
 #include "wovenff/renumber.h"
 
 #include <float.h>
@@ -203,6 +204,22 @@ int wff_model_contact(wff_model *m, const double *U, double *V, double *R, doubl
     }
     tip[1] = p->velocity;
     *dissipated = m->symmetry_factor * (m->dissipated_friction - before);
+    return rc;
+}
+
+int wff_model_perforation_at(wff_model *m, const double *U, wff_perforation *out,
+                             wff_error *err)
+{
+    double *u = m->u, *b = NULL;
+    if (m->node_user) {
+        const double *in[1] = {U};
+        if (!(b = model_copies(m, in, 1, err)))
+            return -1;
+    }
+    m->u = b ? b : (double *)U; /* perforation.c reads the state from the model: lend it the caller's */
+    int rc = wff_model_perforation(m, out, err);
+    m->u = u;
+    free(b);
     return rc;
 }
 

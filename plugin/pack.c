@@ -7,6 +7,7 @@
  * arrays, zones and erosion; nothing of FreeFEM. */
 #include "pack.h"
 #include "erosion.h"
+#include "perforation.h"
 #include "ply_contact.h"
 #include "zones.h"
 #include "wovenff/renumber.h"
@@ -134,112 +135,37 @@ static const wff_setting pack_settings[] = {
     {NULL, NULL, NULL},
 };
 
-/* Ply p's node range in the model's order. */
-static void ply_nodes(const wff_model *m, int p, int *first, int *end)
-{
-    int per = wff_pack_plies(m) > 1 ? m->pack->nodes : m->n_nodes;
-    *first = wff_pack_plies(m) > 1 ? p * per : 0;
-    *end = *first + per;
-}
-
-/* Ply p's element e's nodes (k of them) into c. */
-static int element_nodes(const wff_model *m, int e, const int **c)
-{
-    const int nt = m->el.n_tris;
-    *c = e < nt ? m->el.tri + 3 * e : m->el.quad + 4 * (e - nt);
-    return e < nt ? 3 : 4;
-}
-
-/* The largest u_z − base over the nodes reached from a node whose u_z is held
- * (an edge, the clamp) through ply p's elements not eroded; -1 if it cannot
- * tell (no such node, out of memory). */
-static int attached_apex(const wff_model *m, int p, int first, int end, double base, double *apex)
-{
-    const int nt = m->el.n_tris, n_el = nt + m->el.n_quads, nn = end - first;
-    const unsigned char *eroded = m->el.eroded;
-    int *offset = calloc((size_t)nn + 1, sizeof(int)), *queue = malloc(sizeof(int) * (size_t)nn);
-    unsigned char *seen = calloc((size_t)nn, 1);
-    int *incident = NULL, rc = -1;
-    if (!offset || !queue || !seen)
-        goto done;
-    for (int e = 0; e < n_el; e++) { /* node -> live elements (CSR) */
-        if (eroded[e] || wff_pack_element_ply(m, e) != p)
-            continue;
-        const int *c;
-        for (int j = 0, k = element_nodes(m, e, &c); j < k; j++)
-            offset[c[j] - first + 1]++;
-    }
-    for (int i = 0; i < nn; i++)
-        offset[i + 1] += offset[i];
-    incident = malloc(sizeof(int) * (size_t)(offset[nn] > 0 ? offset[nn] : 1));
-    int *fill = queue; /* (the queue's room, as fill counters first) */
-    if (!incident)
-        goto done;
-    memcpy(fill, offset, sizeof(int) * (size_t)nn);
-    for (int e = 0; e < n_el; e++) {
-        if (eroded[e] || wff_pack_element_ply(m, e) != p)
-            continue;
-        const int *c;
-        for (int j = 0, k = element_nodes(m, e, &c); j < k; j++)
-            incident[fill[c[j] - first]++] = e;
-    }
-    int head = 0, tail = 0;
-    for (int i = 0; i < nn; i++)
-        if (offset[i + 1] > offset[i] && m->dof_kind[D * (first + i) + WFF_UZ] != WFF_DOF_FREE)
-            seen[i] = 1, queue[tail++] = i;
-    if (tail == 0)
-        goto done; /* nothing held: every element not eroded counts */
-    double top = -INFINITY;
-    while (head < tail) {
-        const int i = queue[head++];
-        top = fmax(top, m->u[D * (first + i) + WFF_UZ] - base);
-        for (int k = offset[i]; k < offset[i + 1]; k++) {
-            const int *c;
-            for (int j = 0, kn = element_nodes(m, incident[k], &c); j < kn; j++)
-                if (!seen[c[j] - first])
-                    seen[c[j] - first] = 1, queue[tail++] = c[j] - first;
-        }
-    }
-    *apex = top;
-    rc = 0;
-done:
-    free(offset);
-    free(queue);
-    free(seen);
-    free(incident);
-    return rc;
-}
-
-/* Ply p's largest u_z (less its plane's p gap). Once elements have eroded,
- * over the part of the ply still attached: the nodes reached from the held
- * edge through elements not eroded (or, with no held node, of any element not
- * eroded). A fragment (a node whose elements have all eroded, or a piece torn
- * off whole) flies on with the projectile or away from it and is not the ply's
- * deflection. */
+/* Ply p's largest u_z (less its plane's p gap). Once a yarn has ruptured in
+ * the ply (an element eroded, or a family at damage 1 at a point), over the
+ * part of the ply still held by intact yarns: the nodes reached from the held
+ * edge (the clamp) through elements not eroded with no yarn ruptured
+ * (perforation.h, WFF_HELD_INTACT; with no held node, every node of such an
+ * element). A node held so is joined to the clamp by yarns strained at most
+ * to their rupture strain, so the apex cannot exceed what the clamp allows;
+ * a flap of torn fabric (however it hangs on), a fragment and a node left
+ * with no element are not the ply's deflection. 0 when no intact element is
+ * left (or out of memory). */
 static double ply_apex(const wff_model *m, int p)
 {
     int first, end;
-    ply_nodes(m, p, &first, &end);
+    wff_ply_node_range(m, p, &first, &end);
     double base = m->pack && m->pack->n > 1 ? p * m->pack->gap : 0, apex = -INFINITY;
-    const unsigned char *eroded = m->el.eroded;
-    if (!eroded || m->n_eroded == 0) {
+    const int n_el = m->el.n_tris + m->el.n_quads;
+    int torn = 0;
+    for (int e = 0; e < n_el && !torn; e++)
+        torn = wff_pack_element_ply(m, e) == p && wff_element_torn(m, e);
+    if (!torn) {
         for (int n = first; n < end; n++)
             apex = fmax(apex, m->u[D * n + WFF_UZ] - base);
         return apex;
     }
-    if (attached_apex(m, p, first, end, base, &apex) == 0)
-        return apex;
-    apex = 0; /* (every element eroded: 0) */
-    const int n_el = m->el.n_tris + m->el.n_quads;
-    int any = 0;
-    for (int e = 0; e < n_el; e++) {
-        if (eroded[e] || wff_pack_element_ply(m, e) != p)
-            continue;
-        const int *c;
-        for (int j = 0, k = element_nodes(m, e, &c); j < k; j++)
-            apex = any++ ? fmax(apex, m->u[D * c[j] + WFF_UZ] - base) : m->u[D * c[j] + WFF_UZ] - base;
-    }
-    return apex;
+    unsigned char *held = malloc((size_t)(end - first));
+    int count = held ? wff_ply_held_nodes(m, p, WFF_HELD_INTACT, held) : -1;
+    for (int n = first; count > 0 && n < end; n++)
+        if (held[n - first])
+            apex = fmax(apex, m->u[D * n + WFF_UZ] - base);
+    free(held);
+    return count > 0 ? apex : 0;
 }
 
 int wff_model_ply_value(const wff_model *m, int ply, const char *key, double *value,
@@ -269,7 +195,7 @@ int wff_model_ply_value(const wff_model *m, int ply, const char *key, double *va
                             : P->shear[ply] + P->failure[ply] + P->eroded[ply];
     if (kin_k || abs_k) {
         int first, end;
-        ply_nodes(m, ply, &first, &end);
+        wff_ply_node_range(m, ply, &first, &end);
         const double half = m->v_half_valid ? 0.5 * m->dt : 0;
         for (int i = D * first; i < D * end; i++)
             if (m->dof_kind[i] == WFF_DOF_FREE) {
@@ -279,6 +205,11 @@ int wff_model_ply_value(const wff_model *m, int ply, const char *key, double *va
     }
     if (strcmp(key, "apex") == 0) {
         *value = ply_apex(m, ply);
+    } else if (strcmp(key, "holed") == 0 || strcmp(key, "through") == 0) {
+        wff_perforation verdict;
+        if (wff_model_perforation(m, &verdict, err))
+            return -1;
+        *value = key[0] == 'h' ? verdict.holed[ply] : verdict.through[ply];
     } else if (stored_k) {
         *value = s * stored;
     } else if (kin_k) {
@@ -300,7 +231,7 @@ int wff_model_ply_value(const wff_model *m, int ply, const char *key, double *va
         *value = count;
     } else {
         return wff_fail(err, "ply %d: unknown key '%s' (known: apex, kinetic, stored, "
-                        "dissipated, absorbed, failed, eroded)", ply, key);
+                        "dissipated, absorbed, failed, eroded, holed, through)", ply, key);
     }
     return 0;
 }

@@ -7,6 +7,7 @@
 #include "contact.h"
 #include "erosion.h"
 #include "pack.h"
+#include "perforation.h"
 #include "ply_contact.h"
 
 #include <stddef.h>
@@ -17,13 +18,15 @@
  * energy out of the pass's), then the pack's per-ply accounts (which read the
  * elements erosion just took). After the velocity update: the friction
  * clamp's correction first, then the projectile's contact, then the plies'
- * (which reads the projectile's impulses). */
+ * (which reads the projectile's impulses). The shot's verdict has values
+ * only (no pass of the step). */
 const wff_part_ops *const wff_parts[] = {
     &wff_erosion_part,
     &wff_pack_part,
     &wff_clamp_part,
     &wff_projectile_contact_part,
     &wff_ply_contact_part,
+    &wff_perforation_part,
     NULL,
 };
 

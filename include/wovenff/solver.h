@@ -291,6 +291,9 @@ int wff_model_set_impact_point(wff_model *m, double x, double y, wff_error *err)
  * into the projectile as it is now, and the outward surface normal at the
  * nearest surface point (set only when δ > 0). */
 double wff_projectile_penetration(const wff_projectile *p, const double x[3], double normal[3]);
+/* The length of the nose along the axis, m: its rear is at tip − this
+ * (hemisphere r, flat nose its edge radius r_e, sphere 2r). */
+double wff_projectile_nose_length(const wff_projectile *p);
 
 /* Advance until time >= t_end (or max_steps). t_end must be finite and not
  * before the current time (an error otherwise; t_end == time does nothing).

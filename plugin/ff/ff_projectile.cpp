@@ -4,6 +4,9 @@
 //   wovenffProjectileShape(md, "flat", edgeRadius)     // nose: hemisphere|flat|sphere; r_e, m
 //   wovenffProjectileShape(md, "sphere")               // (edge radius 0)
 //   wovenffImpactPoint(md, x, y)                       // projectile axis at (x, y), m
+//   int verdict = wovenffPerforation(md);              // 1 perforated, 0 stopped, -1 undecided
+//   int verdict = wovenffPerforation(md, U);           // the same at a script's own loop's U
+//                                                      // (include/wovenff/perforation.h)
 // Each may come before or after wovenffProjectile and wovenffSet(md, "symmetry", s),
 // and before the first step. Knows the binding's handle table and the C API
 // only; nothing of contact internals.
@@ -11,6 +14,10 @@
 #include "AFunction_ext.hpp"
 
 #include "ff_wovenff.hpp"
+
+extern "C" {
+#include "wovenff/perforation.h"
+}
 
 namespace {
 
@@ -40,6 +47,36 @@ long ffImpactPoint(const long &id, const double &x, const double &y)
     return 0;
 }
 
+// The shot's verdict now: 1 perforated, 0 stopped, -1 undecided (the rule:
+// include/wovenff/perforation.h); a model without a projectile is an error.
+long ffPerforation(const long &id)
+{
+    const char *fn = "wovenffPerforation";
+    const wff_model *m = wff_ff_model(id, fn);
+    wff_perforation verdict;
+    wff_error err;
+    if (wff_model_perforation(m, &verdict, &err))
+        wff_ff_model_fail(fn, std::string(err.message), id);
+    return verdict.verdict;
+}
+
+// The same at a script's own loop's displacements U (5 per vertex, as
+// wovenffForces takes them), the projectile as the last wovenffContact left it.
+long ffPerforationAt(const long &id, KN<double> *const &U)
+{
+    const char *fn = "wovenffPerforation";
+    wff_model *m = wff_ff_model(id, fn);
+    if (!U || U->N() != wff_model_dof_count(m))
+        wff_ff_model_fail(fn, "U must have " + std::to_string(wff_model_dof_count(m)) +
+                          " entries (5 per vertex: ux uy uz dA1 dA2), got " +
+                          std::to_string(U ? (long)U->N() : 0L), id);
+    wff_perforation verdict;
+    wff_error err;
+    if (wff_model_perforation_at(m, &(*U)[0], &verdict, &err))
+        wff_ff_model_fail(fn, std::string(err.message), id);
+    return verdict.verdict;
+}
+
 } // namespace
 
 void wff_ff_register_projectile()
@@ -50,4 +87,7 @@ void wff_ff_register_projectile()
                new OneOperator2_<long, long, string *>(ffProjectileShape1));
     Global.Add("wovenffImpactPoint", "(",
                new OneOperator3_<long, long, double, double>(ffImpactPoint));
+    Global.Add("wovenffPerforation", "(", new OneOperator1_<long, long>(ffPerforation));
+    Global.Add("wovenffPerforation", "(",
+               new OneOperator2_<long, long, KN<double> *>(ffPerforationAt));
 }
