@@ -7,11 +7,12 @@
  * reached from a node whose u_z is held (the clamp, a fixed edge) through
  * elements not eroded (with no node held, every node of an element not
  * eroded); a fragment torn off whole is not the ply. Held fabric is *in the
- * way* when it lies at most a nose radius r ahead of the nose's tip (on the
- * nose, pressed against it, or behind the tip), or further ahead but held
- * through *intact* elements (not eroded, no yarn family ruptured at any of
- * their points): a piece further ahead held only through torn elements is a
- * shred flung off ahead, not a ply in the way. Then, on the shot line (the
+ * way* when it lies on the nose or behind its tip (at most a ply's thickness,
+ * the pack's ply_thickness, ahead of the tip: a ply resting on the nose has its
+ * mid-plane on the nose's surface), or further ahead but held through *intact*
+ * elements (not eroded, no yarn family ruptured at any of their points): a
+ * piece lifted off ahead and held only through torn elements is a shred flung
+ * off ahead, not a ply in the way. Then, on the shot line (the
  * projectile's axis, x and y of its impact point) and in the current
  * positions:
  *   - the ply is *holed* when no held element in the way covers the shot line
