@@ -10,8 +10,9 @@
 #  - a run that fails (-failspeeds) is reported with its log's path, listed as
 #    failed and skipped; the fit still recovers the law;
 #  - 3 perforating runs (no standard errors): the fit and limit.png still come;
-#  - a run that ends at -tend undecided (not perforated, the projectile still
-#    moving in) is not counted as stopped: listed as failed, naming -tend;
+#  - a run that ends at -tend undecided (verdict "undecided", or, from a scene
+#    without a verdict, not perforated with the projectile still
+#    moving in) is not counted as stopped: listed as undecided, naming -tend;
 #  - a scene that never perforates: exit 5, the error names -vmax;
 #  - every run of a round failing: exit 4; bad options: exit 2.
 set -u
@@ -71,6 +72,14 @@ grep -q 'every run perforated: slower' "$tmp/undecided.log" || { echo "the undec
 close "V_bl (a run undecided)" "$(field "$tmp/undecided/limit.json" v_bl)" 120 1e-4
 u=$(field "$tmp/undecided/limit.json" runs_undecided)
 [ "${u:-0}" -ge 1 ] || { echo "runs_undecided '$u', want >= 1"; fail=1; }
+grep -q '"verdict": "undecided"' "$tmp/undecided/v100/summary.json" || { echo "the stand-in's v100 has no verdict undecided"; fail=1; }
+# 1c. the same from a scene without a verdict (perforated false, residual 0, failure_end
+#     "tend", still moving on): undecided all the same
+sweep undecided_old -base "-law 120,0.9,2.5 -undecided 100:110 -verdict 0" -vmin 100 -vmax 300 -jobs 2 -runs 10
+rc=$?
+[ $rc -eq 0 ] || { echo "undecided_old sweep exited $rc"; tail -5 "$tmp/undecided_old.log"; fail=1; }
+grep -q '^100,,,undecided,' "$tmp/undecided_old/limit.csv" || { echo "limit.csv (no verdict): v100 not listed as undecided"; fail=1; }
+grep -q '^  "verdict": ' "$tmp/undecided_old/v100/summary.json" && { echo "-verdict 0 wrote a verdict"; fail=1; }
 
 # 2. a failing run: reported, skipped
 sweep failing -base "-failspeeds 249:251" -vmin 100 -vmax 400 -jobs 2 -runs 12
