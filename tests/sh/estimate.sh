@@ -53,7 +53,7 @@ else
 fi
 
 # the re-estimate past -maxsteps: -adapt 10 on the coarse mesh. The estimate before
-# the run (refused with -maxsteps 1) gives N; with -maxsteps 1.25 N the run starts
+# the run (refused with -maxsteps 1) gives N; with -maxsteps 1.1 N the run starts
 # and is stopped once its re-estimate passes it.
 dir="$tmp/adapt"
 args="-mesh coarse -plots 0 -vtkdt 1e-4 -adapt 10 -tend 1e-3"
@@ -62,7 +62,7 @@ rc=$?
 n=$(sed -n 's/^error: the run would take \([0-9.e+]*\) steps, more than -maxsteps 1 .*/\1/p' "$dir-refused.log")
 if [ $rc -ne 2 ] || [ -z "$n" ]; then echo "adapt: -maxsteps 1: exit $rc, no estimate"; tail -3 "$dir-refused.log"; fail=1
 else
-    max=$(awk -v n="$n" 'BEGIN { printf "%d", 1.25 * n }')
+    max=$(awk -v n="$n" 'BEGIN { printf "%d", 1.1 * n }')
     sh tools/ff.sh "$scene" $args -maxsteps "$max" -out "$dir" > "$dir.log" 2>&1
     rc=$?
     stop=$(grep "^error: at t = .* the run re-estimated takes .* more than -maxsteps $max: stopped at step" "$dir.log")
