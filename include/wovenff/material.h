@@ -5,7 +5,9 @@
  * `rho_A = ...` (kg/m^2) is common to every cell; all other keys belong to the
  * cell. Unknown, missing, duplicate and non-numeric keys are errors that name
  * the file, the line and the key; so are values the cell finds physically
- * impossible. */
+ * impossible. An unknown key is named with its line and the known key nearest
+ * to it (edit distance), before any complaint of a missing key it may stand
+ * for: "kevlar.txt:10: unknown key 'k2' (line 10): did you mean 'k_2'?". */
 #ifndef WOVENFF_MATERIAL_H
 #define WOVENFF_MATERIAL_H
 
@@ -37,6 +39,13 @@ struct wff_kv {
     const char *source;  /* file name for messages */
     int n;
     wff_kv_entry entry[WFF_KV_MAX];
+    /* What the cell asked for (wff_kv_number, wff_kv_number_or): the keys it
+     * knows, and the first required key it did not find; for the messages
+     * that name an unknown key with the known key nearest to it. Start them
+     * zeroed. */
+    int n_asked;
+    char asked[WFF_KV_MAX][WFF_KV_KEY_MAX];
+    char missing[WFF_KV_KEY_MAX];
 };
 
 /* Load and validate a material file. On failure mat is left unusable and err
