@@ -56,6 +56,22 @@ int wff_material_load(const char *path, wff_material *mat, wff_error *err);
 int wff_material_parse_text(const char *text, const char *source_name,
                             wff_material *mat, wff_error *err);
 
+/* A material's scales against woven fabrics (plugin/material_scales.c,
+ * docs/limits.md "Input checks"), to catch slips of units before a run: the
+ * areal density, each family's yarn spacing and each family's stiffness (the
+ * stress per width at 1 % stretch over 1 % x rho_A, a wave speed squared)
+ * against wide bands of Kevlar-like fabrics and their kin (aramid, UHMWPE,
+ * glass, nylon weaves). Returns 0 when each is inside its band or a factor of
+ * a few outside; 1 when one is orders of magnitude off: err then says which
+ * key, its line and file, the value, how far off and the likely unit
+ * ("rho_A = 181 kg/m^2 (line 21 of F) is ~1000x the areal density of
+ * Kevlar-like fabrics (0.03-1.5 kg/m^2; ...): given in g/m^2?"); −1 when the
+ * file or text is not a valid material (err as wff_material_load's). The
+ * reader itself (wff_material_load) does not apply these bands: a model may
+ * be any fabric, or none (the tests' light and stiff variants). */
+int wff_material_scales(const char *path, wff_error *err);
+int wff_material_scales_text(const char *text, const char *source, wff_error *err);
+
 /* Write a copy of the material file `path` to `out_path` with some values
  * replaced: overrides is "key=value,key=value" (a key must already be in the
  * file). The copy is validated by loading it, then written atomically (a
