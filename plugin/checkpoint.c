@@ -331,3 +331,64 @@ done:
     free(buf);
     return rc;
 }
+
+/* The snapshot of the adaptive step (solver_internal.h): the checkpoint's
+ * state fields, the contact candidates at their capacity. */
+static int snapshot_fields(wff_model *m, state_field *f)
+{
+    return state_fields(m, m->projectile.candidates ? m->n_nodes : 0, f);
+}
+
+int wff_model_snapshot(wff_model *m, wff_error *err)
+{
+    state_field fields[MAX_STATE_FIELDS];
+    int nf = snapshot_fields(m, fields);
+    size_t bytes = 0;
+    for (int i = 0; i < nf; i++)
+        bytes += fields[i].size * fields[i].count;
+    const int k = m->snapshot_step[m->snapshot_newest] < 0 ? m->snapshot_newest
+                                                            : 1 - m->snapshot_newest;
+    if (bytes != m->snapshot_size[k]) {
+        free(m->snapshot[k]);
+        m->snapshot_size[k] = 0;
+        m->snapshot_step[k] = -1;
+        if (!(m->snapshot[k] = malloc(bytes)))
+            return wff_fail(err, "adaptive step: out of memory for the last good state "
+                            "(%zu bytes)", bytes);
+        m->snapshot_size[k] = bytes;
+    }
+    char *at = m->snapshot[k];
+    for (int i = 0; i < nf; i++) {
+        size_t n = fields[i].size * fields[i].count;
+        if (n)
+            memcpy(at, fields[i].data, n);
+        at += n;
+    }
+    m->snapshot_step[k] = m->step;
+    m->snapshot_newest = k;
+    m->cut_since_snapshot = 0;
+    return 0;
+}
+
+int wff_model_restore(wff_model *m)
+{
+    /* a second cut before a new state was kept: the newer one was not good */
+    int k = m->snapshot_newest;
+    if (m->cut_since_snapshot && m->snapshot_step[1 - k] >= 0) {
+        m->snapshot_step[k] = -1;
+        k = m->snapshot_newest = 1 - k;
+    }
+    if (m->snapshot_step[k] < 0)
+        return -1;
+    state_field fields[MAX_STATE_FIELDS];
+    int nf = snapshot_fields(m, fields);
+    const char *at = m->snapshot[k];
+    for (int i = 0; i < nf; i++) {
+        size_t n = fields[i].size * fields[i].count;
+        if (n)
+            memcpy(fields[i].data, at, n);
+        at += n;
+    }
+    m->cut_since_snapshot = 1;
+    return 0;
+}
