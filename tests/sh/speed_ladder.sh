@@ -63,4 +63,16 @@ grep -qF "suggested -dtfactor 0.4" "$out.log" || { echo "300 m/s: no suggested -
 grep -q '"status": "failed"' "$out/summary.json" || { echo "300 m/s: summary not failed"; fail=1; }
 grep -qi 'nan' "$out/history.csv" && { echo "300 m/s: NaN reached the history"; fail=1; }
 grep -m1 '^error:' "$out.log" | cut -c1-220 | sed 's|^|  300 m/s at 0.8: |'
+grep -qF "the fastest DOF: node " "$out.log" || { echo "300 m/s: the message names no DOF"; fail=1; }
+# the same with the adaptive step: it goes back, halves the step and finishes
+out="$tmp/v300_adaptive"
+sh tools/ff.sh "$scene" -mesh coarse -tend 0.2e-3 -plots 0 -vtkdt 1 -velocity 300 -travel 0 \
+    -adaptive 1 -out "$out" > "$out.log" 2>&1
+rc=$?
+cuts=$(sed -n 's/.*"step_cuts": \([^,]*\),.*/\1/p' "$out/summary.json")
+err=$(sed -n 's/.*"max_energy_error": \([^,]*\),.*/\1/p' "$out/summary.json")
+echo "  300 m/s at 0.8, -travel 0 -adaptive 1: exit $rc, step_cuts $cuts, largest energy error $err"
+[ $rc -eq 0 ] || { echo "300 m/s adaptive: exit $rc"; tail -3 "$out.log"; fail=1; }
+awk -v c="$cuts" -v e="$err" 'BEGIN { exit !(c >= 1 && c <= 8 && e < 1e-5 && e > -1e-5) }' \
+    || { echo "300 m/s adaptive: step_cuts '$cuts', energy error '$err'"; fail=1; }
 exit $fail
