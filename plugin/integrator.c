@@ -214,8 +214,37 @@ double wff_model_step_estimate(const wff_model *m)
     return m->dt_factor * wff_zones_stable_step(m, m->u, &worst);
 }
 
+/* The step after this one toward the model's t_stop (stop, s): the full step
+ * while two or more are left, then half of what is left and the rest, so that
+ * the model ends at t_stop exactly with no step under half the full one (the
+ * contact's correction divides by the step). Only the last two steps of a run
+ * change: shortening every frame's last steps instead pumps energy into the
+ * finest modes (a periodic step pattern; measured: the teaching scene's
+ * rebound case, 5 m/s, its energy error 1e-10 -> 4 % in 0.4 ms, then NaN).
+ * Returns 1 if the step planned (m->dt) ends at stop; at stop (within 1e-9 of
+ * a step) the time is stop and the full step is planned. */
+static int plan_stop_step(wff_model *m, double stop)
+{
+    const double full = m->dt_factor * m->dt_stable, left = stop - m->time;
+    if (left >= 2 * full)
+        return 0; /* (m->dt is the full step: the planned one left alone) */
+    m->dt = full;
+    if (left <= 1e-9 * full) {
+        m->time = stop;
+        return 0;
+    }
+    if (left <= full * (1 + 1e-9)) {
+        m->dt = left;
+        return 1;
+    }
+    m->dt = 0.5 * left;
+    return 0;
+}
+
 int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err)
 {
+    const double stop = m->t_stop > 0 ? m->t_stop : INFINITY;
+    int lands = 0; /* the step planned ends at stop */
     if (!isfinite(t_end))
         return wff_fail(err, "advance to t_end = %g s: must be a finite time", t_end);
     if (t_end < m->time)
@@ -233,6 +262,8 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         m->initial_kinetic = k[0] + k[1] + k[2] + k[3];
         m->initial_total = m->initial_kinetic + m->internal_energy;
         m->v_half_valid = 1;
+        if (stop < INFINITY)
+            lands = plan_stop_step(m, stop);
         /* first half step */
         update_velocities(m, 0.5 * m->dt, 0);
         if (wff_parts_correct(m, m->dt, 0.5 * m->dt, err))
@@ -240,14 +271,14 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
     }
     wff_parts_refresh(m);
     long done = 0;
-    while (m->time < t_end && done < max_steps) {
+    while (m->time < t_end && m->time < stop && done < max_steps) {
         /* u^{n+1} = u^n + Δt v^{n+½} */
         double dt = m->dt;
         /* external work by the trapezoidal rule: ½(R^n + R^{n+1})·Δu */
         m->external_work += wff_step_positions(m, dt); /* and f = 0 (step_threads.c) */
         if (m->projectile.active)
             m->projectile.tip += dt * m->projectile.velocity;
-        m->time += dt;
+        m->time = lands ? stop : m->time + dt;
         m->step++;
         done++;
         if (m->step % m->dt_interval == 0) {
@@ -255,6 +286,8 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
                 return -1;
             wff_parts_refresh(m);
         }
+        if (stop < INFINITY)
+            lands = plan_stop_step(m, stop);
         if (compute_forces_zeroed(m, dt, err))
             return -1;
         update_velocities(m, 0.5 * (dt + m->dt), dt);

@@ -137,6 +137,8 @@ struct wff_model {
                                  θ = em.orientation (membrane.h) */
 
     double time, dt, dt_stable, dt_factor;
+    double t_stop;            /* the time the model steps no further than, landing on it
+                                 exactly (setting "t_stop"; 0: none), s */
     long step;
     int dt_interval;          /* steps between stable-step updates */
     int dt_worst_element;
