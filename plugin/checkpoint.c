@@ -88,6 +88,8 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     g = wff_fnv1a(WFF_FNV_START, m->em.F_pre, sizeof m->em.F_pre);
     g = wff_fnv1a(g, &m->em.amplitude_mass_factor, sizeof(double));
     g = wff_fnv1a(g, &m->em.static_amplitudes, sizeof(int));
+    if (m->travel_off) /* (the default leaves the hash as it was) */
+        g = wff_fnv1a(g, &m->travel_off, sizeof(int));
     g = wff_fnv1a(g, &m->projectile.search_all, sizeof(int));
     g = wff_fnv1a(g, &m->el.n_threads, sizeof(int));
     /* the projectile's nose and axis, when not the default (older checkpoints of a
@@ -120,6 +122,8 @@ static int state_fields(wff_model *m, int n_candidates, state_field *f)
     FIELD(&m->time, 1);
     FIELD(&m->dt, 1);
     FIELD(&m->dt_stable, 1);
+    FIELD(&m->dt_travel, 1);
+    FIELD(&m->travel_steps, 1);
     FIELD(&m->step, 1);
     FIELD(&m->dt_worst_element, 1);
     FIELD(&m->internal_energy, 1);

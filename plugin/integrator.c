@@ -23,6 +23,13 @@
 /* ... or at once beyond this (50 times the reference energy created). */
 #define ENERGY_BLOWUP_NOW 50.0
 
+#define TRAVEL WFF_TRAVEL /* (solver_internal.h) */
+/* The travel limit grows by at most this factor a step (it falls at once): a
+ * step following every turn of a swing changes by ~30 % a step, and the
+ * central difference does not keep its energy across such jumps (the bumped
+ * square: ~4 x the energy error of the slowly growing limit). */
+#define TRAVEL_GROWTH 1.01
+
 /* "triangle 3 (nodes 4 5 9)" or "quadrilateral 2 (nodes ...)" for element e
  * (triangles first, then quads), numbered from 1 within its type. */
 static void element_name(const wff_model *m, int e, char *out, size_t size)
@@ -155,6 +162,26 @@ static int update_time_step(wff_model *m, wff_error *err)
     return 0;
 }
 
+/* The next step: dtfactor × the stable step, shortened where a free amplitude,
+ * at its velocity and this step's acceleration, would travel more than TRAVEL ×
+ * dtfactor of the amplitude length (wff_step_travel). */
+static void travel_limit(wff_model *m)
+{
+    m->dt = m->dt_factor * m->dt_stable;
+    const double length = m->travel_off ? INFINITY : wff_zones_amplitude_length(m);
+    if (!(length < INFINITY))
+        return;
+    double limit = wff_step_travel(m, m->dt_factor * TRAVEL * length);
+    /* down at once, up slowly: the step follows the fastest swing, not each turn */
+    if (m->dt_travel > 0 && limit > TRAVEL_GROWTH * m->dt_travel)
+        limit = TRAVEL_GROWTH * m->dt_travel;
+    m->dt_travel = limit;
+    if (limit < m->dt) {
+        m->dt = limit;
+        m->travel_steps++;
+    }
+}
+
 /* Kinetic energies (model part) at the integer step, v^{n+½} − ½Δt a^n from
  * the last half step: in-plane, transverse, amplitude, projectile. No
  * allocation: the advance loop calls it every step. */
@@ -225,7 +252,7 @@ double wff_model_step_estimate(const wff_model *m)
  * a step) the time is stop and the full step is planned. */
 static int plan_stop_step(wff_model *m, double stop)
 {
-    const double full = m->dt_factor * m->dt_stable, left = stop - m->time;
+    const double full = m->dt, left = stop - m->time; /* (the step travel_limit chose) */
     if (left >= 2 * full)
         return 0; /* (m->dt is the full step: the planned one left alone) */
     m->dt = full;
@@ -262,9 +289,10 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         m->initial_kinetic = k[0] + k[1] + k[2] + k[3];
         m->initial_total = m->initial_kinetic + m->internal_energy;
         m->v_half_valid = 1;
+        /* first half step */
+        travel_limit(m);
         if (stop < INFINITY)
             lands = plan_stop_step(m, stop);
-        /* first half step */
         update_velocities(m, 0.5 * m->dt, 0);
         if (wff_parts_correct(m, m->dt, 0.5 * m->dt, err))
             return -1;
@@ -286,10 +314,11 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
                 return -1;
             wff_parts_refresh(m);
         }
-        if (stop < INFINITY)
-            lands = plan_stop_step(m, stop);
         if (compute_forces_zeroed(m, dt, err))
             return -1;
+        travel_limit(m);
+        if (stop < INFINITY)
+            lands = plan_stop_step(m, stop);
         update_velocities(m, 0.5 * (dt + m->dt), dt);
         if (wff_parts_correct(m, m->dt, 0.5 * (dt + m->dt), err))
             return -1;

@@ -545,6 +545,20 @@ static int apply_amplitude_mass_factor(wff_model *m, double value, wff_error *er
     return 0;
 }
 
+static int check_travel_limit(const wff_model *m, double value, wff_error *err)
+{
+    (void)m;
+    return check_flag("travel_limit", value, "1 (the amplitudes' travel per step limited, "
+                      "docs/model.md §12) or 0 (dtfactor x the stable step only)", err);
+}
+
+static int apply_travel_limit(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->travel_off = value == 0;
+    return 0;
+}
+
 static int check_static_amplitudes(const wff_model *m, double value, wff_error *err)
 {
     if (check_flag("static_amplitudes", value, "0 (dynamic nodal amplitudes, the paper) or "
@@ -661,6 +675,7 @@ static const wff_setting model_settings[] = {
     {"threads", check_threads, apply_threads},
     {"amplitude_mass_factor", check_amplitude_mass_factor, apply_amplitude_mass_factor},
     {"static_amplitudes", check_static_amplitudes, apply_static_amplitudes},
+    {"travel_limit", check_travel_limit, apply_travel_limit},
     {"contact_search", check_contact_search, apply_contact_search},
     {"orientation", check_orientation, apply_orientation},
     {"clamp_radius", check_clamp_radius, apply_clamp_radius},

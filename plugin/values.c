@@ -30,7 +30,7 @@ static const own_value own_values[] = {
     {"dt_worst_element", 0},  {"transfer_energy", 1},
     {"projectile_impulse", 0}, {"dissipated_failure", 1},
     {"eroded_energy", 1},     {"eroded_elements", 0},
-    {"failure_energy", 1},
+    {"failure_energy", 1},    {"travel_steps", 0},
 };
 #define N_OWN ((int)(sizeof own_values / sizeof own_values[0]))
 
@@ -51,7 +51,7 @@ static void own(const wff_model *m, int with_energies, double *out)
         (double)m->element_steps, (double)(m->el.n_tris + m->el.n_quads), (double)m->n_nodes,
         (double)(wff_model_user_element(m, m->dt_worst_element) + 1), e.transfer,
         s * m->projectile.impulse_total, e.dissipated_failure, e.eroded, (double)m->n_eroded,
-        e.dissipated_failure};
+        e.dissipated_failure, (double)m->travel_steps};
     memcpy(out, v, sizeof v);
 }
 

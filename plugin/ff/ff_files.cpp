@@ -30,6 +30,8 @@
 //   string wovenffTextProblem(file)     // "" if wovenffReadText would read it, else why not
 //   string wovenffFormat(x, digits)     // %.<digits>g
 //   string wovenffPathProblem(path, what) // "" or why a typed path is refused (control chars)
+//   string wovenffInputProblem(path, what) // "" or why an input file is refused: not a
+//                                       // regular file (a pipe, <(...), a folder); "" if absent
 //   int wovenffGnuplot(vars, script)    // gnuplot -e vars script, no shell; its exit code
 //   int wovenffRun(argv, log)           // argv: the program and its arguments separated by
 //                                       // tabs; no shell, stdout and stderr into log; exit code
@@ -394,6 +396,14 @@ string *ffPathProblem(Stack stack, string *const &path, string *const &what)
     return ret(stack, "");
 }
 
+string *ffInputProblem(Stack stack, string *const &path, string *const &what)
+{
+    wff_error err;
+    if (!wff_exists(path->c_str()) || wff_regular_file_check(path->c_str(), what->c_str(), &err) == 0)
+        return ret(stack, "");
+    return ret(stack, err.message);
+}
+
 long ffGnuplot(string *const &vars, string *const &script)
 {
     char prog[] = "gnuplot", e[] = "-e";
@@ -480,6 +490,8 @@ void wff_ff_register_files()
     Global.Add("wovenffReadText", "(", new OneOperator1s_<string *, string *>(ffReadText));
     Global.Add("wovenffTextProblem", "(", new OneOperator1s_<string *, string *>(ffTextProblem));
     Global.Add("wovenffFormat", "(", new OneOperator2s_<string *, double, long>(ffFormat));
+    Global.Add("wovenffInputProblem", "(",
+               new OneOperator2s_<string *, string *, string *>(ffInputProblem));
     Global.Add("wovenffPathProblem", "(",
                new OneOperator2s_<string *, string *, string *>(ffPathProblem));
     Global.Add("wovenffGnuplot", "(", new OneOperator2_<long, string *, string *>(ffGnuplot));
