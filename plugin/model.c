@@ -56,6 +56,8 @@ void wff_model_free(wff_model *m)
     free(m->clamp.node);
     free(m->clamp.normal_force);
     free(m->operator_scratch);
+    free(m->snapshot[0]);
+    free(m->snapshot[1]);
     free(m->bc);
     wff_parts_free(m); /* each part what it allocated (part.h) */
     wff_zones_free(m);
@@ -160,6 +162,7 @@ int wff_model_setup(wff_model *m, wff_error *err)
             m->dof_kind[D * n + 3] = m->dof_kind[D * n + 4] = WFF_DOF_FIXED;
     m->dt_factor = 0.8;
     m->dt_interval = 20;
+    m->snapshot_step[0] = m->snapshot_step[1] = -1;
     m->symmetry_factor = 1;
     if (wff_erosion_default(m, err)) { /* erosion on (both families) when the points carry damage */
         wff_model_free(m);
@@ -559,6 +562,20 @@ static int apply_travel_limit(wff_model *m, double value, wff_error *err)
     return 0;
 }
 
+static int check_adaptive_step(const wff_model *m, double value, wff_error *err)
+{
+    (void)m;
+    return check_flag("adaptive_step", value, "1 (an instability halves dtfactor and the run "
+                      "goes on from the last good state) or 0 (it stops the run)", err);
+}
+
+static int apply_adaptive_step(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->adaptive = value != 0;
+    return 0;
+}
+
 static int check_static_amplitudes(const wff_model *m, double value, wff_error *err)
 {
     if (check_flag("static_amplitudes", value, "0 (dynamic nodal amplitudes, the paper) or "
@@ -676,6 +693,7 @@ static const wff_setting model_settings[] = {
     {"amplitude_mass_factor", check_amplitude_mass_factor, apply_amplitude_mass_factor},
     {"static_amplitudes", check_static_amplitudes, apply_static_amplitudes},
     {"travel_limit", check_travel_limit, apply_travel_limit},
+    {"adaptive_step", check_adaptive_step, apply_adaptive_step},
     {"contact_search", check_contact_search, apply_contact_search},
     {"orientation", check_orientation, apply_orientation},
     {"clamp_radius", check_clamp_radius, apply_clamp_radius},

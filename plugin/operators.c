@@ -139,7 +139,7 @@ int wff_model_travel_step(const wff_model *m, const double *V, const double *R, 
         const int n = m->node_model ? m->node_model[user] : user;
         for (int j = D - 2; j < D; j++) {
             const int i = D * n + j, iu = D * user + j;
-            if (m->dof_kind[i] != WFF_DOF_FREE)
+            if (m->dof_kind[i] != WFF_DOF_FREE || R[iu] == 0) /* (as wff_step_travel) */
                 continue;
             const double speed = fabs(V[iu]), accel = fabs(R[iu] / m->mass[i]);
             if (!isfinite(speed) || !isfinite(accel))

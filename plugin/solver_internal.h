@@ -36,7 +36,14 @@ void wff_step_kinetic(const wff_model *m, double half, double sums[3]);
  * 0.8 and 0.9, with and without the preload (the paper's scene never meets it). */
 #define WFF_TRAVEL 0.625
 
-/* The longest step, s, in which no free amplitude DOF, moving at v and
+/* The adaptive step's good states (checkpoint.c): every evolving field of the
+ * checkpoint copied into the older of two buffers (allocated on first use; -1
+ * with err if out of memory); restore copies the newer back, or the older when
+ * a restore was made since the newer was kept (-1 if there is none). */
+int wff_model_snapshot(wff_model *m, wff_error *err);
+int wff_model_restore(wff_model *m);
+
+/* The longest step, s, in which no free amplitude DOF with a force on it, moving at v and
  * accelerated by f/m, travels more than reach (m): the smallest root of
  * dt (|v| + dt |f/m|) = reach over them (INFINITY if there is none). */
 double wff_step_travel(const wff_model *m, double reach);

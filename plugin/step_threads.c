@@ -97,7 +97,9 @@ double wff_step_travel(const wff_model *m, double reach)
         for (int node = wff_part_begin(n, parts, k); node < end; node++)
             for (int j = D - 2; j < D; j++) {
                 const int i = D * node + j;
-                if (kind[i] != WFF_DOF_FREE)
+                /* (a DOF no element acts on, a node whose elements have all
+                 * eroded, has no stiffness to outrun: it sets no limit) */
+                if (kind[i] != WFF_DOF_FREE || f[i] == 0)
                     continue;
                 /* the root of dt (|v| + dt |a|) = reach */
                 const double speed = fabs(v[i]), accel = fabs(f[i] / mass[i]);

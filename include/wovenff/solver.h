@@ -143,6 +143,16 @@ struct wff_model {
                                  step only (the amplitudes' travel not limited) */
     long travel_steps;        /* steps the travel limit shortened */
     double dt_travel;         /* the travel limit at the last step, s (0: none yet) */
+    int adaptive;             /* setting adaptive_step: an instability halves dtfactor and
+                                 the run goes on from the last good state */
+    long step_cuts;           /* the halvings so far */
+    int growth_steps;         /* consecutive steps of geometric growth of the error */
+    void *snapshot[2];        /* the last two good states (checkpoint.c's fields), adaptive
+                                 only */
+    size_t snapshot_size[2];
+    long snapshot_step[2];    /* their steps (-1: none) */
+    int snapshot_newest;      /* which of the two is the newer */
+    int cut_since_snapshot;   /* a cut went back to the newer since it was kept */
     long step;
     int dt_interval;          /* steps between stable-step updates */
     int dt_worst_element;

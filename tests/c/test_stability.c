@@ -52,8 +52,20 @@ static int clamped_square(check_state *st, wff_model *m, const char *material, i
 }
 
 /* 1. and 2.: returns 0 if the run completed, 1 if it stopped (message in err). */
+static int impact_adaptive(check_state *st, double dtfactor, int travel, int adaptive,
+                           double *worst, long *steps, long *travel_steps, long *cuts,
+                           wff_error *err);
+
 static int impact(check_state *st, double dtfactor, int travel, double *worst, long *steps,
                   long *travel_steps, wff_error *err)
+{
+    long cuts;
+    return impact_adaptive(st, dtfactor, travel, 0, worst, steps, travel_steps, &cuts, err);
+}
+
+static int impact_adaptive(check_state *st, double dtfactor, int travel, int adaptive,
+                           double *worst, long *steps, long *travel_steps, long *cuts,
+                           wff_error *err)
 {
     wff_model m;
     *worst = 0;
@@ -61,6 +73,7 @@ static int impact(check_state *st, double dtfactor, int travel, double *worst, l
     if (clamped_square(st, &m, ELASTIC, 20, dtfactor))
         return -1;
     int rc = wff_model_set_option(&m, "travel_limit", travel, err) ||
+             wff_model_set_option(&m, "adaptive_step", adaptive, err) ||
              wff_model_set_projectile(&m, 6.35e-3, 0.0005, 20, 0, err);
     CHECK(st, rc == 0, "%s", err->message);
     for (int block = 1; block <= 20 && rc == 0; block++) {
@@ -73,6 +86,7 @@ static int impact(check_state *st, double dtfactor, int travel, double *worst, l
     }
     *steps = m.step;
     *travel_steps = m.travel_steps;
+    *cuts = m.step_cuts;
     wff_model_free(&m);
     return rc ? 1 : 0;
 }
@@ -121,6 +135,20 @@ static void check_step_ladder(check_state *st)
             CHECK(st, strstr(err.message, want[k]) != NULL, "dtfactor %g: message lacks '%s': %s",
                   above[i], want[k], err.message);
         CHECK(st, strstr(err.message, "NaN") == NULL, "caught before NaN: %s", err.message);
+    }
+    /* the adaptive step: the same runs past the bound, the travel limit off, go
+     * back to the last good state with dtfactor halved and finish */
+    for (int i = 0; i < 2; i++) {
+        double worst;
+        long steps, travel_steps, cuts;
+        wff_error err;
+        int rc = impact_adaptive(st, above[i], 0, 1, &worst, &steps, &travel_steps, &cuts, &err);
+        printf("  dtfactor %.2f, travel limit off, adaptive step: %s after %ld steps, %ld cuts, "
+               "max |energy error| %.2e\n", above[i], rc ? "stopped" : "ran to the end", steps,
+               cuts, worst);
+        CHECK(st, rc == 0, "adaptive step at dtfactor %g: %s", above[i], rc ? err.message : "");
+        CHECK(st, cuts >= 1 && cuts <= 3, "adaptive step at dtfactor %g: %ld cuts", above[i], cuts);
+        CHECK(st, worst < 2e-3, "adaptive step at dtfactor %g: energy error %g", above[i], worst);
     }
 }
 
