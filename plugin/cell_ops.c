@@ -169,6 +169,14 @@ int wff_cell_tangent_block(const wff_material *mat, wff_tangent_block *blk)
     return mat->cell->amplitude_tangent_block(mat->params, blk) == 0 ? 0 : -1;
 }
 
+double wff_cell_amplitude_length(const wff_material *mat)
+{
+    if (mat->cell->n_amplitudes == 0 || !mat->cell->amplitude_length)
+        return INFINITY;
+    double length = mat->cell->amplitude_length(mat->params);
+    return length > 0 ? length : INFINITY;
+}
+
 int wff_cell_has_wave_block(const wff_material *mat)
 {
     return mat->cell->wave_speeds_block != NULL;

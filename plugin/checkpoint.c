@@ -4,6 +4,7 @@
  * atomic save (text_io.c) and a load that says which input differs. Knows the
  * model's arrays; nothing of how they evolve, of cells by name or of FreeFEM. */
 #include "part.h"
+#include "state_fields.h"
 #include "zones.h"
 #include "wovenff/text_io.h"
 
@@ -88,6 +89,8 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     g = wff_fnv1a(WFF_FNV_START, m->em.F_pre, sizeof m->em.F_pre);
     g = wff_fnv1a(g, &m->em.amplitude_mass_factor, sizeof(double));
     g = wff_fnv1a(g, &m->em.static_amplitudes, sizeof(int));
+    if (m->travel_off) /* (the default leaves the hash as it was) */
+        g = wff_fnv1a(g, &m->travel_off, sizeof(int));
     g = wff_fnv1a(g, &m->projectile.search_all, sizeof(int));
     g = wff_fnv1a(g, &m->el.n_threads, sizeof(int));
     /* the projectile's nose and axis, when not the default (older checkpoints of a
@@ -109,54 +112,7 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     }
 }
 
-/* The evolving state, in file order: pointer, element size, count. */
-typedef struct state_field { void *data; size_t size, count; } state_field;
 
-static int state_fields(wff_model *m, int n_candidates, state_field *f)
-{
-    wff_projectile *p = &m->projectile;
-    int k = 0;
-#define FIELD(ptr, n) f[k++] = (state_field){(void *)(ptr), sizeof *(ptr), (size_t)(n)}
-    FIELD(&m->time, 1);
-    FIELD(&m->dt, 1);
-    FIELD(&m->dt_stable, 1);
-    FIELD(&m->step, 1);
-    FIELD(&m->dt_worst_element, 1);
-    FIELD(&m->internal_energy, 1);
-    FIELD(&m->dissipated_shear, 1);
-    FIELD(&m->dissipated_friction, 1);
-    FIELD(&m->dissipated_failure, 1);
-    FIELD(&m->eroded_energy, 1);
-    FIELD(&m->n_eroded, 1);
-    FIELD(&m->external_work, 1);
-    FIELD(&m->initial_total, 1);
-    FIELD(&m->initial_kinetic, 1);
-    FIELD(&m->v_half_valid, 1);
-    FIELD(&m->element_steps, 1);
-    FIELD(&m->blowup_steps, 1);
-    FIELD(&m->last_error, 1);
-    FIELD(&p->tip, 1);
-    FIELD(&p->velocity, 1);
-    FIELD(p->axis, 2);
-    FIELD(&p->max_penetration, 1);
-    FIELD(&p->force, 1);
-    FIELD(&p->impulse_total, 1);
-    FIELD(&p->n_candidates, 1);
-    FIELD(p->candidates, n_candidates);
-    FIELD(m->u, m->n_dofs);
-    FIELD(m->v, m->n_dofs);
-    FIELD(m->f, m->n_dofs);
-    FIELD(m->reaction, m->n_dofs);
-    FIELD(m->v_prescribed, m->n_dofs);
-    FIELD(m->state, n_points(m) * (size_t)m->n_state); /* every point's every state */
-    if (m->em.static_amplitudes) /* the points' own amplitudes */
-        FIELD(m->el.point_dA, 2 * n_points(m));
-    if (m->el.eroded) /* erosion on: every element's flag */
-        FIELD(m->el.eroded, m->el.n_tris + m->el.n_quads);
-#undef FIELD
-    return k;
-}
-#define MAX_STATE_FIELDS 40
 
 int wff_model_save(const wff_model *m, const char *path, wff_error *err)
 {
@@ -165,8 +121,8 @@ int wff_model_save(const wff_model *m, const char *path, wff_error *err)
         return wff_fail(err, "checkpoint '%s': cannot be written: %s: refused", path, why);
     checkpoint_header h;
     fingerprint(m, &h);
-    state_field fields[MAX_STATE_FIELDS];
-    int nf = state_fields((wff_model *)m, h.n_candidates, fields);
+    wff_state_field fields[WFF_STATE_FIELDS_MAX];
+    int nf = wff_state_fields((wff_model *)m, h.n_candidates, fields);
     size_t payload = 0;
     for (int i = 0; i < nf; i++)
         payload += fields[i].size * fields[i].count;
@@ -305,8 +261,8 @@ int wff_model_load_state(wff_model *m, const char *path, wff_error *err)
         wff_fail(err, "checkpoint %s is corrupt (%d contact candidates)", path, h.n_candidates);
         goto done;
     }
-    state_field fields[MAX_STATE_FIELDS];
-    int nf = state_fields(m, h.n_candidates, fields);
+    wff_state_field fields[WFF_STATE_FIELDS_MAX];
+    int nf = wff_state_fields(m, h.n_candidates, fields);
     size_t payload = 0;
     for (int i = 0; i < nf; i++)
         payload += fields[i].size * fields[i].count;
@@ -327,3 +283,4 @@ done:
     free(buf);
     return rc;
 }
+

@@ -102,11 +102,33 @@ static int parse_number(const wff_kv *kv, const wff_kv_entry *e, double *value, 
     return 0;
 }
 
+/* Remember that the cell asked for key (a key it knows). */
+static void kv_asked(wff_kv *kv, const char *key)
+{
+    for (int i = 0; i < kv->n_asked; i++)
+        if (strcmp(kv->asked[i], key) == 0)
+            return;
+    if (kv->n_asked < WFF_KV_MAX)
+        snprintf(kv->asked[kv->n_asked++], WFF_KV_KEY_MAX, "%s", key);
+}
+
+static int kv_was_asked(const wff_kv *kv, const char *key)
+{
+    for (int i = 0; i < kv->n_asked; i++)
+        if (strcmp(kv->asked[i], key) == 0)
+            return 1;
+    return 0;
+}
+
 int wff_kv_number(wff_kv *kv, const char *key, double *value, wff_error *err)
 {
+    kv_asked(kv, key);
     wff_kv_entry *e = kv_lookup(kv, key);
-    if (!e)
+    if (!e) {
+        if (!kv->missing[0])
+            snprintf(kv->missing, sizeof kv->missing, "%s", key);
         return wff_fail(err, "%s: missing key '%s'", kv->source, key);
+    }
     e->used = 1;
     return parse_number(kv, e, value, err);
 }
@@ -114,6 +136,7 @@ int wff_kv_number(wff_kv *kv, const char *key, double *value, wff_error *err)
 int wff_kv_number_or(wff_kv *kv, const char *key, double fallback, double *value,
                      wff_error *err)
 {
+    kv_asked(kv, key);
     wff_kv_entry *e = kv_lookup(kv, key);
     if (!e) {
         *value = fallback;
@@ -137,20 +160,77 @@ int wff_kv_reject(const wff_kv *kv, const char *key, wff_error *err, const char 
     return wff_fail(err, "%s: key '%s': %s", kv->source, key, why);
 }
 
-int wff_material_parse_text(const char *text, const char *source_name, wff_material *mat,
-                            wff_error *err)
-{
-    wff_kv kv;
-    kv.source = source_name;
-    memset(mat, 0, sizeof *mat);
-    snprintf(mat->source, sizeof mat->source, "%s", source_name);
-    if (kv_read(text, &kv, err))
-        return -1;
+/* ---- unknown keys named with the known key nearest to them ---------------- */
 
-    wff_kv_entry *cell_key = kv_lookup(&kv, "cell");
-    if (!cell_key)
+/* Edit distance between two keys in half-edits (optimal string alignment): an
+ * insertion, deletion, substitution or swap of neighbours costs 2, a change of
+ * case only 1 (k_i for K_I). */
+static int key_distance(const char *a, const char *b)
+{
+    int n = (int)strlen(a), m = (int)strlen(b);
+    int d[WFF_KV_KEY_MAX + 1][WFF_KV_KEY_MAX + 1];
+    if (n > WFF_KV_KEY_MAX || m > WFF_KV_KEY_MAX)
+        return 1000;
+    for (int i = 0; i <= n; i++)
+        d[i][0] = 2 * i;
+    for (int j = 0; j <= m; j++)
+        d[0][j] = 2 * j;
+    for (int i = 1; i <= n; i++)
+        for (int j = 1; j <= m; j++) {
+            int cost = a[i - 1] == b[j - 1] ? 0
+                       : tolower((unsigned char)a[i - 1]) == tolower((unsigned char)b[j - 1])
+                           ? 1
+                           : 2;
+            int best = d[i - 1][j - 1] + cost;
+            if (d[i - 1][j] + 2 < best)
+                best = d[i - 1][j] + 2;
+            if (d[i][j - 1] + 2 < best)
+                best = d[i][j - 1] + 2;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
+                d[i - 2][j - 2] + 2 < best)
+                best = d[i - 2][j - 2] + 2;
+            d[i][j] = best;
+        }
+    return d[n][m];
+}
+
+/* Close enough to be a slip of the keyboard: one edit for keys of up to three
+ * characters, two for longer ones (never all of a key). */
+static int keys_near(const char *a, const char *b, int distance)
+{
+    int longer = (int)(strlen(a) > strlen(b) ? strlen(a) : strlen(b));
+    return distance < 2 * longer && distance <= (longer <= 3 ? 2 : 4);
+}
+
+/* The key the cell asked for that is nearest to `key` and not in the file, or NULL. */
+static const char *nearest_known_key(const wff_kv *kv, const char *key)
+{
+    const char *best = NULL;
+    int best_distance = 0;
+    for (int i = 0; i < kv->n_asked; i++) {
+        const char *known = kv->asked[i];
+        if (kv_lookup((wff_kv *)kv, known))
+            continue;
+        int d = key_distance(key, known);
+        if (keys_near(key, known, d) && (!best || d < best_distance)) {
+            best = known;
+            best_distance = d;
+        }
+    }
+    return best;
+}
+
+/* The checks after kv_read: the cell, rho_A, the cell's own keys, unknown keys. */
+static int parse_kv(wff_kv *kv, wff_material *mat, wff_error *err)
+{
+    const char *source_name = kv->source;
+    kv_asked(kv, "cell");
+    wff_kv_entry *cell_key = kv_lookup(kv, "cell");
+    if (!cell_key) {
+        snprintf(kv->missing, sizeof kv->missing, "cell");
         return wff_fail(err, "%s: missing key 'cell' (the unit-cell name, e.g. cell = %s)",
                         source_name, wff_cell_count() ? wff_cell_name(wff_cell_at(0)) : "?");
+    }
     cell_key->used = 1;
     mat->cell = wff_cell_find(cell_key->value);
     if (!mat->cell) {
@@ -163,12 +243,12 @@ int wff_material_parse_text(const char *text, const char *source_name, wff_mater
         return wff_fail(err, "%s:%d: key 'cell': unknown unit cell '%s' (known: %s)",
                         source_name, cell_key->line, cell_key->value, known);
     }
-    if (wff_kv_number(&kv, "rho_A", &mat->areal_density, err))
+    if (wff_kv_number(kv, "rho_A", &mat->areal_density, err))
         return -1;
     if (!(mat->areal_density > 0))
-        return wff_kv_reject(&kv, "rho_A", err, "areal density must be > 0 kg/m^2");
+        return wff_kv_reject(kv, "rho_A", err, "areal density must be > 0 kg/m^2");
     mat->n_state = wff_cell_n_state_max(mat->cell); /* parse may carry fewer (a prefix) */
-    if (wff_cell_parse(&kv, mat, err))
+    if (wff_cell_parse(kv, mat, err))
         return -1;
     if (mat->n_state < 0 || mat->n_state > wff_cell_n_state_max(mat->cell) ||
         wff_cell_n_state_max(mat->cell) > WFF_STATE_MAX)
@@ -176,11 +256,92 @@ int wff_material_parse_text(const char *text, const char *source_name, wff_mater
                         "n_state_max %d <= WFF_STATE_MAX %d): a bug in the cell",
                         source_name, wff_cell_name(mat->cell), mat->n_state, wff_cell_n_state_max(mat->cell),
                         WFF_STATE_MAX);
-    for (int i = 0; i < kv.n; i++)
-        if (!kv.entry[i].used)
-            return wff_fail(err, "%s:%d: unknown key '%s' for cell '%s'", source_name,
-                            kv.entry[i].line, kv.entry[i].key, wff_cell_name(mat->cell));
+    for (int i = 0; i < kv->n; i++) {
+        const wff_kv_entry *e = &kv->entry[i];
+        if (e->used)
+            continue;
+        const char *near = nearest_known_key(kv, e->key);
+        if (near)
+            return wff_fail(err, "%s:%d: unknown key '%s' (line %d) for cell '%s': did you "
+                            "mean '%s'?", source_name, e->line, e->key, e->line,
+                            wff_cell_name(mat->cell), near);
+        return wff_fail(err, "%s:%d: unknown key '%s' for cell '%s'", source_name, e->line,
+                        e->key, wff_cell_name(mat->cell));
+    }
     return 0;
+}
+
+/* After a parse that missed the required key kv->missing: if a key of the file
+ * the cell did not ask for is near it, and the file parses past it with that
+ * key renamed (the renamed key is not one the cell asks for either), that key
+ * is the slip: err names it, its line and the key meant, in place of "missing
+ * key". Candidates are tried nearest first. */
+static void name_slipped_key(const wff_kv *kv, const wff_material *failed, wff_error *err)
+{
+    int order[WFF_KV_MAX], distance[WFF_KV_MAX], n = 0;
+    for (int i = 0; i < kv->n; i++) {
+        const char *key = kv->entry[i].key;
+        if (kv_was_asked(kv, key))
+            continue;
+        int d = key_distance(key, kv->missing);
+        if (!keys_near(key, kv->missing, d))
+            continue;
+        int at = n++;
+        for (; at > 0 && distance[at - 1] > d; at--) {
+            order[at] = order[at - 1];
+            distance[at] = distance[at - 1];
+        }
+        order[at] = i;
+        distance[at] = d;
+    }
+    if (n == 0)
+        return;
+    wff_kv *trial = malloc(sizeof *trial);
+    wff_material *scratch = malloc(sizeof *scratch);
+    for (int c = 0; trial && scratch && c < n; c++) {
+        const wff_kv_entry *slip = &kv->entry[order[c]];
+        memcpy(trial->entry, kv->entry, sizeof kv->entry);
+        trial->source = kv->source;
+        trial->n = kv->n;
+        trial->n_asked = 0;
+        trial->missing[0] = '\0';
+        for (int i = 0; i < trial->n; i++)
+            trial->entry[i].used = 0;
+        snprintf(trial->entry[order[c]].key, WFF_KV_KEY_MAX, "%s", kv->missing);
+        memset(scratch, 0, sizeof *scratch);
+        wff_error ignored;
+        parse_kv(trial, scratch, &ignored);
+        if (strcmp(trial->missing, kv->missing) == 0 || kv_was_asked(trial, slip->key))
+            continue; /* still missing, or a key the cell takes: not the slip */
+        const wff_cell_type *cell = failed->cell ? failed->cell : scratch->cell;
+        char needs[120] = "which every material needs";
+        if (cell && strcmp(kv->missing, "cell") != 0 && strcmp(kv->missing, "rho_A") != 0)
+            snprintf(needs, sizeof needs, "which cell '%s' needs", wff_cell_name(cell));
+        wff_fail(err, "%s:%d: unknown key '%s' (line %d): did you mean '%s'? (the file has "
+                 "no key '%s', %s)", kv->source, slip->line, slip->key, slip->line,
+                 kv->missing, kv->missing, needs);
+        break;
+    }
+    free(trial);
+    free(scratch);
+}
+
+int wff_material_parse_text(const char *text, const char *source_name, wff_material *mat,
+                            wff_error *err)
+{
+    wff_kv kv;
+    kv.source = source_name;
+    kv.n_asked = 0;
+    kv.missing[0] = '\0';
+    memset(mat, 0, sizeof *mat);
+    snprintf(mat->source, sizeof mat->source, "%s", source_name);
+    if (kv_read(text, &kv, err))
+        return -1;
+    if (parse_kv(&kv, mat, err) == 0)
+        return 0;
+    if (kv.missing[0])
+        name_slipped_key(&kv, mat, err);
+    return -1;
 }
 
 int wff_material_load(const char *path, wff_material *mat, wff_error *err)

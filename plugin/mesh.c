@@ -8,6 +8,7 @@
  * finalises it on every path, so nothing of gmsh outlives the call. */
 #include "wovenff/mesh.h"
 #include "wovenff/mesh_labels.h"
+#include "wovenff/text_io.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -741,6 +742,8 @@ int wff_mesh_load(const char *path, const wff_mesh_options *options, wff_mesh *m
     /* gmsh opens a missing file without any error: check first. */
     if (access(path, R_OK) != 0)
         return wff_fail(err, "%s: cannot read: %s", path, strerror(errno));
+    if (wff_regular_file_check(path, "mesh file", err)) /* gmsh would wait on a pipe */
+        return -1;
     /* FreeFEM's savemesh format, also named .msh (gmsh's starts "$MeshFormat") */
     if (!is_geo && wff_mesh_is_freefem_msh(path))
         return wff_mesh_load_freefem(path, NULL, mesh, err);

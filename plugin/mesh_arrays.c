@@ -1,10 +1,11 @@
 /* mesh_arrays.c: what the rest of the core does with a loaded mesh (the
  * arrays of include/wovenff/mesh.h): free it, find a physical group's tag by
- * name, and give the triangle twin FreeFEM needs (each quad split along its
- * 0-2 diagonal). Knows nothing of gmsh (mesh.c reads the files), materials
+ * name, its extent (bounding box, edge lengths), and give the triangle twin
+ * FreeFEM needs (each quad split along its 0-2 diagonal). Knows nothing of gmsh (mesh.c reads the files), materials
  * or the solver. */
 #include "wovenff/mesh_arrays.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -49,4 +50,35 @@ void wff_mesh_triangulate(const wff_mesh *mesh, int *tri_out, int *region_out)
         r[0] = r[1] = mesh->quad_region[q];
         r += 2;
     }
+}
+
+void wff_mesh_extent(const wff_mesh *mesh, double box[4], double *shortest_edge,
+                     double *mean_edge)
+{
+    box[0] = box[2] = INFINITY;
+    box[1] = box[3] = -INFINITY;
+    for (int i = 0; i < mesh->n_nodes; i++) {
+        double x = mesh->xy[2 * i], y = mesh->xy[2 * i + 1];
+        box[0] = fmin(box[0], x);
+        box[1] = fmax(box[1], x);
+        box[2] = fmin(box[2], y);
+        box[3] = fmax(box[3], y);
+    }
+    double shortest = INFINITY, sum = 0;
+    long count = 0;
+    for (int kind = 0; kind < 2; kind++) {
+        int n = kind ? mesh->n_quads : mesh->n_tris, corners = kind ? 4 : 3;
+        const int *node = kind ? mesh->quad : mesh->tri;
+        for (int e = 0; e < n; e++)
+            for (int c = 0; c < corners; c++) {
+                int a = node[corners * e + c], b = node[corners * e + (c + 1) % corners];
+                double length = hypot(mesh->xy[2 * a] - mesh->xy[2 * b],
+                                      mesh->xy[2 * a + 1] - mesh->xy[2 * b + 1]);
+                shortest = fmin(shortest, length);
+                sum += length;
+                count++;
+            }
+    }
+    *shortest_edge = count ? shortest : 0;
+    *mean_edge = count ? sum / (double)count : 0;
 }

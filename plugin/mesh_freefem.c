@@ -9,16 +9,18 @@
  *
  * Knows nothing of gmsh, FreeFEM's C++ types, materials or the solver. */
 #include "wovenff/mesh_labels.h"
+#include "wovenff/text_io.h"
 
 #include <errno.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 int wff_mesh_is_freefem_msh(const char *path)
 {
-    FILE *f = fopen(path, "r");
+    FILE *f = wff_open_regular(path, "mesh file", NULL); /* a pipe: not one (refused later) */
     if (!f)
         return 0;
     char line[256];
@@ -80,9 +82,11 @@ int wff_mesh_load_freefem(const char *path, const char *settings, wff_mesh *mesh
                           wff_error *err)
 {
     memset(mesh, 0, sizeof *mesh);
-    reader r = {fopen(path, "r"), path, 0, err};
-    if (!r.f)
+    if (access(path, R_OK) != 0)
         return wff_fail(err, "%s: cannot read: %s", path, strerror(errno));
+    reader r = {wff_open_regular(path, "mesh file", err), path, 0, err};
+    if (!r.f)
+        return -1;
     double head[3];
     int nv = 0, nt = 0, nbe = 0;
     int rc = read_line(&r, 3, head, "\"nv nt nbe\"");

@@ -56,6 +56,8 @@ void wff_model_free(wff_model *m)
     free(m->clamp.node);
     free(m->clamp.normal_force);
     free(m->operator_scratch);
+    free(m->snapshot[0]);
+    free(m->snapshot[1]);
     free(m->bc);
     wff_parts_free(m); /* each part what it allocated (part.h) */
     wff_zones_free(m);
@@ -160,6 +162,7 @@ int wff_model_setup(wff_model *m, wff_error *err)
             m->dof_kind[D * n + 3] = m->dof_kind[D * n + 4] = WFF_DOF_FIXED;
     m->dt_factor = 0.8;
     m->dt_interval = 20;
+    m->snapshot_step[0] = m->snapshot_step[1] = -1;
     m->symmetry_factor = 1;
     if (wff_erosion_default(m, err)) { /* erosion on (both families) when the points carry damage */
         wff_model_free(m);
@@ -451,6 +454,22 @@ static int apply_dtfactor(wff_model *m, double value, wff_error *err)
     return 0;
 }
 
+static int check_t_stop(const wff_model *m, double value, wff_error *err)
+{
+    if (!(value >= 0) || !isfinite(value))
+        return wff_fail(err, "t_stop = %g s: must be a finite time >= 0 (0: none)", value);
+    if (value > 0 && value < m->time)
+        return wff_fail(err, "t_stop = %.9g s: before the model's time %.9g s", value, m->time);
+    return 0;
+}
+
+static int apply_t_stop(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->t_stop = value;
+    return 0;
+}
+
 static int check_dtinterval(const wff_model *m, double value, wff_error *err)
 {
     (void)m;
@@ -526,6 +545,34 @@ static int apply_amplitude_mass_factor(wff_model *m, double value, wff_error *er
     (void)err;
     m->em.amplitude_mass_factor = value;
     wff_zones_masses(m);
+    return 0;
+}
+
+static int check_travel_limit(const wff_model *m, double value, wff_error *err)
+{
+    (void)m;
+    return check_flag("travel_limit", value, "1 (the amplitudes' travel per step limited, "
+                      "docs/model.md §12) or 0 (dtfactor x the stable step only)", err);
+}
+
+static int apply_travel_limit(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->travel_off = value == 0;
+    return 0;
+}
+
+static int check_adaptive_step(const wff_model *m, double value, wff_error *err)
+{
+    (void)m;
+    return check_flag("adaptive_step", value, "1 (an instability halves dtfactor and the run "
+                      "goes on from the last good state) or 0 (it stops the run)", err);
+}
+
+static int apply_adaptive_step(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->adaptive = value != 0;
     return 0;
 }
 
@@ -639,11 +686,14 @@ static int apply_clamp_edge_reaction(wff_model *m, double value, wff_error *err)
 static const wff_setting model_settings[] = {
     {"dtfactor", check_dtfactor, apply_dtfactor},
     {"dtinterval", check_dtinterval, apply_dtinterval},
+    {"t_stop", check_t_stop, apply_t_stop},
     {"symmetry", check_symmetry, apply_symmetry},
     {"reference_path", check_reference_path, apply_reference_path},
     {"threads", check_threads, apply_threads},
     {"amplitude_mass_factor", check_amplitude_mass_factor, apply_amplitude_mass_factor},
     {"static_amplitudes", check_static_amplitudes, apply_static_amplitudes},
+    {"travel_limit", check_travel_limit, apply_travel_limit},
+    {"adaptive_step", check_adaptive_step, apply_adaptive_step},
     {"contact_search", check_contact_search, apply_contact_search},
     {"orientation", check_orientation, apply_orientation},
     {"clamp_radius", check_clamp_radius, apply_clamp_radius},

@@ -129,6 +129,31 @@ int wff_model_stable_step(const wff_model *m, const double *U, double *dt, int *
     return 0;
 }
 
+int wff_model_travel_step(const wff_model *m, const double *V, const double *R, double *dt,
+                          wff_error *err)
+{
+    *dt = INFINITY;
+    const double length = wff_zones_amplitude_length(m), reach = WFF_TRAVEL * length;
+    if (!(length < INFINITY))
+        return 0;
+    for (int user = 0; user < m->n_nodes; user++) {
+        const int n = m->node_model ? m->node_model[user] : user;
+        for (int j = D - 2; j < D; j++) {
+            const int i = D * n + j, iu = D * user + j;
+            if (m->dof_kind[i] != WFF_DOF_FREE || R[iu] == 0) /* (as wff_step_travel) */
+                continue;
+            const double speed = fabs(V[iu]), accel = fabs(R[iu] / m->mass[i]);
+            if (!isfinite(speed) || !isfinite(accel))
+                return wff_fail(err, "travel limit: node %d, amplitude %d: velocity %g m/s, "
+                                "force %g N: not finite", user + 1, j - D + 3, V[iu], R[iu]);
+            const double step = 2 * reach / (speed + sqrt(speed * speed + 4 * accel * reach));
+            if (step < *dt)
+                *dt = step;
+        }
+    }
+    return 0;
+}
+
 int wff_model_step(wff_model *m, double *dt_taken, wff_error *err)
 {
     /* not started: the start (forces at u⁰, the first half step) sets the step */

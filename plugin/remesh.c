@@ -499,6 +499,9 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     nm.operator_scratch = NULL; /* operators.c's workspace: the new model allocates its own */
     nm.node_user = nm.node_model = nm.element_user = nm.element_model = NULL;
     nm.eroded_now = NULL, nm.eroded_now_energy = NULL, nm.n_eroded_now = 0;
+    for (int k = 0; k < 2; k++) /* (another mesh's) */
+        nm.snapshot[k] = NULL, nm.snapshot_size[k] = 0, nm.snapshot_step[k] = -1;
+    nm.cut_since_snapshot = 0;
     locator L;
     memset(&L, 0, sizeof L);
     char why[WFF_ERROR_MAX];

@@ -28,6 +28,25 @@ double wff_step_positions(wff_model *m, double dt);
 void wff_step_zero(const wff_model *m, double *f, int n);
 double wff_step_velocities(wff_model *m, double dt_mid, double dt_done);
 void wff_step_kinetic(const wff_model *m, double half, double sums[3]);
+/* The travel limit (docs/model.md §12): a step moves no free amplitude more
+ * than this fraction (× dtfactor) of its cell's amplitude length. Measured on
+ * a square released from a bump with its amplitudes far from balance (swings
+ * of ±20-60 µm at up to ~600 m/s into the compaction exponential, 1/a = 10 µm):
+ * 1.25 went unstable within 500 steps at dtfactor 0.8, 0.625 held 10,000 at
+ * 0.8 and 0.9, with and without the preload (the paper's scene never meets it). */
+#define WFF_TRAVEL 0.625
+
+/* The adaptive step's good states (checkpoint.c): every evolving field of the
+ * checkpoint copied into the older of two buffers (allocated on first use; -1
+ * with err if out of memory); restore copies the newer back, or the older when
+ * a restore was made since the newer was kept (-1 if there is none). */
+int wff_model_snapshot(wff_model *m, wff_error *err);
+int wff_model_restore(wff_model *m);
+
+/* The longest step, s, in which no free amplitude DOF with a force on it, moving at v and
+ * accelerated by f/m, travels more than reach (m): the smallest root of
+ * dt (|v| + dt |f/m|) = reach over them (INFINITY if there is none). */
+double wff_step_travel(const wff_model *m, double reach);
 int wff_step_candidates(const wff_model *m, double reach, int *candidates);
 /* model.c: a model's arrays, masses and defaults from its mesh, material and
  * elements (m->mesh, m->mat, m->el and the order arrays set; every other field

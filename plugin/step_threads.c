@@ -84,6 +84,36 @@ double wff_step_velocities(wff_model *m, double dt_mid, double dt_done)
     return wff_sum_parts(part_work, parts);
 }
 
+double wff_step_travel(const wff_model *m, double reach)
+{
+    const double *v = m->v, *f = m->f, *mass = m->mass;
+    const unsigned char *kind = m->dof_kind;
+    const int n = m->n_nodes, parts = wff_part_count(n, NODE_GRAIN);
+    double part_min[MAX_PARTS];
+#pragma omp parallel for schedule(static) num_threads(wff_pass_threads(m, parts)) if (wff_pass_threads(m, parts) > 1)
+    for (int k = 0; k < parts; k++) {
+        const int end = wff_part_begin(n, parts, k + 1);
+        double shortest = INFINITY;
+        for (int node = wff_part_begin(n, parts, k); node < end; node++)
+            for (int j = D - 2; j < D; j++) {
+                const int i = D * node + j;
+                /* (a DOF no element acts on, a node whose elements have all
+                 * eroded, has no stiffness to outrun: it sets no limit) */
+                if (kind[i] != WFF_DOF_FREE || f[i] == 0)
+                    continue;
+                /* the root of dt (|v| + dt |a|) = reach */
+                const double speed = fabs(v[i]), accel = fabs(f[i] / mass[i]);
+                const double dt = 2 * reach / (speed + sqrt(speed * speed + 4 * accel * reach));
+                shortest = dt < shortest || dt != dt ? dt : shortest;
+            }
+        part_min[k] = shortest;
+    }
+    double shortest = INFINITY;
+    for (int k = 0; k < parts; k++)
+        shortest = part_min[k] < shortest || part_min[k] != part_min[k] ? part_min[k] : shortest;
+    return shortest;
+}
+
 void wff_step_kinetic(const wff_model *m, double half, double k3[3])
 {
     const double *v = m->v, *f = m->f, *mass = m->mass;

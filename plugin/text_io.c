@@ -10,16 +10,80 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+/* What a file of mode `mode` is, for the refusal of what is not a regular file. */
+static const char *file_kind(mode_t mode)
+{
+    if (S_ISDIR(mode))
+        return "a folder";
+    if (S_ISFIFO(mode))
+        return "a pipe (a named pipe, or a shell's <(...))";
+    if (S_ISCHR(mode) || S_ISBLK(mode))
+        return "a device";
+    if (S_ISSOCK(mode))
+        return "a socket";
+    return "not a regular file";
+}
+
+static int refuse_kind(const char *path, const char *what, mode_t mode, wff_error *err)
+{
+    return wff_fail(err, "%s %s is %s, not a regular file: give a file%s", what, path,
+                    file_kind(mode),
+                    S_ISFIFO(mode) ? " (a pipe waits for a writer, and what it gives can be "
+                                     "read only once)" : "");
+}
+
+int wff_regular_file_check(const char *path, const char *what, wff_error *err)
+{
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return wff_fail(err, "cannot open %s %s: %s", what, path, strerror(errno));
+    if (!S_ISREG(st.st_mode))
+        return refuse_kind(path, what, st.st_mode, err);
+    return 0;
+}
+
+FILE *wff_open_regular(const char *path, const char *what, wff_error *err)
+{
+    /* O_NONBLOCK: opening a named pipe does not wait for a writer; the mode is
+     * checked on the descriptor opened (no window between a stat and the open) */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        wff_fail(err, "cannot open %s %s: %s", what, path, strerror(errno));
+        return NULL;
+    }
+    struct stat st;
+    if (fstat(fd, &st) != 0) {
+        wff_fail(err, "cannot open %s %s: %s", what, path, strerror(errno));
+        close(fd);
+        return NULL;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        refuse_kind(path, what, st.st_mode, err);
+        close(fd);
+        return NULL;
+    }
+    int flags = fcntl(fd, F_GETFL);
+    FILE *in = flags < 0 || fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) != 0 ? NULL
+                                                                        : fdopen(fd, "rb");
+    if (!in) {
+        wff_fail(err, "cannot open %s %s: %s", what, path, strerror(errno));
+        close(fd);
+    }
+    return in;
+}
 
 int wff_read_file(const char *path, const char *what, size_t max, char **data, size_t *size,
                   wff_error *err)
 {
     *data = NULL;
     *size = 0;
-    FILE *in = fopen(path, "rb");
+    FILE *in = wff_open_regular(path, what, err);
     if (!in)
-        return wff_fail(err, "cannot open %s %s: %s", what, path, strerror(errno));
+        return -1;
     char *buf = NULL;
     size_t used = 0, cap = 0;
     int too_large = 0;

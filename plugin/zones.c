@@ -14,6 +14,7 @@
  * files or FreeFEM. Without zones (m->zones NULL) every function is the plain
  * call the model made before zones existed. */
 #include "zones.h"
+#include "wovenff/cell_ops.h"
 #include "clamp.h"
 #include "plies.h"
 #include "wovenff/balance.h"
@@ -664,6 +665,16 @@ double wff_zones_stable_step(const wff_model *m, const double *u, int *worst)
         }
     }
     return dt;
+}
+
+double wff_zones_amplitude_length(const wff_model *m)
+{
+    const struct wff_zones *Z = m->zones;
+    double length = wff_cell_amplitude_length(&m->mat);
+    for (int k = 1; Z && k < Z->n; k++)
+        if (Z->zone[k].n_elements > 0 && wff_cell_amplitude_length(&Z->zone[k].mat) < length)
+            length = wff_cell_amplitude_length(&Z->zone[k].mat);
+    return length;
 }
 
 void wff_zones_energy_split(const wff_model *m, const double *u, const double *state,

@@ -35,6 +35,9 @@ int wff_zones_in_place(const wff_model *m, int k);
 void wff_zones_masses(wff_model *m);
 /* The smallest stable step over the zones; *worst the model's element. */
 double wff_zones_stable_step(const wff_model *m, const double *u, int *worst);
+/* The shortest amplitude length (cell.h's amplitude_length, m) of the
+ * materials in use: the model's and its zones'; INFINITY if none has one. */
+double wff_zones_amplitude_length(const wff_model *m);
 /* Energy per mechanism in the order of the model's cell's mech_names; a zone
  * of another cell adds each of its mechanisms to the one of the same name
  * (one without a namesake is left out). */

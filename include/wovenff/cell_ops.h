@@ -76,6 +76,9 @@ int wff_cell_point_block(const wff_material *mat, double dt, wff_point_block *bl
 int wff_cell_has_tangent_block(const wff_material *mat);
 int wff_cell_tangent_block(const wff_material *mat, wff_tangent_block *blk);
 int wff_cell_has_wave_block(const wff_material *mat);
+/* The cell's amplitude_length (m), INFINITY for a cell without amplitudes or
+ * without the op (no travel limit on the step). */
+double wff_cell_amplitude_length(const wff_material *mat);
 int wff_cell_wave_block(const wff_material *mat, wff_wave_block *blk); /* mat's density */
 
 #ifdef __cplusplus

@@ -5,7 +5,9 @@
  * `rho_A = ...` (kg/m^2) is common to every cell; all other keys belong to the
  * cell. Unknown, missing, duplicate and non-numeric keys are errors that name
  * the file, the line and the key; so are values the cell finds physically
- * impossible. */
+ * impossible. An unknown key is named with its line and the known key nearest
+ * to it (edit distance), before any complaint of a missing key it may stand
+ * for: "kevlar.txt:10: unknown key 'k2' (line 10): did you mean 'k_2'?". */
 #ifndef WOVENFF_MATERIAL_H
 #define WOVENFF_MATERIAL_H
 
@@ -37,6 +39,13 @@ struct wff_kv {
     const char *source;  /* file name for messages */
     int n;
     wff_kv_entry entry[WFF_KV_MAX];
+    /* What the cell asked for (wff_kv_number, wff_kv_number_or): the keys it
+     * knows, and the first required key it did not find; for the messages
+     * that name an unknown key with the known key nearest to it. Start them
+     * zeroed. */
+    int n_asked;
+    char asked[WFF_KV_MAX][WFF_KV_KEY_MAX];
+    char missing[WFF_KV_KEY_MAX];
 };
 
 /* Load and validate a material file. On failure mat is left unusable and err
@@ -46,6 +55,22 @@ int wff_material_load(const char *path, wff_material *mat, wff_error *err);
 /* The same from text in memory; source_name is used in messages. */
 int wff_material_parse_text(const char *text, const char *source_name,
                             wff_material *mat, wff_error *err);
+
+/* A material's scales against woven fabrics (plugin/material_scales.c,
+ * docs/limits.md "Input checks"), to catch slips of units before a run: the
+ * areal density, each family's yarn spacing and each family's stiffness (the
+ * stress per width at 1 % stretch over 1 % x rho_A, a wave speed squared)
+ * against wide bands of Kevlar-like fabrics and their kin (aramid, UHMWPE,
+ * glass, nylon weaves). Returns 0 when each is inside its band or a factor of
+ * a few outside; 1 when one is orders of magnitude off: err then says which
+ * key, its line and file, the value, how far off and the likely unit
+ * ("rho_A = 181 kg/m^2 (line 21 of F) is ~1000x the areal density of
+ * Kevlar-like fabrics (0.03-1.5 kg/m^2; ...): given in g/m^2?"); −1 when the
+ * file or text is not a valid material (err as wff_material_load's). The
+ * reader itself (wff_material_load) does not apply these bands: a model may
+ * be any fabric, or none (the tests' light and stiff variants). */
+int wff_material_scales(const char *path, wff_error *err);
+int wff_material_scales_text(const char *text, const char *source, wff_error *err);
 
 /* Write a copy of the material file `path` to `out_path` with some values
  * replaced: overrides is "key=value,key=value" (a key must already be in the

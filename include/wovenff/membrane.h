@@ -239,7 +239,9 @@ double wff_element_stored_energy(const wff_elements *el, const wff_element_mater
 
 /* Stable explicit step over all elements at the current state: per element
  * 1/sqrt(1/dt_m² + 1/dt_A²) with dt_m = size/c (membrane waves) and
- * dt_A = 2/ω (amplitude oscillator), the bound for the two coupled.
+ * dt_A = 2/ω (amplitude oscillator), the bound for the two coupled; c and ω
+ * the largest over a triangle's vertices (its F, each vertex's ΔA: the nodal
+ * quadrature's points), at a quad's centre state (docs/model.md §12).
  * *worst gets the element that sets it. Eroded elements set none (every
  * element eroded: INFINITY, *worst −1). */
 double wff_elements_stable_step(const wff_elements *el, const wff_element_material *em,

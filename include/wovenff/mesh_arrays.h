@@ -39,6 +39,12 @@ void wff_mesh_free(wff_mesh *mesh);
 /* Label of the physical group named `name` of dimension dim, or -1. */
 int wff_mesh_group_tag(const wff_mesh *mesh, int dim, const char *name);
 
+/* The mesh's size, for checks of its unit against a scene's lengths: the
+ * bounding box (box: X min, X max, Y min, Y max, m) and the shortest and mean
+ * element edge, m (each element's edges, a shared edge once per element). */
+void wff_mesh_extent(const wff_mesh *mesh, double box[4], double *shortest_edge,
+                     double *mean_edge);
+
 /* Triangle twin: 3*(n_tris + 2*n_quads) indices into tri_out (caller-sized),
  * regions into region_out; triangles first, then each quad as (0,1,2),(0,2,3). */
 void wff_mesh_triangulate(const wff_mesh *mesh, int *tri_out, int *region_out);

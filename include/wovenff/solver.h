@@ -137,6 +137,22 @@ struct wff_model {
                                  θ = em.orientation (membrane.h) */
 
     double time, dt, dt_stable, dt_factor;
+    double t_stop;            /* the time the model steps no further than, landing on it
+                                 exactly (setting "t_stop"; 0: none), s */
+    int travel_off;           /* setting travel_limit 0: the step is dtfactor × the stable
+                                 step only (the amplitudes' travel not limited) */
+    long travel_steps;        /* steps the travel limit shortened */
+    double dt_travel;         /* the travel limit at the last step, s (0: none yet) */
+    int adaptive;             /* setting adaptive_step: an instability halves dtfactor and
+                                 the run goes on from the last good state */
+    long step_cuts;           /* the halvings so far */
+    int growth_steps;         /* consecutive steps of geometric growth of the error */
+    void *snapshot[2];        /* the last two good states (checkpoint.c's fields), adaptive
+                                 only */
+    size_t snapshot_size[2];
+    long snapshot_step[2];    /* their steps (-1: none) */
+    int snapshot_newest;      /* which of the two is the newer */
+    int cut_since_snapshot;   /* a cut went back to the newer since it was kept */
     long step;
     int dt_interval;          /* steps between stable-step updates */
     int dt_worst_element;
@@ -406,11 +422,12 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 5 /* 2: the projectile's impulse_total added; 3: the points'
+#define WFF_CHECKPOINT_VERSION 6 /* 2: the projectile's impulse_total added; 3: the points'
                                     generic state (n_state and names in the header, every
                                     state saved), failure and eroded energies; 4: the
                                     erosion rule (header) and the eroded flags; 5: the
-                                    orientation (header) */
+                                    orientation (header); 6: the amplitudes' travel limit and its
+                                    count */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 
@@ -446,6 +463,13 @@ void wff_model_masses(const wff_model *m, double *M);
  * u); *worst (may be NULL) the element that sets it. -1 with err if it is not
  * positive (degenerate or NaN state). No side effect. */
 int wff_model_stable_step(const wff_model *m, const double *U, double *dt, int *worst,
+                          wff_error *err);
+/* The amplitudes' travel limit (s, factor 1; docs/model.md §12) for a
+ * caller's own loop: the longest step in which no free amplitude DOF moving
+ * at V (m/s) under the forces R (N; both in the caller's order, 5 per node)
+ * travels more than 0.625 of the cells' amplitude length; INFINITY for cells
+ * without one. -1 with err for a value that is not finite. */
+int wff_model_travel_step(const wff_model *m, const double *V, const double *R, double *dt,
                           wff_error *err);
 /* One built-in step (wff_model_advance by exactly one step); *dt_taken the
  * step length, s. */

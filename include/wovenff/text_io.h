@@ -22,9 +22,20 @@
 extern "C" {
 #endif
 
+/* Every input is a regular file: a named pipe (or a shell's <(...), or a
+ * folder, a device) is refused, naming the path and what it is, before it is
+ * read (a pipe would wait for ever for a writer, and what it gives can be read
+ * only once: a second read of the same path would find it empty).
+ * wff_open_regular opens path for reading ("rb") so, without waiting on a pipe
+ * (NULL and err on failure); wff_regular_file_check only looks (stat), for a
+ * path another library opens (gmsh). */
+FILE *wff_open_regular(const char *path, const char *what, wff_error *err);
+int wff_regular_file_check(const char *path, const char *what, wff_error *err);
+
 /* The whole file at path into *data (malloc'ed, with a terminating '\0' after
  * the *size bytes; the caller frees it). `what` names the file in messages,
- * e.g. "checkpoint". Fails for a file larger than max bytes. */
+ * e.g. "checkpoint". Fails for a file larger than max bytes, and for what is
+ * not a regular file (wff_open_regular). */
 int wff_read_file(const char *path, const char *what, size_t max, char **data, size_t *size,
                   wff_error *err);
 /* The same for a text file: also fails if it contains a NUL byte. */

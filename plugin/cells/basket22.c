@@ -487,6 +487,14 @@ static void basket_reference_geometry(const void *params, double pitch0[2], doub
     wff_reference_geometry_copy(k->pitch0, k->amplitude0, pitch0, amplitude0);
 }
 
+/* The compaction exponential's length 1/a: the amplitude stiffness's fastest
+ * growth (cell.h, amplitude_length). */
+static double basket_amplitude_length(const void *params)
+{
+    const basket_params *k = params;
+    return k->compaction_rate > 0 ? 1 / k->compaction_rate : 0;
+}
+
 static const wff_cell_type basket_2x2 = {
     .name = "basket_2x2",
     .summary = "2/2 basket weave: paired yarns with floats, one-truss yarn path, crossover "
@@ -513,5 +521,6 @@ static const wff_cell_type basket_2x2 = {
     .amplitude_tangent = basket_amplitude_tangent,
     .amplitude_tangent_block = basket_amplitude_tangent_block,
     .wave_speeds_block = basket_wave_speeds_block,
+    .amplitude_length = basket_amplitude_length,
 };
 WFF_REGISTER_CELL(basket_2x2);

@@ -761,6 +761,14 @@ static void king_reference_geometry(const void *params, double pitch0[2], double
     wff_reference_geometry_copy(k->pitch0, k->amplitude0, pitch0, amplitude0);
 }
 
+/* The compaction exponential's length 1/a: the amplitude stiffness's fastest
+ * growth (cell.h, amplitude_length). */
+static double king_amplitude_length(const void *params)
+{
+    const king_params *k = params;
+    return k->compaction_rate > 0 ? 1 / k->compaction_rate : 0;
+}
+
 static const wff_cell_type king_plain = {
     .name = "king_plain",
     .summary = "King et al. (2005) plain weave: crimped yarn trusses, bending, compaction, "
@@ -787,5 +795,6 @@ static const wff_cell_type king_plain = {
     .amplitude_tangent = king_amplitude_tangent,
     .amplitude_tangent_block = king_amplitude_tangent_block,
     .wave_speeds_block = king_wave_speeds_block,
+    .amplitude_length = king_amplitude_length,
 };
 WFF_REGISTER_CELL(king_plain);

@@ -8,6 +8,8 @@
 //   real W = wovenffForces(md, U, R, dt)    // the same, γᶠ and the dissipation advanced by dt
 //   wovenffMass(md, M)                      // lumped mass of every DOF, kg
 //   real dts = wovenffStableStep(md[, U])   // stable step (s, factor 1) now or at U
+//   real dts = wovenffStableStep(md, U, V, R)  // the same, and the amplitudes' travel limit
+//                                           // at velocities V under forces R
 //   real dt = wovenffStep(md)               // one built-in step; the step taken, s
 //   wovenffDofKinds(md, K[, Vp])            // 0 free, 1 fixed, 2 prescribed; Vp their velocity
 //   int n = wovenffContactSearch(md, U)     // the projectile's candidate nodes at U
@@ -110,6 +112,19 @@ double ffStableStepAt(const long &id, KN<double> *const &U)
     return loop_stable_step(id, dofs(fn, "U", wff_ff_model(id, fn), U, id));
 }
 
+double ffStableStepMoving(const long &id, KN<double> *const &U, KN<double> *const &V,
+                          KN<double> *const &R)
+{
+    const char *fn = "wovenffStableStep";
+    const wff_model *m = wff_ff_model(id, fn);
+    double dt = loop_stable_step(id, dofs(fn, "U", m, U, id)), travel;
+    wff_error err;
+    if (wff_model_travel_step(m, dofs(fn, "V", m, V, id), dofs(fn, "R", m, R, id), &travel,
+                              &err))
+        wff_ff_model_fail(fn, err.message, id);
+    return travel < dt ? travel : dt;
+}
+
 double ffStep(const long &id)
 {
     wff_model *m = wff_ff_model(id, "wovenffStep");
@@ -182,6 +197,9 @@ void wff_ff_register_loop()
     Global.Add("wovenffStableStep", "(", new OneOperator1_<double, long>(ffStableStep));
     Global.Add("wovenffStableStep", "(",
                new OneOperator2_<double, long, KN<double> *>(ffStableStepAt));
+    Global.Add("wovenffStableStep", "(",
+               new OneOperator4_<double, long, KN<double> *, KN<double> *, KN<double> *>(
+                   ffStableStepMoving));
     Global.Add("wovenffStep", "(", new OneOperator1_<double, long>(ffStep));
     Global.Add("wovenffDofKinds", "(", new OneOperator2_<long, long, KN<double> *>(ffDofKinds));
     Global.Add("wovenffDofKinds", "(",

@@ -764,6 +764,13 @@ int main(void)
     check_forces_test_cell(&st, TEST_MESH_QUAD);
     check_king_paths(&st, TEST_MESH_TRI);
     check_king_paths(&st, TEST_MESH_QUAD);
+    /* the test cell's materials have a woven fabric's scales (wff_material_scales) */
+    const char *const tree[] = {EROSION, NODAMAGE, "tests/data/erosion_cell_off.txt"};
+    for (int i = 0; i < 3; i++) {
+        wff_error e = {{0}};
+        int rc = wff_material_scales(tree[i], &e);
+        CHECK(&st, rc == 0, "%s: scales check %d: %s", tree[i], rc, e.message);
+    }
     check_stable_step(&st, EROSION, 1);
     check_stable_step(&st, KEVLAR, 0);
     check_perforation(&st);

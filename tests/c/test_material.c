@@ -1,11 +1,20 @@
 /* Material files: every malformed case is rejected with a message that names
- * the file, the line and the key. */
+ * the file, the line and the key; an unknown key is named with the known key
+ * nearest to it (before a missing key it stands for); what is not a regular
+ * file (a named pipe, a folder, a device) is refused without waiting on it;
+ * the scales check (wff_material_scales) passes every material of the tree and
+ * a factor of a few off, and names each unit slip with its key, line and
+ * likely unit. */
 #include "check.h"
 #include "test_tmp.h"
 #include "wovenff/material.h"
+#include "wovenff/text_io.h"
 
+#include <glob.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #define KEVLAR "freefem_scripts/materials/kevlar_s706.txt"
 
@@ -77,6 +86,218 @@ static int line_of(const char *text, const char *key)
             line++;
     }
     return line;
+}
+
+
+/* Expect the scales check of text to pass (0). */
+static void expect_scales_ok(check_state *st, const char *text, const char *what)
+{
+    wff_error e = {{0}};
+    int rc = wff_material_scales_text(text, "case.txt", &e);
+    CHECK(st, rc == 0, "%s: scales check %d: %s", what, rc, e.message);
+}
+
+/* Expect a unit slip (1) whose message holds every needle (NULL ends). */
+static void expect_slip(check_state *st, const char *text, const char *what,
+                        const char *const *needles)
+{
+    wff_error e = {{0}};
+    int rc = wff_material_scales_text(text, "case.txt", &e);
+    CHECK(st, rc == 1, "%s: scales check %d, want 1 (a slip): %s", what, rc,
+          rc ? e.message : "");
+    for (int i = 0; rc == 1 && needles[i]; i++)
+        CHECK(st, strstr(e.message, needles[i]) != NULL, "%s: message '%s' lacks '%s'", what,
+              e.message, needles[i]);
+}
+
+/* An unknown key named with its line and the known key nearest to it. */
+static void test_unknown_keys(check_state *st, const char *base)
+{
+    static char text[70000];
+    char needle[3][160];
+    /* a slipped required key: named in place of "missing key" */
+    const char *slips[][3] = {
+        {"k_2", "k2", "k_2"},       {"kb_1", "kb1", "kb_1"},   {"K_I", "k_i", "K_I"},
+        {"cell", "Cell", "cell"},   {"rho_A", "rhoA", "rho_A"},
+        {"gammadot_0", "gamma_dot_0", "gammadot_0"}, {"p0_2", "p02", "p0_2"},
+    };
+    for (size_t i = 0; i < sizeof slips / sizeof slips[0]; i++) {
+        char from[64], to[64];
+        snprintf(from, sizeof from, "%s ", slips[i][0]);
+        /* the line of the key, renamed in place (the value kept) */
+        const char *at = strstr(base, from);
+        while (at && at != base && at[-1] != '\n')
+            at = strstr(at + 1, from);
+        CHECK(st, at != NULL, "no line '%s' in the Kevlar file", slips[i][0]);
+        if (!at)
+            continue;
+        const char *eol = strchr(at, '\n');
+        snprintf(to, sizeof to, "%s", slips[i][1]);
+        char line[200];
+        snprintf(line, sizeof line, "%s%.*s", to, (int)(eol - at - strlen(slips[i][0])),
+                 at + strlen(slips[i][0]));
+        edit(base, slips[i][0], line, text, sizeof text);
+        int l = line_of(text, slips[i][1]);
+        snprintf(needle[0], sizeof needle[0], "case.txt:%d: unknown key '%s' (line %d)", l,
+                 slips[i][1], l);
+        snprintf(needle[1], sizeof needle[1], "did you mean '%s'?", slips[i][2]);
+        expect_error(st, text, slips[i][1], needle[0], needle[1], NULL);
+        wff_material m;
+        wff_error e = {{0}};
+        wff_material_parse_text(text, "case.txt", &m, &e);
+        CHECK(st, strstr(e.message, "missing key") == NULL, "%s: still 'missing key': %s",
+              slips[i][1], e.message);
+    }
+    /* an optional key slipped (the parse completes): the unknown key, the nearest known */
+    edit(base, "lever", "levr = 0", text, sizeof text);
+    snprintf(needle[0], sizeof needle[0], "unknown key 'levr' (line %d) for cell 'king_plain'",
+             line_of(text, "levr"));
+    expect_error(st, text, "levr", needle[0], "did you mean 'lever'?", NULL);
+    edit(base, "tension_only", "tension_onyl = 0", text, sizeof text);
+    expect_error(st, text, "tension_onyl", "unknown key 'tension_onyl'",
+                 "did you mean 'tension_only'?", NULL);
+    /* a key near nothing the cell knows: named, no guess */
+    edit(base, "warp_spacing", "warp_spacing = 1", text, sizeof text);
+    {
+        wff_material m;
+        wff_error e = {{0}};
+        wff_material_parse_text(text, "case.txt", &m, &e);
+        CHECK(st, strstr(e.message, "unknown key 'warp_spacing'") &&
+                      !strstr(e.message, "did you mean"), "warp_spacing guessed: %s", e.message);
+    }
+    /* a missing key whose near neighbours are real keys (kb_2, k_1 for k_2):
+     * still "missing key", no false guess */
+    edit(base, "k_2", NULL, text, sizeof text);
+    expect_error(st, text, "k_2 removed", "missing key 'k_2'", NULL, NULL);
+    {
+        wff_material m;
+        wff_error e = {{0}};
+        wff_material_parse_text(text, "case.txt", &m, &e);
+        CHECK(st, !strstr(e.message, "did you mean"), "k_2 removed: a false guess: %s",
+              e.message);
+    }
+    /* one-letter keys are not guessed from another letter (b for a) */
+    edit(base, "a", "b = 1.0e5", text, sizeof text);
+    expect_error(st, text, "a as b", "missing key 'a'", NULL, NULL);
+}
+
+/* What is not a regular file is refused at once, naming the path and its kind. */
+static void test_not_regular(check_state *st)
+{
+    char dir[512], fifo[700];
+    CHECK(st, test_tmp_dir("test_material_fifo", dir, sizeof dir) == 0, "temporary folder");
+    test_tmp_path(dir, "material.fifo", fifo, sizeof fifo);
+    CHECK(st, mkfifo(fifo, 0600) == 0, "mkfifo %s", fifo);
+    alarm(20); /* a read that waits on the pipe fails the test (SIGALRM), not the suite */
+    wff_material m;
+    wff_error e = {{0}};
+    CHECK(st, wff_material_load(fifo, &m, &e) == -1 && strstr(e.message, fifo) &&
+                  strstr(e.message, "is a pipe") && strstr(e.message, "not a regular file"),
+          "named pipe: %s", e.message);
+    CHECK(st, wff_material_scales(fifo, &e) == -1 && strstr(e.message, "is a pipe"),
+          "named pipe, scales check: %s", e.message);
+    char *data = NULL;
+    size_t size;
+    CHECK(st, wff_read_file(fifo, "checkpoint", 1000, &data, &size, &e) == -1 &&
+                  strstr(e.message, "checkpoint") && strstr(e.message, "is a pipe"),
+          "named pipe as a checkpoint: %s", e.message);
+    CHECK(st, wff_regular_file_check(fifo, "mesh file", &e) == -1 &&
+                  strstr(e.message, "mesh file") && strstr(e.message, "is a pipe"),
+          "named pipe as a mesh: %s", e.message);
+    CHECK(st, wff_material_load(dir, &m, &e) == -1 && strstr(e.message, "is a folder"),
+          "folder: %s", e.message);
+    CHECK(st, wff_material_load("/dev/null", &m, &e) == -1 && strstr(e.message, "is a device"),
+          "device: %s", e.message);
+    alarm(0);
+    CHECK(st, wff_regular_file_check(KEVLAR, "material file", &e) == 0, "a file: %s",
+          e.message);
+    test_tmp_remove(dir);
+}
+
+/* The scales check: every material of the tree passes, a factor of a few
+ * passes, orders of magnitude are named. */
+static void test_scales(check_state *st, const char *base)
+{
+    static char text[70000];
+    const char *patterns[] = {"freefem_scripts/materials/*.txt", "tests/data/*.txt"};
+    int checked = 0;
+    for (int g = 0; g < 2; g++) {
+        glob_t files;
+        if (glob(patterns[g], 0, NULL, &files) != 0)
+            continue;
+        for (size_t i = 0; i < files.gl_pathc; i++) {
+            wff_material m;
+            wff_error e = {{0}};
+            if (wff_material_load(files.gl_pathv[i], &m, &e) != 0)
+                continue; /* (the tests' own cells, not materials: test_erosion checks those) */
+            int rc = wff_material_scales(files.gl_pathv[i], &e);
+            CHECK(st, rc == 0, "%s: scales check %d: %s", files.gl_pathv[i], rc, e.message);
+            checked++;
+        }
+        globfree(&files);
+    }
+    CHECK(st, checked >= 10, "only %d material files of the tree checked", checked);
+    printf("scales: %d material files of the tree pass\n", checked);
+
+    /* a factor of a few off: accepted */
+    const char *few[][2] = {{"rho_A", "rho_A = 0.6"},  {"rho_A", "rho_A = 0.05"},
+                            {"rho_A", "rho_A = 14"},   {"k_1", "k_1 = 3e6"},
+                            {"k_1", "k_1 = 1e8"},      {"p0_2", "p0_2 = 1.2e-3"},
+                            {"p0_1", "p0_1 = 0.12e-3"}};
+    for (size_t i = 0; i < sizeof few / sizeof few[0]; i++) {
+        edit(base, few[i][0], few[i][1], text, sizeof text);
+        expect_scales_ok(st, text, few[i][1]);
+    }
+    /* orders of magnitude: each named with its key, line, file, how far off and the unit */
+    char where[64];
+    edit(base, "rho_A", "rho_A = 181", text, sizeof text);
+    snprintf(where, sizeof where, "(line %d of case.txt)", line_of(text, "rho_A"));
+    expect_slip(st, text, "rho_A in g/m^2",
+                (const char *[]){"rho_A = 181 kg/m^2", where, "~1000x", "0.03-1.5 kg/m^2",
+                                 "given in g/m^2?", NULL});
+    edit(base, "rho_A", "rho_A = 16", text, sizeof text);
+    expect_slip(st, text, "rho_A = 16", (const char *[]){"rho_A = 16 kg/m^2", NULL});
+    edit(base, "rho_A", "rho_A = 1.81e-4", text, sizeof text);
+    expect_slip(st, text, "rho_A 1000x low",
+                (const char *[]){"~1/1000 of", "check its unit (kg/m^2)", NULL});
+    edit(base, "k_1", "k_1 = 1.03e4", text, sizeof text);
+    snprintf(where, sizeof where, "(line %d of case.txt)", line_of(text, "k_1"));
+    expect_slip(st, text, "k_1 in N/mm",
+                (const char *[]){"k_1 = 10300 N/m", where, "the warp (family 1)",
+                                 "~1000x softer", "wave speed of 167 m/s", "given in N/mm?",
+                                 NULL});
+    edit(base, "k_2", "k_2 = 1.03e10", text, sizeof text);
+    expect_slip(st, text, "k_2 x 1000",
+                (const char *[]){"k_2 = 1.03e+10 N/m", "the weft (family 2)", "~1000x stiffer",
+                                 NULL});
+    edit(base, "p0_1", "p0_1 = 0.3735", text, sizeof text);
+    snprintf(where, sizeof where, "(line %d of case.txt)", line_of(text, "p0_1"));
+    expect_slip(st, text, "p0_1 in mm",
+                (const char *[]){"p0_1 = 0.3735 m", where, "yarn spacing 0.747 m", "~1000x",
+                                 "given in mm?", NULL});
+    /* the other cells' keys */
+    char *linear = read_all("freefem_scripts/materials/kevlar_linear.txt");
+    char *basket = read_all("freefem_scripts/materials/kevlar_basket.txt");
+    CHECK(st, linear && basket, "read the linear and basket materials");
+    if (linear && basket) {
+        edit(linear, "yarn_spacing_2", "yarn_spacing_2 = 0.747", text, sizeof text);
+        expect_slip(st, text, "yarn_spacing_2 in mm",
+                    (const char *[]){"yarn_spacing_2 = 0.747 m", "given in mm?", NULL});
+        edit(linear, "yarn_spacing_1", "yarn_spacing_1 = 747", text, sizeof text);
+        expect_slip(st, text, "yarn_spacing_1 in um",
+                    (const char *[]){"yarn_spacing_1 = 747 m", "given in um?", NULL});
+        edit(linear, "S_1", "S_1 = 5150", text, sizeof text);
+        expect_slip(st, text, "S_1 in N/mm",
+                    (const char *[]){"S_1 = 5150 N/m", "given in N/mm?", NULL});
+        edit(basket, "EA_1", "EA_1 = 3.9", text, sizeof text);
+        expect_slip(st, text, "EA_1 in kN", (const char *[]){"EA_1 = 3.9 N", "given in kN?", NULL});
+    }
+    free(linear);
+    free(basket);
+    /* not a material: -1, the reader's message */
+    wff_error e = {{0}};
+    CHECK(st, wff_material_scales_text("cell = king_plain\n", "case.txt", &e) == -1 &&
+                  strstr(e.message, "missing key"), "not a material: %s", e.message);
 }
 
 int main(void)
@@ -230,6 +451,9 @@ int main(void)
                        strstr(e.message, "key=value"), "malformed override: %s", e.message);
         test_tmp_remove(dir);
     }
+    test_unknown_keys(&st, base);
+    test_not_regular(&st);
+    test_scales(&st, base);
     free(base);
     return check_summary(&st, "test_material");
 }

@@ -7,12 +7,19 @@
  *      a suggested -dtfactor;
  *   3. long run: a preloaded, clamped elastic square set vibrating (in-plane,
  *      transverse and crimp amplitudes) for ~1000 in-plane periods keeps its
- *      energy: the balance error stays small and does not grow. */
+ *      energy: the balance error stays small and does not grow;
+ *   4. the start from a state out of equilibrium (a clamped 10 cm square of
+ *      Kevlar released at rest from a 3 mm bump, its amplitudes not balanced):
+ *      the energy error after one step converges as dt² (the half-step start,
+ *      the integer-step kinetic energy and the balance's reference are
+ *      second order). */
 #include "check.h"
 #include "test_meshes.h"
 #include "wovenff/balance.h"
 #include "wovenff/material.h"
 #include "wovenff/solver.h"
+#include "wovenff/renumber.h"
+#include "wovenff/state.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -45,14 +52,29 @@ static int clamped_square(check_state *st, wff_model *m, const char *material, i
 }
 
 /* 1. and 2.: returns 0 if the run completed, 1 if it stopped (message in err). */
-static int impact(check_state *st, double dtfactor, double *worst, long *steps, wff_error *err)
+static int impact_adaptive(check_state *st, double dtfactor, int travel, int adaptive,
+                           double *worst, long *steps, long *travel_steps, long *cuts,
+                           wff_error *err);
+
+static int impact(check_state *st, double dtfactor, int travel, double *worst, long *steps,
+                  long *travel_steps, wff_error *err)
+{
+    long cuts;
+    return impact_adaptive(st, dtfactor, travel, 0, worst, steps, travel_steps, &cuts, err);
+}
+
+static int impact_adaptive(check_state *st, double dtfactor, int travel, int adaptive,
+                           double *worst, long *steps, long *travel_steps, long *cuts,
+                           wff_error *err)
 {
     wff_model m;
     *worst = 0;
     *steps = 0;
     if (clamped_square(st, &m, ELASTIC, 20, dtfactor))
         return -1;
-    int rc = wff_model_set_projectile(&m, 6.35e-3, 0.0005, 20, 0, err);
+    int rc = wff_model_set_option(&m, "travel_limit", travel, err) ||
+             wff_model_set_option(&m, "adaptive_step", adaptive, err) ||
+             wff_model_set_projectile(&m, 6.35e-3, 0.0005, 20, 0, err);
     CHECK(st, rc == 0, "%s", err->message);
     for (int block = 1; block <= 20 && rc == 0; block++) {
         rc = wff_model_advance(&m, block * 0.01e-3, 1000000, err);
@@ -63,6 +85,8 @@ static int impact(check_state *st, double dtfactor, double *worst, long *steps, 
         *worst = fmax(*worst, fabs(e.error));
     }
     *steps = m.step;
+    *travel_steps = m.travel_steps;
+    *cuts = m.step_cuts;
     wff_model_free(&m);
     return rc ? 1 : 0;
 }
@@ -72,25 +96,37 @@ static void check_step_ladder(check_state *st)
     static const double below[] = {0.8, 0.9, 0.99};
     for (int i = 0; i < 3; i++) {
         double worst;
-        long steps;
+        long steps, travel_steps;
         wff_error err;
-        int rc = impact(st, below[i], &worst, &steps, &err);
-        printf("  dtfactor %.2f: %ld steps to 0.2 ms, max |energy error| %.2e\n", below[i], steps,
-               worst);
+        int rc = impact(st, below[i], 1, &worst, &steps, &travel_steps, &err);
+        printf("  dtfactor %.2f: %ld steps to 0.2 ms (%ld shortened by the travel limit), max "
+               "|energy error| %.2e\n", below[i], steps, travel_steps, worst);
         CHECK(st, rc == 0, "dtfactor %g: %s", below[i], rc ? err.message : "");
         CHECK(st, worst < 2e-3, "dtfactor %g: energy error %g", below[i], worst);
     }
     /* Past the stable step. The estimate combines the membrane and amplitude
      * limits as a bound for the coupled system (1/dt² = 1/dt_m² + 1/dt_A²) and
      * is conservative by about 25 % here: 1.2 × it still runs (not asserted
-     * either way), 1.5 × and 2 × it are past the true limit and must be caught. */
+     * either way), 1.5 × and 2 × it are past the true limit and must be caught
+     * (the travel limit off: it shortens the steps where the growing mode, the
+     * amplitudes, speeds up, and so holds these runs; checked below). */
     static const double above[] = {1.5, 2.0};
     for (int i = 0; i < 2; i++) {
         double worst;
-        long steps;
+        long steps, travel_steps;
         wff_error err;
         err.message[0] = 0;
-        int rc = impact(st, above[i], &worst, &steps, &err);
+        int held = impact(st, above[i], 1, &worst, &steps, &travel_steps, &err);
+        printf("  dtfactor %.2f, travel limit on: %s after %ld steps (%ld shortened), max |energy "
+               "error| %.2e\n", above[i], held ? "stopped" : "ran to the end", steps,
+               travel_steps, worst);
+        /* held by the travel limit, not accurate: 1.2e-2 at 1.5, 7.0e-2 at 2 (measured;
+         * docs/limits.md "Time step"), below the detector's 50 % */
+        CHECK(st, held == 1 || (travel_steps > 0 && worst < 0.5),
+              "dtfactor %g with the travel limit: neither stopped nor held (error %g, %ld "
+              "shortened steps)", above[i], worst, travel_steps);
+        err.message[0] = 0;
+        int rc = impact(st, above[i], 0, &worst, &steps, &travel_steps, &err);
         printf("  dtfactor %.2f: stopped after %ld steps: %s\n", above[i], steps, err.message);
         CHECK(st, rc == 1, "dtfactor %g: the run must stop as unstable", above[i]);
         static const char *const want[] = {"unstable", "t = ", "(step ", "triangle ",
@@ -99,6 +135,20 @@ static void check_step_ladder(check_state *st)
             CHECK(st, strstr(err.message, want[k]) != NULL, "dtfactor %g: message lacks '%s': %s",
                   above[i], want[k], err.message);
         CHECK(st, strstr(err.message, "NaN") == NULL, "caught before NaN: %s", err.message);
+    }
+    /* the adaptive step: the same runs past the bound, the travel limit off, go
+     * back to the last good state with dtfactor halved and finish */
+    for (int i = 0; i < 2; i++) {
+        double worst;
+        long steps, travel_steps, cuts;
+        wff_error err;
+        int rc = impact_adaptive(st, above[i], 0, 1, &worst, &steps, &travel_steps, &cuts, &err);
+        printf("  dtfactor %.2f, travel limit off, adaptive step: %s after %ld steps, %ld cuts, "
+               "max |energy error| %.2e\n", above[i], rc ? "stopped" : "ran to the end", steps,
+               cuts, worst);
+        CHECK(st, rc == 0, "adaptive step at dtfactor %g: %s", above[i], rc ? err.message : "");
+        CHECK(st, cuts >= 1 && cuts <= 3, "adaptive step at dtfactor %g: %ld cuts", above[i], cuts);
+        CHECK(st, worst < 2e-3, "adaptive step at dtfactor %g: energy error %g", above[i], worst);
     }
 }
 
@@ -170,10 +220,135 @@ static void check_long_run(check_state *st)
     wff_model_free(&m);
 }
 
+
+/* 4. The bumped square released at rest: error after the first step at dtfactor
+ * 0.1, 0.05, 0.025. It is −(ωΔt)²/4 of the leapfrog energy measure for the
+ * amplitude oscillation the release excites (0.75 % at 0.1), and halves twice
+ * per halving of the step. */
+static double bump_one_step(check_state *st, double dtfactor)
+{
+    wff_model m;
+    test_rect r = {0, 0.1, 0, 0.1, 12, 12, TEST_MESH_TRI, 0, 0, 1};
+    wff_error err;
+    if (test_model_rect(&m, &r, KEVLAR, &err)) {
+        CHECK(st, 0, "%s", err.message);
+        return NAN;
+    }
+    static const char *const edges[] = {"left", "right", "bottom", "top"};
+    int rc = 0;
+    for (int g = 0; g < 4 && rc == 0; g++)
+        for (int c = 0; c < 3 && rc == 0; c++)
+            rc = wff_model_fix_group(&m, edges[g], c, &err) < 0;
+    if (rc == 0)
+        rc = wff_model_set_option(&m, "dtfactor", dtfactor, &err);
+    double *u = calloc((size_t)m.n_dofs, sizeof(double));
+    for (int n = 0; n < m.n_nodes && rc == 0; n++) {
+        double x = m.mesh.xy[2 * n], y = m.mesh.xy[2 * n + 1];
+        double s = 16 * x * (0.1 - x) * y * (0.1 - y) / 1e-4;
+        double bump[D] = {1e-5 * s, 1e-5 * s, 3e-3 * s, -5e-6 * s, -5e-6 * s};
+        memcpy(u + D * wff_model_user_node(&m, n), bump, sizeof bump); /* (the set's order) */
+    }
+    if (rc == 0)
+        rc = wff_model_set_vector(&m, "u", u, &err);
+    if (rc == 0)
+        rc = wff_model_advance(&m, 1e9, 1, &err);
+    CHECK(st, rc == 0, "bumped square, dtfactor %g: %s", dtfactor, rc ? err.message : "");
+    wff_energies e;
+    wff_model_energies(&m, &e);
+    free(u);
+    wff_model_free(&m);
+    return rc ? NAN : e.error;
+}
+
+static void check_bump_start(check_state *st)
+{
+    double e1 = bump_one_step(st, 0.1), e2 = bump_one_step(st, 0.05),
+           e3 = bump_one_step(st, 0.025);
+    printf("  bumped square from rest, energy error after one step: %.4e (0.1), %.4e (0.05), "
+           "%.4e (0.025): ratios %.3f, %.3f\n", e1, e2, e3, e1 / e2, e2 / e3);
+    CHECK(st, fabs(e1 / e2 - 4) < 0.05 && fabs(e2 / e3 - 4) < 0.05,
+          "one-step energy error not second order: ratios %g, %g", e1 / e2, e2 / e3);
+    CHECK(st, fabs(e1) < 1e-2, "one-step energy error at 0.1 of the estimate: %g", e1);
+}
+
+/* 5. The bumped square of the issue "Stable from any state", released at rest
+ * (no preload; the 1 N preload with its amplitudes overwritten by the bump's,
+ * each yarn ~50 N out of balance; the preload's amplitudes kept and the bump's
+ * added): 10,000 built-in steps at dtfactor 0.8 and 0.9. Without the travel
+ * limit these stopped as unstable at steps 108, 10 and 214 (0.8): the released
+ * amplitudes swing through several lengths 1/a of the compaction exponential in
+ * one step. */
+static void check_bump_long(check_state *st)
+{
+    static const double factors[] = {0.8, 0.9};
+    for (int f = 0; f < 2; f++)
+        for (int preload = 0; preload < 3; preload++) {
+            wff_model m;
+            test_rect r = {0, 0.1, 0, 0.1, 12, 12, TEST_MESH_TRI, 0, 0, 1};
+            wff_error err;
+            if (test_model_rect(&m, &r, KEVLAR, &err)) {
+                CHECK(st, 0, "%s", err.message);
+                return;
+            }
+            static const char *const edges[] = {"left", "right", "bottom", "top"};
+            int rc = 0;
+            for (int g = 0; g < 4 && rc == 0; g++)
+                for (int c = 0; c < 3 && rc == 0; c++)
+                    rc = wff_model_fix_group(&m, edges[g], c, &err) < 0;
+            if (rc == 0)
+                rc = wff_model_set_option(&m, "dtfactor", factors[f], &err);
+            double dA0[2] = {0, 0};
+            if (rc == 0 && preload) {
+                wff_biaxial_state bs;
+                memset(&bs, 0, sizeof bs);
+                bs.stretch[0] = bs.stretch[1] = 1;
+                rc = wff_preload_equal_force(&m.mat, 1.0, &bs, &err);
+                double Fp[4] = {bs.stretch[0], 0, 0, bs.stretch[1]};
+                dA0[0] = bs.dA[0];
+                dA0[1] = bs.dA[1];
+                if (rc == 0)
+                    rc = wff_model_set_preload(&m, Fp, dA0, &err);
+            }
+            double *u = calloc((size_t)m.n_dofs, sizeof(double));
+            for (int n = 0; n < m.n_nodes && rc == 0; n++) {
+                double x = m.mesh.xy[2 * n], y = m.mesh.xy[2 * n + 1];
+                double s = 16 * x * (0.1 - x) * y * (0.1 - y) / 1e-4;
+                double bump[D] = {1e-5 * s, 1e-5 * s, 3e-3 * s, -5e-6 * s, -5e-6 * s};
+                if (preload == 2) {
+                    bump[3] += dA0[0];
+                    bump[4] += dA0[1];
+                }
+                memcpy(u + D * wff_model_user_node(&m, n), bump, sizeof bump);
+            }
+            if (rc == 0)
+                rc = wff_model_set_vector(&m, "u", u, &err);
+            double worst = 0;
+            for (long k = 0; k < 10000 && rc == 0; k++) {
+                rc = wff_model_advance(&m, 1e9, 1, &err);
+                wff_energies e;
+                wff_model_energies(&m, &e);
+                worst = fmax(worst, fabs(e.error));
+            }
+            static const char *const what[] = {"no preload", "preload, amplitudes overwritten",
+                                               "preload, amplitudes kept"};
+            printf("  bumped square, %s, dtfactor %.1f: %ld steps to %.4g ms (%ld shortened by the "
+                   "travel limit), max |energy error| %.3g\n", what[preload], factors[f], m.step,
+                   1e3 * m.time, m.travel_steps, worst);
+            CHECK(st, rc == 0 && m.step == 10000, "bumped square, %s, dtfactor %g: %s",
+                  what[preload], factors[f], rc ? err.message : "");
+            CHECK(st, worst < 0.5, "bumped square, %s, dtfactor %g: energy error %g",
+                  what[preload], factors[f], worst);
+            free(u);
+            wff_model_free(&m);
+        }
+}
+
 int main(void)
 {
     check_state st = {0, 0};
     check_step_ladder(&st);
     check_long_run(&st);
+    check_bump_start(&st);
+    check_bump_long(&st);
     return check_summary(&st, "test_stability");
 }

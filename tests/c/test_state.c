@@ -269,6 +269,11 @@ static void check_remesh(check_state *st)
 int main(void)
 {
     check_state st = {0, 0};
+    {   /* the test cell's material has a woven fabric's scales (wff_material_scales) */
+        wff_error e = {{0}};
+        int rc = wff_material_scales(TWO_STATES, &e);
+        CHECK(&st, rc == 0, "%s: scales check %d: %s", TWO_STATES, rc, e.message);
+    }
     const cell_case two = {TWO_STATES, NULL, 0, 1};
     cell_suite_run(&st, &two);
     check_run_and_checkpoint(&st);

@@ -10,8 +10,10 @@
 #     the inelastic contact leaves round-off gaps of ~1e-11 m),
 #   - the projectile slowed, never sped up;
 # the history's energy_<mechanism> columns add up to internal_energy;
-# and 300 m/s at the default step is stopped by the instability detector,
-# before any NaN, with "suggested -dtfactor 0.4" (exit 4, summary failed).
+# 300 m/s at the default step too, held by the amplitudes' travel limit
+# (docs/model.md §12); and 300 m/s at the default step without that limit
+# (-travel 0) is stopped by the instability detector, before any NaN, with
+# "suggested -dtfactor 0.4" (exit 4, summary failed).
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/speed_ladder"
 rm -rf "$tmp"
@@ -19,9 +21,9 @@ mkdir -p "$tmp"
 scene=freefem_scripts/ballistic_impact.edp
 fail=0
 printf '  %-8s %-8s %-8s %-12s %-12s %-12s %s\n' speed dtfactor steps apex_mm max_error max_pen_m v_end
-for case in "1 0.8" "22 0.8" "100 0.8" "300 0.4"; do
+for case in "1 0.8" "22 0.8" "100 0.8" "300 0.4" "300 0.8"; do
     set -- $case
-    v=$1; df=$2; out="$tmp/v$v"
+    v=$1; df=$2; out="$tmp/v${v}_$df"
     sh tools/ff.sh "$scene" -mesh coarse -tend 0.2e-3 -plots 0 -vtkdt 1 -velocity "$v" -dtfactor "$df" \
         -out "$out" > "$out.log" 2>&1
     rc=$?
@@ -43,7 +45,7 @@ for case in "1 0.8" "22 0.8" "100 0.8" "300 0.4"; do
 done
 # per-mechanism stored energy (King cell): columns energy_<mechanism> that add
 # up to internal_energy
-h="$tmp/v22/history.csv"
+h="$tmp/v22_0.8/history.csv"
 for col in energy_yarn_stretch energy_yarn_bending energy_compaction energy_locking energy_shear; do
     head -1 "$h" | tr ',' '\n' | grep -qx "$col" || { echo "history.csv lacks $col"; fail=1; }
 done
@@ -53,12 +55,24 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^energy_/ && $i != "energ
     END { printf "  energy split: %d mechanisms sum to internal_energy within %.2e J (of %.4g J)\n", n, worst, big
           exit !(n == 5 && worst <= 1e-6 * big) }' "$h" || { echo "energy split does not add up"; fail=1; }
 out="$tmp/v300_default"
-sh tools/ff.sh "$scene" -mesh coarse -tend 0.2e-3 -plots 0 -vtkdt 1 -velocity 300 -out "$out" \
-    > "$out.log" 2>&1
+sh tools/ff.sh "$scene" -mesh coarse -tend 0.2e-3 -plots 0 -vtkdt 1 -velocity 300 -travel 0 \
+    -out "$out" > "$out.log" 2>&1
 rc=$?
 [ $rc -eq 4 ] || { echo "300 m/s at dtfactor 0.8: exit $rc, want 4 (stopped as unstable)"; fail=1; }
 grep -qF "suggested -dtfactor 0.4" "$out.log" || { echo "300 m/s: no suggested -dtfactor 0.4"; fail=1; }
 grep -q '"status": "failed"' "$out/summary.json" || { echo "300 m/s: summary not failed"; fail=1; }
 grep -qi 'nan' "$out/history.csv" && { echo "300 m/s: NaN reached the history"; fail=1; }
 grep -m1 '^error:' "$out.log" | cut -c1-220 | sed 's|^|  300 m/s at 0.8: |'
+grep -qF "the fastest DOF: node " "$out.log" || { echo "300 m/s: the message names no DOF"; fail=1; }
+# the same with the adaptive step: it goes back, halves the step and finishes
+out="$tmp/v300_adaptive"
+sh tools/ff.sh "$scene" -mesh coarse -tend 0.2e-3 -plots 0 -vtkdt 1 -velocity 300 -travel 0 \
+    -adaptive 1 -out "$out" > "$out.log" 2>&1
+rc=$?
+cuts=$(sed -n 's/.*"step_cuts": \([^,]*\),.*/\1/p' "$out/summary.json")
+err=$(sed -n 's/.*"max_energy_error": \([^,]*\),.*/\1/p' "$out/summary.json")
+echo "  300 m/s at 0.8, -travel 0 -adaptive 1: exit $rc, step_cuts $cuts, largest energy error $err"
+[ $rc -eq 0 ] || { echo "300 m/s adaptive: exit $rc"; tail -3 "$out.log"; fail=1; }
+awk -v c="$cuts" -v e="$err" 'BEGIN { exit !(c >= 1 && c <= 8 && e < 1e-5 && e > -1e-5) }' \
+    || { echo "300 m/s adaptive: step_cuts '$cuts', energy error '$err'"; fail=1; }
 exit $fail
