@@ -153,7 +153,7 @@ static int element_holds(const wff_model *m, int e, double px, double py, double
  * 4-ply pack at 45 m/s (coarse) carries its strike face's torn flap on the nose
  * through the holes of the three plies behind it until 0.72 ms, when the flap
  * lifts off (0.3 mm ahead of the tip at 0.75 ms and parting at ~10 m/s) and the
- * projectile flies on at 25.26 m/s. */
+ * projectile flies on at 25.2 m/s. */
 static int in_the_way(double z, double tip, double reach, int intact)
 {
     return z <= tip + reach || intact;
