@@ -33,12 +33,13 @@ set key at graph 0.98, graph 0.98 box opaque
 if (pack) { set multiplot layout rows, columns title whole . ', ply by ply' }
 do for [p = 0:plies - 1] {
     set title panel_title(p)
+    if (p > 0) { unset key }   # (the nose's outline named once)
     plot data every ::(p * cells)::((p + 1) * cells - 1) using (column('x_mm')):(column('y_mm')):(column('damage')) \
             with image notitle, \
          '' every ::(p * cells)::((p + 1) * cells - 1) \
             using (column('x_mm')):(column('y_mm')):(0):(0):(0):(column('eroded') > 0.5 ? 255 : 0) \
             with rgbalpha notitle, \
          ax_mm + r_mm * cos(t), ay_mm + r_mm * sin(t) with lines lw 2 dt 2 lc rgb 'black' \
-            title (p == 0 ? sprintf('nose, r = %g mm', r_mm) : '')
+            title sprintf('nose, r = %g mm', r_mm)
 }
 if (pack) { unset multiplot }
