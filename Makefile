@@ -1,8 +1,10 @@
 # wovenff — build, run, test, bench.
 #   make deps    install the Debian packages this project needs (root or sudo)
 #   make         build the C core, the C tests and the FreeFEM module
-#   make run     the paper's ballistic scene (SCENE=name for another, ARGS="-mesh fine ...")
-#   make test    C tests, .edp tests and physics checks; ends with "N passed, N failed"
+#   make run     the paper's ballistic scene (SCENE=name for another, ARGS="-mesh fine ...");
+#                installs what is missing (make deps), builds the module only (no test binary)
+#   make test    C tests, .edp tests and physics checks; ends with "N passed, N failed";
+#                installs what is missing (make deps) and builds everything first
 #   make bench   benchmarks (not part of make test)
 
 CC       ?= gcc
@@ -132,10 +134,16 @@ deps:
 # unless ARGS names its own -out or -overwrite.
 LOCKED_SCENES := ballistic_impact strip_tension explicit_loop unit_cell_explorer ballistic_limit
 RUN_FRESH := $(if $(filter $(SCENE),$(LOCKED_SCENES)),$(if $(findstring -out,$(ARGS))$(findstring -overwrite,$(ARGS)),,-overwrite 1))
-run: all
+# (make deps first, then the build: a recursive make, so that -j cannot compile before the
+# packages are there on a fresh machine)
+run:
+	@$(MAKE) --no-print-directory deps
+	@$(MAKE) --no-print-directory $(MODULE)
 	@sh tools/ff.sh freefem_scripts/$(SCENE).edp $(RUN_FRESH) $(ARGS)
 
-test: all
+test:
+	@$(MAKE) --no-print-directory deps
+	@$(MAKE) --no-print-directory all
 	@sh tests/run.sh
 
 BENCH_BIN := $(BUILD)/bench/kernel_speed $(BUILD)/bench/compare

@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/statvfs.h>
@@ -293,6 +294,41 @@ int wff_clear_dir(const char *dir, const char *skip, wff_error *err)
     return rc;
 }
 
+/* 1 if name is what an atomic write leaves while it writes: NAME.tmp
+ * (text_io.c, the commits of tool-written files, gnuplot's pictures) or
+ * NAME.tmp.vtu (a VTK frame: FreeFEM's savevtk wants the extension). */
+static int is_write_temporary(const char *name)
+{
+    return ends_with(name, ".tmp") || ends_with(name, ".tmp.vtu");
+}
+
+int wff_remove_temporaries(const char *dir, long *removed, wff_error *err)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return wff_fail(err, "cannot read folder %s: %s", dir, strerror(errno));
+    int rc = 0, more;
+    char path[PATH_MAXLEN];
+    while (rc == 0 && (more = next_entry(d, dir, NULL, path, err)) != 0) {
+        struct stat st;
+        if (more < 0) {
+            rc = -1;
+        } else if (lstat(path, &st) != 0) {
+            if (errno != ENOENT)
+                rc = wff_fail(err, "cannot read %s: %s", path, strerror(errno));
+        } else if (S_ISDIR(st.st_mode)) {
+            rc = wff_remove_temporaries(path, removed, err);
+        } else if (S_ISREG(st.st_mode) && is_write_temporary(strrchr(path, '/') + 1)) {
+            if (unlink(path) != 0 && errno != ENOENT)
+                rc = wff_fail(err, "cannot remove %s: %s", path, strerror(errno));
+            else
+                (*removed)++;
+        }
+    }
+    closedir(d);
+    return rc;
+}
+
 int wff_same_file(const char *a, const char *b)
 {
     struct stat sa, sb;
@@ -460,14 +496,25 @@ int wff_run_program(char *const argv[], int *status, wff_error *err)
     return wff_wait_program(pid, status, err);
 }
 
+/* In a child just forked from parent: killed when the parent dies, even by
+ * SIGKILL (a picture drawn in the background does not outlive a killed scene
+ * to leave its half-written .tmp after a restart has cleared the folder). */
+static void die_with_parent(pid_t parent)
+{
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) /* it died before the request */
+        _exit(127);
+}
+
 int wff_start_program(char *const argv[], long *pid, wff_error *err)
 {
     *pid = -1;
     fflush(NULL);
-    pid_t child = fork();
+    pid_t parent = getpid(), child = fork();
     if (child < 0)
         return wff_fail(err, "cannot start %s: %s", argv[0], strerror(errno));
     if (child == 0) {
+        die_with_parent(parent);
         execvp(argv[0], argv);
         fprintf(stderr, "cannot run %s: %s\n", argv[0], strerror(errno));
         _exit(127);

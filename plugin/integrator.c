@@ -275,6 +275,33 @@ double wff_model_step_estimate(const wff_model *m)
     return m->dt_factor * wff_zones_stable_step(m, m->u, &worst);
 }
 
+/* The step after this one toward the model's t_stop (stop, s): the full step
+ * while two or more are left, then half of what is left and the rest, so that
+ * the model ends at t_stop exactly with no step under half the full one (the
+ * contact's correction divides by the step). Only the last two steps of a run
+ * change: shortening every frame's last steps instead pumps energy into the
+ * finest modes (a periodic step pattern; measured: the teaching scene's
+ * rebound case, 5 m/s, its energy error 1e-10 -> 4 % in 0.4 ms, then NaN).
+ * Returns 1 if the step planned (m->dt) ends at stop; at stop (within 1e-9 of
+ * a step) the time is stop and the full step is planned. */
+static int plan_stop_step(wff_model *m, double stop)
+{
+    const double full = m->dt, left = stop - m->time; /* (the step travel_limit chose) */
+    if (left >= 2 * full)
+        return 0; /* (m->dt is the full step: the planned one left alone) */
+    m->dt = full;
+    if (left <= 1e-9 * full) {
+        m->time = stop;
+        return 0;
+    }
+    if (left <= full * (1 + 1e-9)) {
+        m->dt = left;
+        return 1;
+    }
+    m->dt = 0.5 * left;
+    return 0;
+}
+
 /* The adaptive step (setting adaptive_step): the run keeps its state every
  * dtinterval steps (the last two); at an instability it goes back to the newer
  * with dtfactor halved, to the older if it fails again before the next is kept
@@ -310,6 +337,8 @@ static int cut_step(wff_model *m)
 
 int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err)
 {
+    const double stop = m->t_stop > 0 ? m->t_stop : INFINITY;
+    int lands = 0; /* the step planned ends at stop */
     if (!isfinite(t_end))
         return wff_fail(err, "advance to t_end = %g s: must be a finite time", t_end);
     if (t_end < m->time)
@@ -329,6 +358,8 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         m->v_half_valid = 1;
         /* first half step */
         travel_limit(m);
+        if (stop < INFINITY)
+            lands = plan_stop_step(m, stop);
         update_velocities(m, 0.5 * m->dt, 0);
         if (wff_parts_correct(m, m->dt, 0.5 * m->dt, err))
             return -1;
@@ -337,30 +368,36 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
     if (m->adaptive && m->snapshot_step[m->snapshot_newest] < 0 && start_adaptive(m, err))
         return -1;
     long done = 0;
-    while (m->time < t_end && done < max_steps) {
+    while (m->time < t_end && m->time < stop && done < max_steps) {
         /* u^{n+1} = u^n + Δt v^{n+½} */
         double dt = m->dt;
         /* external work by the trapezoidal rule: ½(R^n + R^{n+1})·Δu */
         m->external_work += wff_step_positions(m, dt); /* and f = 0 (step_threads.c) */
         if (m->projectile.active)
             m->projectile.tip += dt * m->projectile.velocity;
-        m->time += dt;
+        m->time = lands ? stop : m->time + dt;
         m->step++;
         done++;
         if (m->step % m->dt_interval == 0) {
             if (update_time_step(m, err)) {
-                if (cut_step(m))
+                if (cut_step(m)) {   /* (back to a state kept earlier: its step is planned anew) */
+                    lands = 0;
                     continue;
+                }
                 return -1;
             }
             wff_parts_refresh(m);
         }
         if (compute_forces_zeroed(m, dt, err)) {
-            if (cut_step(m))
+            if (cut_step(m)) {   /* (back to a state kept earlier: its step is planned anew) */
+                lands = 0;
                 continue;
+            }
             return -1;
         }
         travel_limit(m);
+        if (stop < INFINITY)
+            lands = plan_stop_step(m, stop);
         update_velocities(m, 0.5 * (dt + m->dt), dt);
         if (wff_parts_correct(m, m->dt, 0.5 * (dt + m->dt), err))
             return -1;
@@ -378,8 +415,10 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
                                   ? m->growth_steps + 1 : 0;
             if (!isfinite(e.error) || m->blowup_steps >= BLOWUP_STEPS ||
                 e.error > ENERGY_BLOWUP_NOW || (m->adaptive && m->growth_steps >= GROWTH_STEPS)) {
-                if (cut_step(m))
+                if (cut_step(m)) {   /* (back to a state kept earlier: its step is planned anew) */
+                    lands = 0;
                     continue;
+                }
                 char what[160];
                 snprintf(what, sizeof what, "energy balance off by %.3g%% of the reference "
                          "energy", 100 * e.error);

@@ -454,6 +454,22 @@ static int apply_dtfactor(wff_model *m, double value, wff_error *err)
     return 0;
 }
 
+static int check_t_stop(const wff_model *m, double value, wff_error *err)
+{
+    if (!(value >= 0) || !isfinite(value))
+        return wff_fail(err, "t_stop = %g s: must be a finite time >= 0 (0: none)", value);
+    if (value > 0 && value < m->time)
+        return wff_fail(err, "t_stop = %.9g s: before the model's time %.9g s", value, m->time);
+    return 0;
+}
+
+static int apply_t_stop(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->t_stop = value;
+    return 0;
+}
+
 static int check_dtinterval(const wff_model *m, double value, wff_error *err)
 {
     (void)m;
@@ -670,6 +686,7 @@ static int apply_clamp_edge_reaction(wff_model *m, double value, wff_error *err)
 static const wff_setting model_settings[] = {
     {"dtfactor", check_dtfactor, apply_dtfactor},
     {"dtinterval", check_dtinterval, apply_dtinterval},
+    {"t_stop", check_t_stop, apply_t_stop},
     {"symmetry", check_symmetry, apply_symmetry},
     {"reference_path", check_reference_path, apply_reference_path},
     {"threads", check_threads, apply_threads},

@@ -118,6 +118,7 @@ static int copy_settings(const wff_model *m, wff_model *pk, wff_error *err)
 {
     pk->dt_factor = m->dt_factor;
     pk->dt_interval = m->dt_interval;
+    pk->t_stop = m->t_stop;
     pk->symmetry_factor = m->symmetry_factor;
     pk->em.reference_path = m->em.reference_path;
     pk->em.amplitude_mass_factor = m->em.amplitude_mass_factor;

@@ -17,4 +17,24 @@ if [ -z "${OMP_WAIT_POLICY:-}" ] && [ -z "${GOMP_SPINCOUNT:-}" ]; then
     export OMP_WAIT_POLICY
 fi
 script=$1; shift
+# On a terminal, FreeFEM's trailer after a scene's own exit ("  current line = N", " call F  at
+# line N", "exit(N)", " err code N ,  mpirank 0": FreeFEM prints it at every exit, -help and a
+# refused option included) is left out of what the user sees, the exit code kept; after an
+# uncaught error (exit 8 or any code the scenes do not give: docs/limits.md "Exit codes") the
+# trailer is shown, it says where. Elsewhere (a file, a pipe, the tests) the output is FreeFEM's
+# own and this script becomes FreeFEM (exec: the same process id).
+if [ -t 1 ] && [ -z "${WOVENFF_TRAILER:-}" ]; then
+    exec 4>&1
+    rc=$( { { FreeFem++ -nw -v 0 "$script" "$@" 2>&1; echo $? >&3; } |
+            awk '/^  current line = [0-9]+$/ || /^ call .* at  line [0-9]+$/ || /^exit\([0-9]+\)$/ {
+                     held = held $0 "\n"; next }
+                 /^ err code [0-9]+ ,  mpirank [0-9]+$/ {
+                     code = $3 + 0
+                     if (code != 0 && code != 2 && code != 3 && code != 4 && code != 5 && code != 6 && code != 7 && code != 9)
+                         printf "%s%s\n", held, $0
+                     held = ""; fflush(); next }
+                 { if (held != "") { printf "%s", held; held = "" } print; fflush() }
+                 END { printf "%s", held }' >&4; } 3>&1 )
+    exit "$rc"
+fi
 exec FreeFem++ -nw -v 0 "$script" "$@"

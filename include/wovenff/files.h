@@ -51,6 +51,10 @@ int wff_copy_tree(const char *from, const char *to, const char *skip, wff_error 
 
 /* Remove every entry of folder dir but skip (NULL: none). */
 int wff_clear_dir(const char *dir, const char *skip, wff_error *err);
+/* Remove, in folder dir and its subfolders, every file an interrupted atomic
+ * write left (NAME.tmp, NAME.tmp.vtu: a killed or failed run's); *removed
+ * counts them (added to). Symbolic links are not followed. */
+int wff_remove_temporaries(const char *dir, long *removed, wff_error *err);
 /* 1 if a and b are the same file or folder (same device and inode), else 0. */
 int wff_same_file(const char *a, const char *b);
 

@@ -137,6 +137,8 @@ struct wff_model {
                                  θ = em.orientation (membrane.h) */
 
     double time, dt, dt_stable, dt_factor;
+    double t_stop;            /* the time the model steps no further than, landing on it
+                                 exactly (setting "t_stop"; 0: none), s */
     int travel_off;           /* setting travel_limit 0: the step is dtfactor × the stable
                                  step only (the amplitudes' travel not limited) */
     long travel_steps;        /* steps the travel limit shortened */

@@ -13,10 +13,13 @@
 //   wovenffMakeDir(dir) wovenffRename(from, to) wovenffCopyTree(from, to) wovenffRemove(path)
 //   wovenffCutLines(file, n)            // keep the first n lines (atomic)
 //   wovenffClearDir(dir)                // remove everything in dir but its lock
+//   wovenffRemoveTemporaries(dir)       // the .tmp files interrupted writes left: their count
 //   wovenffWriteFailed(file, reason)    // a write a tool reported failed: exit 3 as below
 //   int wovenffSameFile(a, b)           // same file or folder (device and inode)
 // A failed write stops the script at once with exit code 3 and "error: <file>: <strerror>",
-// writes a failed summary.json into the locked run folder (if it can), releases the lock.
+// writes a failed summary.json into the locked run folder (if it can), waits for the
+// pictures still drawn in the background and removes every .tmp left in that folder,
+// releases the lock.
 //   wovenffRunLock(dir)                 // take dir/.wovenff.lock (released at any exit; a lock of
 //                                       // a dead process taken over); in use: exit 2
 //   int wovenffExists(path), int wovenffDirEntries(dir) (the lock not counted)
@@ -24,6 +27,7 @@
 //   string wovenffLinesHash(file, n)    // "lines hash" of the first n lines (n < 0: all)
 //   string wovenffLine(file, n)         // line n (1-based)
 //   string wovenffFileHash(file), wovenffTextHash(text), wovenffReadText(file)
+//   string wovenffTextProblem(file)     // "" if wovenffReadText would read it, else why not
 //   string wovenffFormat(x, digits)     // %.<digits>g
 //   string wovenffPathProblem(path, what) // "" or why a typed path is refused (control chars)
 //   string wovenffInputProblem(path, what) // "" or why an input file is refused: not a
@@ -38,12 +42,15 @@
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <string>
 #include <vector>
+
+#include <sys/wait.h>
 
 #include "ff_wovenff.hpp"
 
@@ -99,6 +106,12 @@ std::string json_string(const std::string &s)
                       << ")" << std::endl;
         else
             std::cout << "the run failed: " << path << " says why (exit code 3)" << std::endl;
+        // the pictures drawn in the background end (they die with this process
+        // anyway), then no half-written file of this run stays
+        while (waitpid(-1, nullptr, 0) > 0 || errno == EINTR) {
+        }
+        long removed = 0;
+        wff_remove_temporaries(locked_dir().c_str(), &removed, &err2);
     }
     std::cout.flush();
     release_lock();
@@ -250,6 +263,15 @@ long ffClearDir(string *const &dir)
     return 0;
 }
 
+// The files interrupted atomic writes left in dir (NAME.tmp, NAME.tmp.vtu) removed: their count.
+long ffRemoveTemporaries(string *const &dir)
+{
+    wff_error err;
+    long removed = 0;
+    check("wovenffRemoveTemporaries", wff_remove_temporaries(dir->c_str(), &removed, &err), err);
+    return removed;
+}
+
 long ffSameFile(string *const &a, string *const &b) { return wff_same_file(a->c_str(), b->c_str()); }
 
 long ffWriteFailed(string *const &file, string *const &reason)
@@ -350,6 +372,17 @@ string *ffReadText(Stack stack, string *const &file)
     return ret(stack, s);
 }
 
+// "" if wovenffReadText would read file (a text file of at most 1 GiB, no NUL byte), else why not.
+string *ffTextProblem(Stack stack, string *const &file)
+{
+    char *text;
+    wff_error err;
+    if (wff_read_text_file(file->c_str(), "file", (size_t)1 << 30, &text, &err))
+        return ret(stack, err.message);
+    free(text);
+    return ret(stack, "");
+}
+
 string *ffFormat(Stack stack, const double &x, const long &digits)
 {
     return ret(stack, format(x, digits < 1 ? 1 : digits > 17 ? 17 : digits));
@@ -442,6 +475,7 @@ void wff_ff_register_files()
     Global.Add("wovenffCopyTree", "(", new OneOperator2_<long, string *, string *>(ffCopyTree));
     Global.Add("wovenffRemove", "(", new OneOperator1_<long, string *>(ffRemove));
     Global.Add("wovenffClearDir", "(", new OneOperator1_<long, string *>(ffClearDir));
+    Global.Add("wovenffRemoveTemporaries", "(", new OneOperator1_<long, string *>(ffRemoveTemporaries));
     Global.Add("wovenffSameFile", "(", new OneOperator2_<long, string *, string *>(ffSameFile));
     Global.Add("wovenffWriteFailed", "(", new OneOperator2_<long, string *, string *>(ffWriteFailed));
     Global.Add("wovenffCutLines", "(", new OneOperator2_<long, string *, long>(ffCutLines));
@@ -454,6 +488,7 @@ void wff_ff_register_files()
     Global.Add("wovenffFileHash", "(", new OneOperator1s_<string *, string *>(ffFileHash));
     Global.Add("wovenffTextHash", "(", new OneOperator1s_<string *, string *>(ffTextHash));
     Global.Add("wovenffReadText", "(", new OneOperator1s_<string *, string *>(ffReadText));
+    Global.Add("wovenffTextProblem", "(", new OneOperator1s_<string *, string *>(ffTextProblem));
     Global.Add("wovenffFormat", "(", new OneOperator2s_<string *, double, long>(ffFormat));
     Global.Add("wovenffInputProblem", "(",
                new OneOperator2s_<string *, string *, string *>(ffInputProblem));

@@ -11,8 +11,12 @@
 # the explicit scheme is deterministic and the checkpoint holds all of its
 # state; numbers are also compared to 1e-12 relative), and A keeps its files.
 # Then what a restart refuses: another -velocity (exit 2), a folder without a
-# checkpoint (exit 2), a damaged checkpoint (exit 2 before any file is touched:
-# the folder stays byte-identical, no summary; tests/sh/restart_refusal.sh has more).
+# checkpoint (exit 2), a damaged checkpoint of every kind (a record or the model
+# cut in half, a byte flipped, a NUL, longer, `latest` cut, garbled or naming
+# another record: exit 2 naming the file before any file is touched: the folder
+# stays byte-identical, no summary; tests/sh/restart_refusal.sh has more). And a
+# run stopped after its last checkpoint (frame 45 of 45, at -tend exactly) is
+# finished by its restart.
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/restart"
 rm -rf "$tmp"
@@ -87,4 +91,52 @@ run damaged 2 $common -restart "$tmp/E"
 grep -qF "is corrupt (checksum mismatch)" "$tmp/damaged.log" || { echo "damaged: message missing"; fail=1; }
 [ "$(hash_tree "$tmp/E")" = "$before" ] || { echo "damaged: the refused restart changed the folder"; fail=1; }
 [ -f "$tmp/E/summary.json" ] && { echo "damaged: a summary.json was written"; fail=1; }
+
+# every other kind of damage to the checkpoint's files: exit 2 with an "error:" line naming the
+# damaged file, the folder byte-identical, no summary (once: a record cut in half gave "Strange
+# catch exception ???", exit 1; a NUL byte exit 8; a damaged `latest` named another file)
+c=checkpoint
+for kind in record_half record_flip record_longer record_nul model_half model_longer latest_half latest_text latest_empty latest_other; do
+    rm -rf "$tmp/F"; cp -R "$tmp/A" "$tmp/F"; d="$tmp/F/$c"
+    named="$d/scene_40.txt"
+    case $kind in
+        record_half) head -c $(($(wc -c < "$tmp/A/$c/scene_40.txt") / 2)) "$tmp/A/$c/scene_40.txt" > "$d/scene_40.txt" ;;
+        record_flip) printf 'Q' | dd of="$d/scene_40.txt" bs=1 seek=40 conv=notrunc 2>/dev/null ;;
+        record_longer) printf 'option -extra 1\n' >> "$d/scene_40.txt" ;;
+        record_nul) printf '\000' | dd of="$d/scene_40.txt" bs=1 seek=60 conv=notrunc 2>/dev/null ;;
+        model_half) named="$d/model_40.bin"
+            head -c $(($(wc -c < "$tmp/A/$c/model_40.bin") / 2)) "$tmp/A/$c/model_40.bin" > "$d/model_40.bin" ;;
+        model_longer) named="$d/model_40.bin"; printf 'xx' >> "$d/model_40.bin" ;;
+        latest_half) named="$d/latest"; printf '4' > "$d/latest" ;;
+        latest_text) named="$d/latest"; printf 'forty\n' > "$d/latest" ;;
+        latest_empty) named="$d/latest"; : > "$d/latest" ;;
+        latest_other) named="$d/scene_36.txt"   # a record renamed: not the frame `latest` names
+            mv "$d/scene_40.txt" "$d/scene_36.txt"; mv "$d/model_40.bin" "$d/model_36.bin"; printf '36\n' > "$d/latest" ;;
+    esac
+    before=$(hash_tree "$tmp/F")
+    run "damaged_$kind" 2 $common -restart "$tmp/F"
+    grep "^error:" "$tmp/damaged_$kind.log" | grep -qF "$named" \
+        || { echo "damaged $kind: no error line naming $named"; grep -v '^ *call' "$tmp/damaged_$kind.log" | tail -3; fail=1; }
+    [ "$(hash_tree "$tmp/F")" = "$before" ] || { echo "damaged $kind: the refused restart changed the folder"; fail=1; }
+    [ -f "$tmp/F/summary.json" ] && { echo "damaged $kind: a summary.json was written"; fail=1; }
+done
+echo "damaged checkpoints: 10 more kinds refused with exit 2, each naming its file, the folder unchanged"
+
+# killed after its last checkpoint (frame 45 of 45: -stopafter 45 stops as a crash would, no
+# summary): the checkpoint lies at -tend exactly (the model's t_stop), not past it, and the
+# restart writes the outputs (summary "ok", the history equal to the uninterrupted run's)
+# instead of being refused ("the checkpoint is already at 0.00045018 s")
+run L_first 9 $common -out "$tmp/L" -checkpoint 5 -stopafter 45
+[ "$(cat "$tmp/L/checkpoint/latest" 2>/dev/null)" = 45 ] || { echo "L: the last checkpoint is not frame 45"; fail=1; }
+at=$(sed -n 's/^loop time //p' "$tmp/L/checkpoint/scene_45.txt")
+awk -v t="$at" 'BEGIN { exit !(t == 0.45e-3) }' || { echo "L: the last checkpoint is at t = $at s, not -tend 0.00045 s"; fail=1; }
+run L_restart 0 $common -restart "$tmp/L" -checkpoint 5
+grep -q "restarting from the checkpoint at frame 45" "$tmp/L_restart.log" || { echo "L: not restarted from frame 45"; fail=1; }
+grep -q '"status": "ok"' "$tmp/L/summary.json" || { echo "L: summary not ok"; fail=1; }
+cmp -s "$tmp/ref/history.csv" "$tmp/L/history.csv" || { echo "L: the history differs from the uninterrupted run's"; fail=1; }
+for key in peak_displacement peak_time steps final_projectile_velocity; do
+    a=$(grep "\"$key\"" "$tmp/ref/summary.json"); b=$(grep "\"$key\"" "$tmp/L/summary.json")
+    [ "$a" = "$b" ] || { echo "L: summary $key: '$a' vs '$b'"; fail=1; }
+done
+echo "killed after the last checkpoint (t = $at s = -tend): the restart finished, history equal"
 exit $fail
