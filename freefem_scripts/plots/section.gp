@@ -1,23 +1,50 @@
 # section.gp — the pack's cross-section through the point of impact: each ply's
-# z (u_z, its plane starting at p gap) along +x at the profile times, z drawn
-# downwards as the projectile moves (+z into the pack).
-# gnuplot -e "data='section.csv'; out='section.png'; plies=8; times='0.0004 0.0009'; half=5e-6; gap=2.1e-4" \
+# z (u_z, its plane starting at p gap) along +x at the profile times and at the
+# run's end, z upwards (+z: the projectile's direction). The z scale is the plies'
+# attached fabric (fabric 1) and their planes (z = 0): fragments torn off
+# (fabric 0) are marked (grey x) where they fall inside it and counted in the key,
+# eroded elements (fabric -1: holes) are left out. The projectile's tip at each
+# time is a triangle on the axis (x = 0), inside the scale too.
+# gnuplot -e "data='section.csv'; out='section.png'; plies=8; times='0.0004 0.0009 0.00121'; half=5e-6;
+#             gap=2.1e-4; tend=0.00121; tips='0.017 0.05 0.066'" \
 #         freefem_scripts/plots/section.gp
-# data: rows time,ply,position,z; times: the profile times (s) present; half:
-# half the history interval (s), to match the times; gap: the plies' spacing (m).
+# data: rows time,ply,position,z,fabric; times: the section times (s) present;
+# half: half the history interval (s), to match the times; gap: the plies'
+# spacing (m); tend: the run's end time (s; its line says "the end"); tips: the
+# projectile's tip (m, its z) at each of the times.
 set datafile separator ','
 set datafile columnheaders
 set terminal pngcairo size 1100,700 font ',11'
 set output out
-set title sprintf("The pack's cross-section through the point of impact along x (%d plies, gap %.3g mm)", plies, gap * 1e3)
+stats data using (column('fabric') == 1 ? column('z') * 1e3 : 0) nooutput name 'A'
+stats data using (column('position') * 1e3) nooutput name 'X'   # (before any range is set: stats keeps to it)
+zmin = A_min; zmax = A_max
+do for [i = 1:words(tips)] { tip = word(tips, i) * 1e3; zmin = tip < zmin ? tip : zmin; zmax = tip > zmax ? tip : zmax }
+span = zmax - zmin > 1e-3 ? zmax - zmin : 1.0
+zlow = zmin - 0.05 * span; zhigh = zmax + 0.05 * span
+inside(z) = z >= zlow && z <= zhigh
+stats data using (column('fabric') == 0 ? 1 : 0) nooutput name 'F'
+stats data using (column('fabric') == 0 && !inside(column('z') * 1e3) ? 1 : 0) nooutput name 'FOUT'
+stats data using (column('fabric') == -1 ? 1 : 0) nooutput name 'E'
+set title sprintf("The pack's cross-section through the point of impact along x (%d plies, gap %.3g mm)\nthe attached fabric; eroded elements (%d points) left out", \
+                  plies, gap * 1e3, E_sum)
 set xlabel 'distance from the point of impact (mm)'
-set ylabel 'z (mm, +z: the projectile''s direction)'
-set yrange [*:*] reverse
+set ylabel 'z (mm, up: the projectile''s direction +z)'
+set yrange [zlow:zhigh]
 set grid
-set key right bottom box opaque title 'colour: time; each ply a line'
+set key right top box opaque title 'colour: time; each ply a line'
 at(t, p) = abs(column('time') - t) < half && column('ply') == p
-set xrange [0:*]
+label(t) = sprintf('%.3g ms%s', t * 1e3, abs(t - tend) < half ? ' (the end)' : '')
+set xrange [-0.015 * X_max:X_max]   # (room for the tips on the axis)
+set print $tip_points   # (CSV with a header, as the data: the datafile settings hold for it too)
+print 'position,z,time'
+do for [i = 1:words(tips)] { print sprintf('0,%.6g,%d', word(tips, i) * 1e3, i) }
+unset print
 plot for [i = 1:words(times)] for [p = 0:plies - 1] data \
-        using (at(word(times, i) + 0, p) ? column('position') * 1e3 : NaN):(column('z') * 1e3) \
+        using (at(word(times, i) + 0, p) && column('fabric') == 1 ? column('position') * 1e3 : NaN):(column('z') * 1e3) \
         with lines lw (p == 0 || p == plies - 1 ? 2.5 : 1) lc i \
-        title (p == 0 ? sprintf('%.1f ms', word(times, i) * 1e3) : '')
+        title (p == 0 ? label(word(times, i) + 0) : ''), \
+     data using (column('fabric') == 0 ? column('position') * 1e3 : NaN):(column('z') * 1e3) \
+        with points pt 2 ps 0.7 lc rgb '#808080' \
+        title (F_sum > 0 ? sprintf('fragments torn off: %d points, %d beyond this scale', F_sum, FOUT_sum) : ''), \
+     $tip_points using 1:2:3 with points pt 9 ps 2.2 lc variable title "the projectile's tip"

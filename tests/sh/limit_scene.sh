@@ -13,6 +13,13 @@
 #  - a run that ends at -tend undecided (verdict "undecided", or, from a scene
 #    without a verdict, not perforated with the projectile still
 #    moving in) is not counted as stopped: listed as undecided, naming -tend;
+#  - the words of limit.png are the terminal's (what the scene hands gnuplot, seen
+#    through a gnuplot stand-in on PATH that logs its -e settings): the fit line and
+#    the bracket's V50, whose half gap is exact (the speeds are multiples of 0.01);
+#    a fit whose V_bl sits at its bound (-stopbelow: the residual jumps from 0 at
+#    the limit) says "at its bound" on the terminal, in limit.json and on the
+#    picture, naming the bound; a fitted a > 1 is flagged with the speed above
+#    which the law's residual passes the striking speed; a plain fit warns nothing;
 #  - a scene that never perforates: exit 5, the error names -vmax;
 #  - every run of a round failing: exit 4; bad options: exit 2.
 set -u
@@ -20,10 +27,25 @@ tmp="${WFF_TEST_TMP:-/tmp}/limit_scene"
 rm -rf "$tmp"; mkdir -p "$tmp"
 fail=0
 standin=tests/edp/scenes/lambert_jonas_standin.edp
+# gnuplot on PATH logs each call's script and -e settings (into $tmp/OUT.gnuplot)
+gp=$(command -v gnuplot)
+if [ -n "$gp" ]; then
+    mkdir -p "$tmp/bin"
+    printf '#!/bin/sh\nprintf "%%s\\t%%s\\n" "$3" "$2" >> "${WFF_GNUPLOT_CALLS:-/dev/null}"\nexec "%s" "$@"\n' "$gp" > "$tmp/bin/gnuplot"
+    chmod +x "$tmp/bin/gnuplot"
+fi
 sweep() { # out, options...
     out=$1; shift
-    sh tools/ff.sh freefem_scripts/ballistic_limit.edp -scene $standin -out "$tmp/$out" "$@" > "$tmp/$out.log" 2>&1
+    PATH="$tmp/bin:$PATH" WFF_GNUPLOT_CALLS="$tmp/$out.gnuplot" \
+        sh tools/ff.sh freefem_scripts/ballistic_limit.edp -scene $standin -out "$tmp/$out" "$@" > "$tmp/$out.log" 2>&1
 }
+# the words limit.gp was given, as gnuplot reads them: fit_text, bracket_text, warning1..3
+words() { # out
+    vars=$(awk -F'\t' '$1 ~ /limit[.]gp$/ { print $2 }' "$tmp/$1.gnuplot" 2>/dev/null | tail -1)
+    [ -n "$vars" ] && "$gp" -e "$vars" -e 'print fit_text; print bracket_text; print warning1; print warning2; print warning3' 2>&1
+}
+terminal_fit() { sed -n 's/^Lambert-Jonas fit: \(.*\) ([0-9]* perforating runs.*/\1/p' "$tmp/$1.log"; }
+terminal_bracket() { sed -n 's/^V50 .* m\/s (fit), \(.*\)$/\1/p' "$tmp/$1.log"; }
 field() { # file, key (a number of "key": {"value": X ...} or "key": X)
     sed -n "s/^  \"$2\": {\"value\": \([^,]*\),.*/\1/p; s/^  \"$2\": \([0-9.e+-]*\),$/\1/p" "$1"
 }
@@ -59,6 +81,59 @@ awk -v s="$v50" 'BEGIN { split(s, x, " "); d = x[1] - 120; if (d < 0) d = -d; ex
 [ -s "$d/v300/summary.json" ] && [ -s "$d/v300/run.log" ] || { echo "run folder v300 incomplete"; fail=1; }
 [ "$(field "$d/limit.json" runs_undecided)" = 0 ] || { echo "runs_undecided not 0"; fail=1; }
 grep -q '"tend": 0.01[,}]' "$d/v300/summary.json" || { echo "the runs were not given the sweep's -tend 10e-3"; fail=1; }
+
+# 1a. the picture's words are the terminal's, one rounding; the half gap exact; no warning
+if [ -n "$gp" ]; then
+    w=$(words law)
+    [ "$(echo "$w" | sed -n 1p)" = "$(terminal_fit law)" ] && [ -n "$(terminal_fit law)" ] \
+        || { echo "limit.png's fit '$(echo "$w" | sed -n 1p)', the terminal's '$(terminal_fit law)'"; fail=1; }
+    [ "$(echo "$w" | sed -n 2p)" = "$(terminal_bracket law)" ] && [ -n "$(terminal_bracket law)" ] \
+        || { echo "limit.png's bracket '$(echo "$w" | sed -n 2p)', the terminal's '$(terminal_bracket law)'"; fail=1; }
+    [ -z "$(echo "$w" | sed -n 3p)" ] || { echo "a plain fit warned on limit.png: $(echo "$w" | sed -n 3p)"; fail=1; }
+    echo "limit.png: $(echo "$w" | sed -n 1p); V50 $(echo "$w" | sed -n 2p)"
+fi
+grep -q '^warning:' "$tmp/law.log" && { echo "a plain fit warned: $(grep '^warning:' "$tmp/law.log")"; fail=1; }
+grep -q 'at its bound' "$tmp/law.log" && { echo "a plain fit said 'at its bound'"; fail=1; }
+# the half gap, to 0.001 m/s: (lowest perforated - highest stopped below it) / 2 from limit.csv
+want=$(awk -F, 'NR > 1 && $3 == 1 && (p == "" || $1 < p) { p = $1 } NR > 1 && $3 == 0 { s[NR] = $1 }
+                END { for (k in s) if (s[k] < p && s[k] > h) h = s[k]; printf "%.3f +- %.3f", (p + h) / 2, (p - h) / 2 }' "$d/limit.csv")
+got=$(terminal_bracket law | awk '{ printf "%.3f +- %.3f", $1, $3 }')
+[ "$got" = "$want" ] || { echo "the bracket's V50 '$(terminal_bracket law)', from limit.csv $want"; fail=1; }
+
+# 1c. V_bl at its bound: runs below 130 m/s stop though the law (V_bl 100) would perforate
+sweep bound -base "-law 100,0.9,2.5 -stopbelow 130" -vmin 100 -vmax 300 -jobs 2 -runs 10
+rc=$?
+[ $rc -eq 0 ] || { echo "the at-bound sweep exited $rc"; tail -5 "$tmp/bound.log"; fail=1; }
+stopped=$(awk -F, 'NR > 1 && $3 == 0 && $1 > h { h = $1 } END { print h }' "$tmp/bound/limit.csv")
+grep '^Lambert-Jonas fit:\|^warning:' "$tmp/bound.log"
+terminal_fit bound | grep -q '^V_bl [0-9.]* +- [0-9.e+-]* m/s (at its bound), ' \
+    || { echo "the at-bound fit's line does not say 'at its bound': $(terminal_fit bound)"; fail=1; }
+grep -q "^warning: V_bl sits at its bound (the highest stopped speed, $stopped m/s)" "$tmp/bound.log" \
+    || { echo "no warning naming the bound (the highest stopped speed $stopped m/s)"; fail=1; }
+grep -q '"v_bl": {.*"at_bound": true}' "$tmp/bound/limit.json" && grep -q '"warnings": \["V_bl sits at its bound' "$tmp/bound/limit.json" \
+    || { echo "limit.json: V_bl not at_bound or no warning"; fail=1; }
+if [ -n "$gp" ]; then
+    w=$(words bound)
+    [ "$(echo "$w" | sed -n 1p)" = "$(terminal_fit bound)" ] || { echo "limit.png's fit '$(echo "$w" | sed -n 1p)'"; fail=1; }
+    [ "warning: $(echo "$w" | sed -n 3p)" = "$(grep -m1 '^warning: V_bl' "$tmp/bound.log")" ] \
+        || { echo "limit.png's warning '$(echo "$w" | sed -n 3p)' is not the terminal's"; fail=1; }
+    [ -s "$tmp/bound/limit.png" ] || { echo "the at-bound sweep: no limit.png"; fail=1; }
+fi
+
+# 1d. a fitted a > 1 (1.05: every residual still below its striking speed) is flagged
+sweep abig -base "-law 120,1.05,2" -vmin 100 -vmax 300 -jobs 2 -runs 10
+rc=$?
+[ $rc -eq 0 ] || { echo "the a > 1 sweep exited $rc"; tail -5 "$tmp/abig.log"; fail=1; }
+awk -F, 'NR > 1 && $2 != "" && $2 + 0 >= $1 + 0 { print "a > 1: row " NR ": residual " $2 " >= striking " $1; bad = 1 } END { exit bad }' \
+    "$tmp/abig/limit.csv" || fail=1
+grep '^warning:' "$tmp/abig.log"
+# the speed above which a (V^p - V_bl^p)^(1/p) > V: a V_bl / (a^p - 1)^(1/p), 393.56 m/s for 120, 1.05, 2
+grep -q '^warning: a 1.05 > 1: the fitted law.s residual speed passes the striking speed above 393.5[0-9] m/s' "$tmp/abig.log" \
+    || { echo "a fitted a = 1.05 not flagged (with the speed 393.56 m/s)"; fail=1; }
+if [ -n "$gp" ]; then
+    [ "warning: $(words abig | sed -n 3p)" = "$(grep -m1 '^warning: a ' "$tmp/abig.log")" ] \
+        || { echo "limit.png's warning '$(words abig | sed -n 3p)' is not the terminal's"; fail=1; }
+fi
 
 # 1b. a stopped run that ended at -tend with the projectile still moving on: undecided,
 #     warned, counted, listed, left out of the bracket and the fit

@@ -7,7 +7,13 @@
 # 1 %) with the default -gap (the module's ply thickness); a layup off 90 at the
 # centre builds the full specimen and says so; a 4-ply pack perforates (each ply
 # eroded, balance within 1 %, ply penetration below the contact distance and below
-# its stated bound, the contact distance plus the crossing allowance); every bad input exits 2 naming
+# its stated bound, the contact distance plus the crossing allowance) and its pictures read:
+# section.csv holds a section at the run's end with each sample's fabric (attached,
+# fragment, eroded), section.png's z axis runs up and its scale is the attached fabric
+# and the projectile's tip, not the eroded fabric's nodes flung further (what gnuplot
+# draws: its -e settings logged by a gnuplot stand-in on PATH, the axis range printed);
+# damage.csv has a block per ply and damage.png a panel per ply, each titled with its ply
+# and its eroded elements (the summary's ply_eroded); every bad input exits 2 naming
 # the option with nothing written.
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}"
@@ -69,7 +75,15 @@ fi
 # would be 0.00635 m inside the projectile")
 dir="$out-perforated"
 rm -rf "$dir"
-run -plies 4 -failure on -velocity 45 -out "$dir" > "$dir.log" 2>&1
+gp=$(command -v gnuplot)
+if [ -n "$gp" ]; then   # gnuplot on PATH logs each call's script and -e settings
+    mkdir -p "$tmp/pack_bin"
+    printf '#!/bin/sh\nprintf "%%s\\t%%s\\n" "$3" "$2" >> "${WFF_GNUPLOT_CALLS:-/dev/null}"\nexec "%s" "$@"\n' "$gp" > "$tmp/pack_bin/gnuplot"
+    chmod +x "$tmp/pack_bin/gnuplot"
+fi
+rm -f "$dir.gnuplot"
+PATH="$tmp/pack_bin:$PATH" WFF_GNUPLOT_CALLS="$dir.gnuplot" sh tools/ff.sh freefem_scripts/ballistic_impact.edp \
+    -mesh coarse -vtkdt 2e-4 -plies 4 -failure on -velocity 45 -out "$dir" > "$dir.log" 2>&1
 rc=$?
 grep -E '^(pack|perforated):' "$dir.log"
 if [ $rc -ne 0 ]; then
@@ -87,6 +101,41 @@ else
     awk -v v="$vr" 'BEGIN { exit !(v > 0 && v < 45) }' || { echo "perforating pack: residual velocity $vr"; fail=1; }
     echo "$eroded" | awk -F, '{ for (i = 1; i <= NF; i++) if ($i + 0 < 1) exit 1; exit NF != 4 }' \
         || { echo "perforating pack: a ply not eroded ($eroded)"; fail=1; }
+    # section.csv: the run's end too, each sample's fabric, the hole at the end
+    [ "$(head -1 "$dir/section.csv")" = "time,ply,position,z,fabric" ] || { echo "section.csv header '$(head -1 "$dir/section.csv")'"; fail=1; }
+    tend=$(tail -1 "$dir/history.csv" | cut -d, -f1)
+    awk -F, -v t="$tend" 'NR > 1 && ($1 - t < 1e-6 && t - $1 < 1e-6) { n++; if ($5 == -1) e++ } END { exit !(n == 4 * 201 && e > 0) }' \
+        "$dir/section.csv" || { echo "section.csv: no section at the run's end ($tend s) with its hole"; fail=1; }
+    # the attached fabric's z range and the eroded samples' largest z
+    scale=$(awk -F, 'NR > 1 && $5 == 1 { if (lo == "" || $4 < lo) lo = $4; if (hi == "" || $4 > hi) hi = $4 }
+                     NR > 1 && $5 != 1 && (far == "" || $4 > far) { far = $4 } END { print lo * 1e3, hi * 1e3, far * 1e3 }' "$dir/section.csv")
+    if [ -n "$gp" ]; then
+        vars=$(awk -F'\t' '$1 ~ /section[.]gp$/ { print $2 }' "$dir.gnuplot" | tail -1)
+        range=$("$gp" -e "$vars; out='$dir.section_check.png'" freefem_scripts/plots/section.gp -e 'print GPVAL_Y_MIN, GPVAL_Y_MAX, tips' 2>&1 | tail -1)
+        echo "section.png: z from $(echo "$range" | cut -d' ' -f1,2) mm (tips $(echo "$range" | cut -d' ' -f3-) m); attached fabric, the eroded samples' largest z (mm): $scale"
+        echo "$range $scale" | awk '{ lo = $1; hi = $2; tip = 0; for (i = 3; i <= NF - 3; i++) if ($i * 1e3 > tip) tip = $i * 1e3
+            alo = $(NF - 2); ahi = $(NF - 1); far = $NF; top = (ahi > tip ? ahi : tip); span = top - (alo < 0 ? alo : 0)
+            if (!(lo < hi)) { print "section.png: the z axis does not run up (" lo " to " hi ")"; bad = 1 }
+            if (!(lo <= alo && hi >= ahi)) { print "section.png: the attached fabric (" alo " to " ahi " mm) not inside " lo " to " hi; bad = 1 }
+            if (!(hi >= tip && hi <= top + 0.1 * span)) { print "section.png: top " hi " mm, not the scale of the fabric and the tip (" top " mm)"; bad = 1 }
+            if (!(far > hi)) { print "section.png: no eroded sample beyond the scale (" far " mm): the case lost its point"; bad = 1 }
+            exit bad }' || fail=1
+        grep -q 'reverse' freefem_scripts/plots/section.gp && { echo "section.gp reverses an axis"; fail=1; }
+        # damage: a block and a panel per ply, each titled with its ply and its eroded elements
+        blocks=$(awk -F, 'NR > 1 { n[$1]++ } END { for (p in n) print p, n[p] }' "$dir/damage.csv" | sort -n | tr '\n' ' ')
+        echo "damage.csv blocks (ply rows): $blocks"
+        echo "$blocks" | awk '{ exit !(NF == 8 && $1 == 0 && $3 == 1 && $5 == 2 && $7 == 3 && $2 == $4 && $4 == $6 && $6 == $8) }' \
+            || { echo "damage.csv: not a block per ply of 4"; fail=1; }
+        vars=$(awk -F'\t' '$1 ~ /damage[.]gp$/ { print $2 }' "$dir.gnuplot" | tail -1)
+        titles=$("$gp" -e "$vars; out='$dir.damage_check.png'" freefem_scripts/plots/damage.gp \
+                 -e 'do for [p = 0:plies - 1] { print panel_title(p) }' 2>&1 | grep '^ply ')
+        echo "$titles"
+        [ -s "$dir/damage.png" ] || { echo "perforating pack: no damage.png"; fail=1; }
+        for p in 0 1 2 3; do
+            e=$(echo "$eroded" | tr -d ' ' | cut -d, -f$((p + 1)))
+            echo "$titles" | grep -q "^ply $p (0 deg.*): $e elements eroded$" || { echo "damage.png: no panel 'ply $p ... $e elements eroded'"; fail=1; }
+        done
+    fi
 fi
 # a layup at 45 struck at the centre: the full specimen, said
 dir="$out-45"
