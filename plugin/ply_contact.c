@@ -7,9 +7,12 @@
  * weighted facet normals at the predicted positions, continuous as the pack
  * deflects). Each step, after the projectile's correction, the pairs whose
  * predicted distance x_B − x_A (x = X + u + Δt v) along n is below h get an
- * inelastic normal impulse j_n = δ / (Δt w) (w: the pair's inverse mass along
- * n), +j_n n on the upper node and −j_n n on the lower (momentum conserved
- * exactly), then Coulomb friction μ against the tangential relative velocity,
+ * inelastic normal impulse j_n ∇g, j_n = δ / (Δt Σ|∇_k g|²/m_k), along the
+ * gradient of the pair's constraint g = (x_B − x_A)·N/|N| − h: +n on the upper
+ * node, −n on the lower, and s·∂N/∂x_k / |N| on the nodes of their facets (s the
+ * pair's in-plane offset; N turns with those nodes; the gradient sums to 0:
+ * momentum conserved exactly; on A and B alone, along n, the impulse worked
+ * against the normal's turn and put energy in: docs/model.md §23), then Coulomb friction μ against the tangential relative velocity,
  * |j_t| <= μ j_n (stick if the cone allows). A pair already closer than h now
  * has only RECOVERY of that removed per step (pushing it all out at once would
  * put energy in), and one deeper than RECOVERY_SPAN h is only stopped from
