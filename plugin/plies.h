@@ -41,6 +41,11 @@ struct wff_pack {
     int *facet;               /* per facet of a ply: its specimen nodes, counter-clockwise (3) */
     double *rest;             /* per pair: h − distance after sweep 0, m (the measure's) */
     int left_out;             /* pairs left out in the last step (fragment, slid apart, crossed) */
+    int *node_facets;         /* per specimen node: its facets, from node_facet_start[i] (CSR) */
+    int *node_facet_start;    /* nodes + 1 */
+    int *grad_node;           /* a pair's workspace: the nodes its constraint's gradient moves */
+    double *grad;             /* and the gradient, 3 per node */
+    int grad_max;             /* the workspace's length, nodes */
 };
 
 static inline int wff_pack_plies(const wff_model *m)

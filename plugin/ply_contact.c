@@ -7,9 +7,12 @@
  * weighted facet normals at the predicted positions, continuous as the pack
  * deflects). Each step, after the projectile's correction, the pairs whose
  * predicted distance x_B − x_A (x = X + u + Δt v) along n is below h get an
- * inelastic normal impulse j_n = δ / (Δt w) (w: the pair's inverse mass along
- * n), +j_n n on the upper node and −j_n n on the lower (momentum conserved
- * exactly), then Coulomb friction μ against the tangential relative velocity,
+ * inelastic normal impulse j_n ∇g, j_n = δ / (Δt Σ|∇_k g|²/m_k), along the
+ * gradient of the pair's constraint g = (x_B − x_A)·N/|N| − h: +n on the upper
+ * node, −n on the lower, and s·∂N/∂x_k / |N| on the nodes of their facets (s the
+ * pair's in-plane offset; N turns with those nodes; the gradient sums to 0:
+ * momentum conserved exactly; on A and B alone, along n, the impulse worked
+ * against the normal's turn and put energy in: docs/model.md §23), then Coulomb friction μ against the tangential relative velocity,
  * |j_t| <= μ j_n (stick if the cone allows). A pair already closer than h now
  * has only RECOVERY of that removed per step (pushing it all out at once would
  * put energy in), and one deeper than RECOVERY_SPAN h is only stopped from
@@ -59,6 +62,12 @@ void wff_ply_contact_free(struct wff_pack *P)
     free(P->facet);
     free(P->rest);
     P->rest = NULL;
+    free(P->node_facets);
+    free(P->node_facet_start);
+    free(P->grad_node);
+    free(P->grad);
+    P->node_facets = P->node_facet_start = P->grad_node = NULL;
+    P->grad = NULL;
     P->facet = P->touched_list = NULL;
     P->impulse = P->predicted = NULL;
     P->touched = NULL;
@@ -148,6 +157,40 @@ static int ensure_workspace(wff_model *m, wff_error *err)
             P->reach[a[k]] = fmin(P->reach[a[k]], len);
             P->reach[a[(k + 1) % 3]] = fmin(P->reach[a[(k + 1) % 3]], len);
         }
+    }
+    /* each specimen node's facets (the normals' dependence on the positions) */
+    const int nf = facet_count(P);
+    P->node_facet_start = calloc((size_t)P->nodes + 1, sizeof(int));
+    P->node_facets = malloc(sizeof(int) * 3 * (size_t)(nf > 0 ? nf : 1));
+    if (!P->node_facet_start || !P->node_facets) {
+        wff_ply_contact_free(P);
+        return wff_fail(err, "ply contact: out of memory for the facets of %d nodes", P->nodes);
+    }
+    for (int f = 0; f < nf; f++)
+        for (int k = 0; k < 3; k++)
+            P->node_facet_start[P->facet[3 * f + k] + 1]++;
+    int valence = 0;
+    for (int i = 0; i < P->nodes; i++) {
+        valence = valence > P->node_facet_start[i + 1] ? valence : P->node_facet_start[i + 1];
+        P->node_facet_start[i + 1] += P->node_facet_start[i];
+    }
+    int *cursor = malloc(sizeof(int) * ((size_t)P->nodes + 1));
+    if (!cursor) {
+        wff_ply_contact_free(P);
+        return wff_fail(err, "ply contact: out of memory for the facets of %d nodes", P->nodes);
+    }
+    memcpy(cursor, P->node_facet_start, sizeof(int) * (size_t)P->nodes);
+    for (int f = 0; f < nf; f++)
+        for (int k = 0; k < 3; k++)
+            P->node_facets[cursor[P->facet[3 * f + k]]++] = f;
+    free(cursor);
+    /* a pair's gradient: the nodes of A's and B's facets (3 each, repeats merged) */
+    P->grad_max = 2 * 3 * valence + 2;
+    P->grad_node = malloc(sizeof(int) * (size_t)P->grad_max);
+    P->grad = malloc(sizeof(double) * 3 * (size_t)P->grad_max);
+    if (!P->grad_node || !P->grad) {
+        wff_ply_contact_free(P);
+        return wff_fail(err, "ply contact: out of memory for a pair's gradient");
     }
     return 0;
 }
@@ -261,6 +304,65 @@ static inline int partner_below(const struct wff_pack *P, int p, int i)
     return -1;
 }
 
+/* Add d (3) to node `node`'s entry of the pair's gradient workspace (n entries). */
+static int gradient_add(struct wff_pack *P, int n, int node, const double d[3])
+{
+    int k = 0;
+    while (k < n && P->grad_node[k] != node)
+        k++;
+    if (k == n) {
+        if (n == P->grad_max)
+            return n; /* (cannot happen: the workspace holds every facet's nodes) */
+        P->grad_node[n] = node;
+        P->grad[3 * n] = P->grad[3 * n + 1] = P->grad[3 * n + 2] = 0;
+        n++;
+    }
+    P->grad[3 * k] += d[0], P->grad[3 * k + 1] += d[1], P->grad[3 * k + 2] += d[2];
+    return n;
+}
+
+/* The gradient of the pair's constraint g = (x_B − x_A)·N/|N| − h over the
+ * predicted positions (N = N_A + N_B, the raw sums of the facets' normals at
+ * node i of A's ply and of B's, len = |N|, n = N/len, s the pair's in-plane
+ * offset (I − nn)(x_B − x_A)): ±n on B and A, and s·∂N/∂x_k / len on the nodes
+ * of those facets. The nodes and the gradient in P->grad_node, P->grad; their
+ * count returned. Its sum is 0 (momentum kept). */
+static int pair_gradient(wff_model *m, int A, int B, int i, const double n[3], const double s[3],
+                         double len)
+{
+    struct wff_pack *P = m->pack;
+    const unsigned char *eroded = m->el.eroded;
+    const int nn = P->nodes, plies[2] = {A / nn, B / nn};
+    int count = 0;
+    for (int side = 0; side < 2; side++) {
+        const int q = plies[side];
+        for (int a = P->node_facet_start[i]; a < P->node_facet_start[i + 1]; a++) {
+            const int f = P->node_facets[a];
+            if (eroded && eroded[facet_element(P, q, f)])
+                continue;
+            const int *c = P->facet + 3 * f;
+            const int g0 = q * nn + c[0], g1 = q * nn + c[1], g2 = q * nn + c[2];
+            const double *x0 = P->predicted + 3 * g0, *x1 = P->predicted + 3 * g1,
+                         *x2 = P->predicted + 3 * g2;
+            const double e1[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
+            const double e2[3] = {x2[0] - x0[0], x2[1] - x0[1], x2[2] - x0[2]};
+            /* s·(e1 × e2): ∂/∂x1 = e2 × s, ∂/∂x2 = s × e1, ∂/∂x0 = −both */
+            const double d1[3] = {(e2[1] * s[2] - e2[2] * s[1]) / len, (e2[2] * s[0] - e2[0] * s[2]) / len,
+                                  (e2[0] * s[1] - e2[1] * s[0]) / len};
+            const double d2[3] = {(s[1] * e1[2] - s[2] * e1[1]) / len, (s[2] * e1[0] - s[0] * e1[2]) / len,
+                                  (s[0] * e1[1] - s[1] * e1[0]) / len};
+            const double d0[3] = {-d1[0] - d2[0], -d1[1] - d2[1], -d1[2] - d2[2]};
+            count = gradient_add(P, count, g0, d0);
+            count = gradient_add(P, count, g1, d1);
+            count = gradient_add(P, count, g2, d2);
+        }
+    }
+    const double minus[3] = {-n[0], -n[1], -n[2]};
+    count = gradient_add(P, count, B, n);
+    count = gradient_add(P, count, A, minus);
+    return count;
+}
+
 /* One pair: node i of ply `pair` (below, A) and of the first ply above it with
  * a facet left there (B: ply pair + 1, or one further up through a hole).
  * Returns 1 if corrected, 0 if not in contact, -1 if left out (a dead node A
@@ -327,18 +429,31 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
     if (delta <= ROUND_OFF * h)
         return 0;
     *moved = delta;
-    double w = inverse_mass(m, A, nrm) + inverse_mass(m, B, nrm);
+    /* the normal impulse along the gradient of the constraint g = (x_B − x_A)·n − h:
+     * n is of the facets' positions, so g moves with the facets' nodes too
+     * (s·∂N/∂x_k / |N|, s the in-plane offset of the pair); an impulse on A and
+     * B alone, along n, works against that part and puts energy in */
+    if (!(inverse_mass(m, A, nrm) + inverse_mass(m, B, nrm) > 0))
+        return 0; /* neither node can move along the normal (held): the supports take it */
+    const double slip_vec[3] = {tx, ty, tz};
+    const int n_grad = pair_gradient(m, A, B, i, nrm, slip_vec, len);
+    struct wff_pack *W = m->pack;
+    double w = 0;
+    for (int k = 0; k < n_grad; k++)
+        for (int c = 0; c < 3; c++)
+            if (m->dof_kind[D * W->grad_node[k] + c] == WFF_DOF_FREE)
+                w += W->grad[3 * k + c] * W->grad[3 * k + c] / moving_mass(m, W->grad_node[k], c);
     if (!(w > 0))
-        return 0; /* neither can move along the normal */
-    double jn = delta / dt / w, j[3];
-    for (int c = 0; c < 3; c++)
-        j[c] = jn * nrm[c]; /* on B; −j on A */
+        return 0;
+    const double jn = delta / dt / w;
+    for (int k = 0; k < n_grad; k++) {
+        const double jk[3] = {jn * W->grad[3 * k], jn * W->grad[3 * k + 1], jn * W->grad[3 * k + 2]};
+        give(m, W->grad_node[k], jk, dt_mid);
+    }
     if (P->mu > 0) { /* friction against the tangential relative velocity after jn */
         double rel[3], along = 0, speed = 0, vt[3];
         for (int c = 0; c < 3; c++) {
-            double dvb = m->dof_kind[D * B + c] == WFF_DOF_FREE ? j[c] / moving_mass(m, B, c) : 0;
-            double dva = m->dof_kind[D * A + c] == WFF_DOF_FREE ? j[c] / moving_mass(m, A, c) : 0;
-            rel[c] = (m->v[D * B + c] + dvb) - (m->v[D * A + c] - dva);
+            rel[c] = m->v[D * B + c] - m->v[D * A + c];
             along += rel[c] * nrm[c];
         }
         for (int c = 0; c < 3; c++) {
@@ -350,13 +465,12 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
             double t[3] = {vt[0] / speed, vt[1] / speed, vt[2] / speed};
             double wt = inverse_mass(m, A, t) + inverse_mass(m, B, t);
             double jt = wt > 0 ? fmin(P->mu * jn, speed / wt) : 0; /* stick if the cone allows */
-            for (int c = 0; c < 3; c++)
-                j[c] -= jt * t[c];
+            const double jb[3] = {-jt * t[0], -jt * t[1], -jt * t[2]};
+            const double ja[3] = {jt * t[0], jt * t[1], jt * t[2]};
+            give(m, B, jb, dt_mid);
+            give(m, A, ja, dt_mid);
         }
     }
-    double ja[3] = {-j[0], -j[1], -j[2]};
-    give(m, B, j, dt_mid);
-    give(m, A, ja, dt_mid);
     return 1;
 }
 

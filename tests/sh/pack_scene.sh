@@ -13,7 +13,8 @@
 # and the projectile's tip, not the eroded fabric's nodes flung further (what gnuplot
 # draws: its -e settings logged by a gnuplot stand-in on PATH, the axis range printed);
 # damage.csv has a block per ply and damage.png a panel per ply, each titled with its ply
-# and its eroded elements (the summary's ply_eroded); every bad input exits 2 naming
+# and its eroded elements (the summary's ply_eroded); 8 plies at dtfactor 0.8 to 0.5 ms
+# never show a negative ply-contact dissipation; every bad input exits 2 naming
 # the option with nothing written.
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}"
@@ -136,6 +137,23 @@ else
             echo "$titles" | grep -q "^ply $p (0 deg.*): $e elements eroded$" || { echo "damage.png: no panel 'ply $p ... $e elements eroded'"; fail=1; }
         done
     fi
+fi
+# 8 plies at dtfactor 0.8 to 0.5 ms: contact and friction only take energy out,
+# so the ply contact's dissipation is never below 0 in any history row (the
+# impulse along the pair's normal alone, not the constraint's gradient, put
+# energy in: -0.10 J by 0.5 ms here, -31 J by 1.5 ms; docs/model.md §23)
+dir="$out-eight"
+rm -rf "$dir"
+run -tend 0.5e-3 -plies 8 -dtfactor 0.8 -out "$dir" > "$dir.log" 2>&1
+rc=$?
+if [ $rc -ne 0 ]; then
+    echo "-plies 8 -dtfactor 0.8: exit $rc"; tail -3 "$dir.log"; fail=1
+else
+    col=$(head -1 "$dir/history.csv" | tr ',' '\n' | grep -nx ply_contact_dissipated | cut -d: -f1)
+    low=$(awk -F, -v c="$col" 'NR > 1 && (NR == 2 || $c < m) { m = $c } END { print m }' "$dir/history.csv")
+    echo "-plies 8 -dtfactor 0.8 to 0.5 ms: ply contact dissipated $(num ply_contact_dissipated "$dir") J, lowest $low J, largest energy error $(num max_energy_error "$dir")"
+    awk -v l="$low" 'BEGIN { exit !(l != "" && l >= 0) }' \
+        || { echo "-plies 8 -dtfactor 0.8: the ply contact's dissipation fell to $low J: energy put in"; fail=1; }
 fi
 # a layup at 45 struck at the centre: the full specimen, said
 dir="$out-45"
