@@ -221,6 +221,55 @@ static void check_long_run(check_state *st)
 }
 
 
+/* The bumped square of the issue "Stable from any state" (a clamped 10 cm
+ * square of Kevlar, 12 x 12 x 2 triangles, released at rest from a 3 mm bump
+ * with in-plane and amplitude parts of its shape) into m at dtfactor:
+ * preload 0 none, 1 the 1 N preload with its amplitudes overwritten by the
+ * bump's, 2 the preload's amplitudes kept and the bump's added. 0, or -1 with
+ * err set (m freed). */
+static int bump_model(wff_model *m, double dtfactor, int preload, wff_error *err)
+{
+    test_rect r = {0, 0.1, 0, 0.1, 12, 12, TEST_MESH_TRI, 0, 0, 1};
+    if (test_model_rect(m, &r, KEVLAR, err))
+        return -1;
+    static const char *const edges[] = {"left", "right", "bottom", "top"};
+    int rc = 0;
+    for (int g = 0; g < 4 && rc == 0; g++)
+        for (int c = 0; c < 3 && rc == 0; c++)
+            rc = wff_model_fix_group(m, edges[g], c, err) < 0;
+    if (rc == 0)
+        rc = wff_model_set_option(m, "dtfactor", dtfactor, err);
+    double dA0[2] = {0, 0};
+    if (rc == 0 && preload) {
+        wff_biaxial_state bs;
+        memset(&bs, 0, sizeof bs);
+        bs.stretch[0] = bs.stretch[1] = 1;
+        rc = wff_preload_equal_force(&m->mat, 1.0, &bs, err);
+        double Fp[4] = {bs.stretch[0], 0, 0, bs.stretch[1]};
+        dA0[0] = bs.dA[0];
+        dA0[1] = bs.dA[1];
+        if (rc == 0)
+            rc = wff_model_set_preload(m, Fp, dA0, err);
+    }
+    double *u = calloc((size_t)m->n_dofs, sizeof(double));
+    for (int n = 0; n < m->n_nodes && rc == 0; n++) {
+        double x = m->mesh.xy[2 * n], y = m->mesh.xy[2 * n + 1];
+        double s = 16 * x * (0.1 - x) * y * (0.1 - y) / 1e-4;
+        double bump[D] = {1e-5 * s, 1e-5 * s, 3e-3 * s, -5e-6 * s, -5e-6 * s};
+        if (preload == 2) {
+            bump[3] += dA0[0];
+            bump[4] += dA0[1];
+        }
+        memcpy(u + D * wff_model_user_node(m, n), bump, sizeof bump); /* (the set's order) */
+    }
+    if (rc == 0)
+        rc = wff_model_set_vector(m, "u", u, err);
+    free(u);
+    if (rc)
+        wff_model_free(m);
+    return rc ? -1 : 0;
+}
+
 /* 4. The bumped square released at rest: error after the first step at dtfactor
  * 0.1, 0.05, 0.025. It is −(ωΔt)²/4 of the leapfrog energy measure for the
  * amplitude oscillation the release excites (0.75 % at 0.1), and halves twice
@@ -228,34 +277,15 @@ static void check_long_run(check_state *st)
 static double bump_one_step(check_state *st, double dtfactor)
 {
     wff_model m;
-    test_rect r = {0, 0.1, 0, 0.1, 12, 12, TEST_MESH_TRI, 0, 0, 1};
     wff_error err;
-    if (test_model_rect(&m, &r, KEVLAR, &err)) {
-        CHECK(st, 0, "%s", err.message);
+    if (bump_model(&m, dtfactor, 0, &err)) {
+        CHECK(st, 0, "bumped square, dtfactor %g: %s", dtfactor, err.message);
         return NAN;
     }
-    static const char *const edges[] = {"left", "right", "bottom", "top"};
-    int rc = 0;
-    for (int g = 0; g < 4 && rc == 0; g++)
-        for (int c = 0; c < 3 && rc == 0; c++)
-            rc = wff_model_fix_group(&m, edges[g], c, &err) < 0;
-    if (rc == 0)
-        rc = wff_model_set_option(&m, "dtfactor", dtfactor, &err);
-    double *u = calloc((size_t)m.n_dofs, sizeof(double));
-    for (int n = 0; n < m.n_nodes && rc == 0; n++) {
-        double x = m.mesh.xy[2 * n], y = m.mesh.xy[2 * n + 1];
-        double s = 16 * x * (0.1 - x) * y * (0.1 - y) / 1e-4;
-        double bump[D] = {1e-5 * s, 1e-5 * s, 3e-3 * s, -5e-6 * s, -5e-6 * s};
-        memcpy(u + D * wff_model_user_node(&m, n), bump, sizeof bump); /* (the set's order) */
-    }
-    if (rc == 0)
-        rc = wff_model_set_vector(&m, "u", u, &err);
-    if (rc == 0)
-        rc = wff_model_advance(&m, 1e9, 1, &err);
+    int rc = wff_model_advance(&m, 1e9, 1, &err);
     CHECK(st, rc == 0, "bumped square, dtfactor %g: %s", dtfactor, rc ? err.message : "");
     wff_energies e;
     wff_model_energies(&m, &e);
-    free(u);
     wff_model_free(&m);
     return rc ? NAN : e.error;
 }
@@ -284,44 +314,12 @@ static void check_bump_long(check_state *st)
     for (int f = 0; f < 2; f++)
         for (int preload = 0; preload < 3; preload++) {
             wff_model m;
-            test_rect r = {0, 0.1, 0, 0.1, 12, 12, TEST_MESH_TRI, 0, 0, 1};
             wff_error err;
-            if (test_model_rect(&m, &r, KEVLAR, &err)) {
-                CHECK(st, 0, "%s", err.message);
+            if (bump_model(&m, factors[f], preload, &err)) {
+                CHECK(st, 0, "bumped square, preload %d: %s", preload, err.message);
                 return;
             }
-            static const char *const edges[] = {"left", "right", "bottom", "top"};
             int rc = 0;
-            for (int g = 0; g < 4 && rc == 0; g++)
-                for (int c = 0; c < 3 && rc == 0; c++)
-                    rc = wff_model_fix_group(&m, edges[g], c, &err) < 0;
-            if (rc == 0)
-                rc = wff_model_set_option(&m, "dtfactor", factors[f], &err);
-            double dA0[2] = {0, 0};
-            if (rc == 0 && preload) {
-                wff_biaxial_state bs;
-                memset(&bs, 0, sizeof bs);
-                bs.stretch[0] = bs.stretch[1] = 1;
-                rc = wff_preload_equal_force(&m.mat, 1.0, &bs, &err);
-                double Fp[4] = {bs.stretch[0], 0, 0, bs.stretch[1]};
-                dA0[0] = bs.dA[0];
-                dA0[1] = bs.dA[1];
-                if (rc == 0)
-                    rc = wff_model_set_preload(&m, Fp, dA0, &err);
-            }
-            double *u = calloc((size_t)m.n_dofs, sizeof(double));
-            for (int n = 0; n < m.n_nodes && rc == 0; n++) {
-                double x = m.mesh.xy[2 * n], y = m.mesh.xy[2 * n + 1];
-                double s = 16 * x * (0.1 - x) * y * (0.1 - y) / 1e-4;
-                double bump[D] = {1e-5 * s, 1e-5 * s, 3e-3 * s, -5e-6 * s, -5e-6 * s};
-                if (preload == 2) {
-                    bump[3] += dA0[0];
-                    bump[4] += dA0[1];
-                }
-                memcpy(u + D * wff_model_user_node(&m, n), bump, sizeof bump);
-            }
-            if (rc == 0)
-                rc = wff_model_set_vector(&m, "u", u, &err);
             double worst = 0;
             for (long k = 0; k < 10000 && rc == 0; k++) {
                 rc = wff_model_advance(&m, 1e9, 1, &err);
@@ -338,7 +336,6 @@ static void check_bump_long(check_state *st)
                   what[preload], factors[f], rc ? err.message : "");
             CHECK(st, worst < 0.5, "bumped square, %s, dtfactor %g: energy error %g",
                   what[preload], factors[f], worst);
-            free(u);
             wff_model_free(&m);
         }
 }
