@@ -95,25 +95,33 @@ static void free_elements(int *types, size_t n_types, size_t **etags, size_t **n
     gmshFree(ntags);
 }
 
+/* gmsh's first "Error: " line since the logger started into buf (size 0: only
+ * asked); 1 if there is one. */
+static int logged_error(char *buf, size_t size)
+{
+    int ierr = 0, found = 0;
+    char **log = NULL;
+    size_t n_log = 0;
+    gmshLoggerGet(&log, &n_log, &ierr);
+    for (size_t i = 0; i < n_log; i++) {
+        if (!found && !ierr && strncmp(log[i], "Error: ", 7) == 0) {
+            found = 1;
+            if (size)
+                snprintf(buf, size, "%s", log[i] + 7);
+        }
+        gmshFree(log[i]);
+    }
+    gmshFree(log);
+    return found;
+}
+
 /* gmsh's first error since the logger started (else its last error) into buf,
  * with control and non-ASCII bytes replaced: gmsh quotes file contents. */
 static void gmsh_message(char *buf, size_t size)
 {
-    int ierr = 0;
     buf[0] = '\0';
-    char **log = NULL;
-    size_t n_log = 0;
-    gmshLoggerGet(&log, &n_log, &ierr);
-    const char *found = NULL;
-    for (size_t i = 0; i < n_log && !ierr; i++)
-        if (!found && strncmp(log[i], "Error: ", 7) == 0)
-            found = log[i] + 7;
-    if (found)
-        snprintf(buf, size, "%s", found);
-    for (size_t i = 0; i < n_log; i++)
-        gmshFree(log[i]);
-    gmshFree(log);
-    if (!buf[0]) {
+    if (!logged_error(buf, size)) {
+        int ierr = 0;
         char *last = NULL;
         gmshLoggerGetLastError(&last, &ierr);
         if (!ierr && last)
@@ -139,17 +147,7 @@ static int gmsh_fail(build *b, const char *what)
  * meshing, without setting ierr). */
 static int gmsh_logged_error(void)
 {
-    int ierr = 0, found = 0;
-    char **log = NULL;
-    size_t n_log = 0;
-    gmshLoggerGet(&log, &n_log, &ierr);
-    for (size_t i = 0; i < n_log; i++) {
-        if (strncmp(log[i], "Error: ", 7) == 0)
-            found = 1;
-        gmshFree(log[i]);
-    }
-    gmshFree(log);
-    return found;
+    return logged_error(NULL, 0);
 }
 
 static int has_suffix(const char *s, const char *suffix)
@@ -625,9 +623,8 @@ static int check_elements(build *b)
                                 e + 1, r->tag, b->gtag[r->node[k]], x[k][2], z_tol);
         }
         double area = 0.5 * cross(x[0], x[1], x[2]);
-        if (r->n == 4)
-            area += 0.5 * cross(x[0], x[2], x[3]);
         if (r->n == 4) {
+            area += 0.5 * cross(x[0], x[2], x[3]);
             int pos = 0, neg = 0;
             for (int k = 0; k < 4; k++) {
                 double c = cross(x[k], x[(k + 1) % 4], x[(k + 3) % 4]);
