@@ -23,7 +23,6 @@
 /* ... or at once beyond this (50 times the reference energy created). */
 #define ENERGY_BLOWUP_NOW 50.0
 
-#define TRAVEL WFF_TRAVEL /* (solver_internal.h) */
 /* The travel limit grows by at most this factor a step (it falls at once): a
  * step following every turn of a swing changes by ~30 % a step, and the
  * central difference does not keep its energy across such jumps (the bumped
@@ -57,7 +56,9 @@ static void fastest_dof(const wff_model *m, char *out, size_t size)
     double fastest = -1;
     for (int i = 0; i < m->n_dofs; i++) {
         double a = m->dof_kind[i] == WFF_DOF_FREE ? fabs(m->f[i] / m->mass[i]) : -1;
-        if (a > fastest || (a != a && best >= 0 && fastest == fastest)) {
+        if (a != a) /* a NaN first: it is the one to name */
+            a = INFINITY;
+        if (a > fastest) {
             fastest = a;
             best = i;
         }
@@ -197,7 +198,7 @@ static int update_time_step(wff_model *m, wff_error *err)
 }
 
 /* The next step: dtfactor × the stable step, shortened where a free amplitude,
- * at its velocity and this step's acceleration, would travel more than TRAVEL ×
+ * at its velocity and this step's acceleration, would travel more than WFF_TRAVEL ×
  * dtfactor of the amplitude length (wff_step_travel). */
 static void travel_limit(wff_model *m)
 {
@@ -205,7 +206,7 @@ static void travel_limit(wff_model *m)
     const double length = m->travel_off ? INFINITY : wff_zones_amplitude_length(m);
     if (!(length < INFINITY))
         return;
-    double limit = wff_step_travel(m, m->dt_factor * TRAVEL * length);
+    double limit = wff_step_travel(m, m->dt_factor * WFF_TRAVEL * length);
     /* down at once, up slowly: the step follows the fastest swing, not each turn */
     if (m->dt_travel > 0 && limit > TRAVEL_GROWTH * m->dt_travel)
         limit = TRAVEL_GROWTH * m->dt_travel;

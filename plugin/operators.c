@@ -146,7 +146,7 @@ int wff_model_travel_step(const wff_model *m, const double *V, const double *R, 
             if (!isfinite(speed) || !isfinite(accel))
                 return wff_fail(err, "travel limit: node %d, amplitude %d: velocity %g m/s, "
                                 "force %g N: not finite", user + 1, j - D + 3, V[iu], R[iu]);
-            const double step = 2 * reach / (speed + sqrt(speed * speed + 4 * accel * reach));
+            const double step = wff_travel_dt(speed, accel, reach);
             if (step < *dt)
                 *dt = step;
         }

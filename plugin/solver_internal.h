@@ -8,6 +8,8 @@
 
 #include "wovenff/solver.h"
 
+#include <math.h>
+
 #define D WFF_DOFS_PER_NODE
 
 /* integrator.c: the element force pass at u into f (zeroed first), the
@@ -35,6 +37,14 @@ void wff_step_kinetic(const wff_model *m, double half, double sums[3]);
  * 1.25 went unstable within 500 steps at dtfactor 0.8, 0.625 held 10,000 at
  * 0.8 and 0.9, with and without the preload (the paper's scene never meets it). */
 #define WFF_TRAVEL 0.625
+
+/* The longest step, s, in which a DOF moving at `speed` (m/s) under `accel`
+ * (m/s²) travels no more than `reach` (m): the root of dt (speed + dt accel)
+ * = reach (the built-in's wff_step_travel and a caller's wff_model_travel_step). */
+static inline double wff_travel_dt(double speed, double accel, double reach)
+{
+    return 2 * reach / (speed + sqrt(speed * speed + 4 * accel * reach));
+}
 
 /* The adaptive step's good states (checkpoint.c): every evolving field of the
  * checkpoint copied into the older of two buffers (allocated on first use; -1

@@ -101,9 +101,7 @@ double wff_step_travel(const wff_model *m, double reach)
                  * eroded, has no stiffness to outrun: it sets no limit) */
                 if (kind[i] != WFF_DOF_FREE || f[i] == 0)
                     continue;
-                /* the root of dt (|v| + dt |a|) = reach */
-                const double speed = fabs(v[i]), accel = fabs(f[i] / mass[i]);
-                const double dt = 2 * reach / (speed + sqrt(speed * speed + 4 * accel * reach));
+                const double dt = wff_travel_dt(fabs(v[i]), fabs(f[i] / mass[i]), reach);
                 shortest = dt < shortest || dt != dt ? dt : shortest;
             }
         part_min[k] = shortest;

@@ -672,8 +672,8 @@ double wff_zones_amplitude_length(const wff_model *m)
     const struct wff_zones *Z = m->zones;
     double length = wff_cell_amplitude_length(&m->mat);
     for (int k = 1; Z && k < Z->n; k++)
-        if (Z->zone[k].n_elements > 0 && wff_cell_amplitude_length(&Z->zone[k].mat) < length)
-            length = wff_cell_amplitude_length(&Z->zone[k].mat);
+        if (Z->zone[k].n_elements > 0)
+            length = fmin(length, wff_cell_amplitude_length(&Z->zone[k].mat));
     return length;
 }
 
