@@ -218,33 +218,41 @@ static void travel_limit(wff_model *m)
 }
 
 /* Kinetic energies (model part) at the integer step, v^{n+½} − ½Δt a^n from
- * the last half step: in-plane, transverse, amplitude, projectile. No
- * allocation: the advance loop calls it every step. */
-static void kinetic_now(const wff_model *m, double k[4])
+ * the last half step: in-plane, transverse, amplitude, projectile; and the
+ * stagger (Δt²/8) Σ f²/m (k[4]): the integer-step kinetic energy less it is
+ * ½ Σ m v^{n−½}·v^{n+½}, which with the stored energy at step n the central
+ * difference conserves exactly on a linear system at any stable step (the
+ * integer-step one swings by (ωΔt)²/4 of a mode's energy). No allocation: the
+ * advance loop calls it every step. */
+static void kinetic_now(const wff_model *m, double k[5])
 {
     const double half = m->v_half_valid ? 0.5 * m->dt : 0;
-    double sums[3]; /* Σ m v² in-plane, transverse, amplitude (threaded: step_threads.c) */
+    double sums[4]; /* Σ m v² in-plane, transverse, amplitude, Σ f²/m (threaded: step_threads.c) */
     wff_step_kinetic(m, half, sums);
     const double inplane = sums[0], transverse = sums[1], amplitude = sums[2];
     k[0] = 0.5 * inplane;
     k[1] = 0.5 * transverse;
     k[2] = 0.5 * amplitude;
     k[3] = 0;
+    double force_sq = sums[3];
     if (m->projectile.active) {
         double vp = m->projectile.velocity + half * m->projectile.force / m->projectile.mass;
         k[3] = 0.5 * m->projectile.mass * vp * vp;
+        force_sq += m->projectile.force * m->projectile.force / m->projectile.mass;
     }
+    k[4] = 0.5 * half * half * force_sq; /* (Δt²/8 Σ f²/m, half = Δt/2) */
 }
 
 void wff_model_energies(const wff_model *m, wff_energies *out)
 {
-    double k[4];
+    double k[5];
     kinetic_now(m, k);
     double s = m->symmetry_factor;
     out->kinetic_inplane = s * k[0];
     out->kinetic_transverse = s * k[1];
     out->kinetic_amplitude = s * k[2];
     out->kinetic_projectile = s * k[3];
+    out->kinetic_stagger = s * k[4];
     out->internal = s * (m->internal_energy);
     out->dissipated_shear = s * m->dissipated_shear;
     out->dissipated_friction = s * m->dissipated_friction;
@@ -254,15 +262,17 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     out->eroded = s * m->eroded_energy;
     const double parts = wff_parts_dissipated(m); /* (part.h: the ply contact's) */
     out->dissipated_ply_contact = s * parts;
-    /* initial + external work = kinetic + internal + shear + friction + failure + eroded */
-    double total = k[0] + k[1] + k[2] + k[3] + m->internal_energy +
+    /* initial + external work = kinetic + internal + shear + friction + failure + eroded,
+     * the kinetic energy the staggered one ½ m v^{n−½}·v^{n+½} */
+    const double kinetic = k[0] + k[1] + k[2] + k[3];
+    double total = kinetic - k[4] + m->internal_energy +
                    m->dissipated_shear + m->dissipated_friction + m->dissipated_failure +
                    m->eroded_energy - m->external_work - m->transfer_energy + parts;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
      * boundaries) the work done on it or the energy it now holds */
     double stored = m->internal_energy - (m->initial_total - m->initial_kinetic);
     double ref = fmax(m->initial_kinetic, fabs(m->external_work));
-    ref = fmax(ref, fmax(k[0] + k[1] + k[2] + k[3], fabs(stored)));
+    ref = fmax(ref, fmax(kinetic, fabs(stored)));
     /* below the kinetic energy of the fabric moving at ~3e-5 m/s, energies are
      * round-off: floor the normaliser there */
     ref = fmax(ref, 1e-9 * m->fabric_mass * 1.0 /* (m/s)^2 */);
@@ -352,15 +362,19 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         wff_parts_refresh(m);
         if (compute_forces(m, 0, err))
             return -1;
-        double k[4];
+        double k[5];
         kinetic_now(m, k); /* v_half_valid is 0: the velocities as given */
-        m->initial_kinetic = k[0] + k[1] + k[2] + k[3];
-        m->initial_total = m->initial_kinetic + m->internal_energy;
+        const double given = k[0] + k[1] + k[2] + k[3];
         m->v_half_valid = 1;
         /* first half step */
         travel_limit(m);
         if (stop < INFINITY)
             lands = plan_stop_step(m, stop);
+        /* the balance's kinetic energy at the start, ½ m v^{−½}·v^{½} with
+         * v^{∓½} = v⁰ ∓ ½Δt a⁰: the given one less the stagger of the first step */
+        kinetic_now(m, k); /* (its k[4] only: k[0..3] are at v⁰ − ½Δt a⁰ here) */
+        m->initial_kinetic = given - k[4];
+        m->initial_total = m->initial_kinetic + m->internal_energy;
         update_velocities(m, 0.5 * m->dt, 0);
         if (wff_parts_correct(m, m->dt, 0.5 * m->dt, err))
             return -1;

@@ -466,7 +466,7 @@ static double stored_plus_kinetic(const wff_model *m)
     wff_energies e;
     wff_model_energies(m, &e);
     return e.internal + e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude +
-           e.kinetic_projectile;
+           e.kinetic_projectile - e.kinetic_stagger; /* (the balance's kinetic energy) */
 }
 
 int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report,

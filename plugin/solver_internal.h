@@ -24,12 +24,12 @@ int wff_force_pass(wff_model *m, const double *u, double *f, double *state, doub
  * thread count. u += dt v and m->f = 0, returning the first half of the
  * prescribed DOFs' external work; f[0..n) = 0; the velocity update with the boundary
  * conditions (returns the prescribed DOFs' second-half work); Σ m v² (in-plane, transverse, amplitude) of the
- * free DOFs at v − half f/m; the nodes within `reach` of the projectile's
+ * free DOFs at v − half f/m and Σ f²/m over them (sums[3]); the nodes within `reach` of the projectile's
  * axis in plane into candidates (returns how many, in node order). */
 double wff_step_positions(wff_model *m, double dt);
 void wff_step_zero(const wff_model *m, double *f, int n);
 double wff_step_velocities(wff_model *m, double dt_mid, double dt_done);
-void wff_step_kinetic(const wff_model *m, double half, double sums[3]);
+void wff_step_kinetic(const wff_model *m, double half, double sums[4]);
 /* The travel limit (docs/model.md §12): a step moves no free amplitude more
  * than this fraction (× dtfactor) of its cell's amplitude length. Measured on
  * a square released from a bump with its amplitudes far from balance (swings

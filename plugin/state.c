@@ -34,14 +34,15 @@ int wff_model_get_vector(const wff_model *m, const char *which, double *out, wff
     return 0;
 }
 
-/* Kinetic + stored energy now, model part (what a set may change). */
+/* Kinetic (the balance's: less the stagger) + stored energy now, model part
+ * (what a set may change). */
 static void state_energy(const wff_model *m, double *kinetic, double *stored)
 {
     wff_energies e;
     wff_model_energies(m, &e);
     double s = m->symmetry_factor;
     *kinetic = (e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude +
-                e.kinetic_projectile) / s;
+                e.kinetic_projectile - e.kinetic_stagger) / s;
     *stored = m->internal_energy;
 }
 

@@ -112,23 +112,26 @@ double wff_step_travel(const wff_model *m, double reach)
     return shortest;
 }
 
-void wff_step_kinetic(const wff_model *m, double half, double k3[3])
+void wff_step_kinetic(const wff_model *m, double half, double k4[4])
 {
     const double *v = m->v, *f = m->f, *mass = m->mass;
     const unsigned char *kind = m->dof_kind;
     const int n = m->n_nodes, parts = wff_part_count(n, NODE_GRAIN);
-    double part_e[MAX_PARTS][3];
+    double part_e[MAX_PARTS][4];
 #pragma omp parallel for schedule(static) num_threads(wff_pass_threads(m, parts)) if (wff_pass_threads(m, parts) > 1)
     for (int k = 0; k < parts; k++) {
         const int end = wff_part_begin(n, parts, k + 1);
-        double inplane = 0, transverse = 0, amplitude = 0;
+        double inplane = 0, transverse = 0, amplitude = 0, force = 0;
         for (int node = wff_part_begin(n, parts, k); node < end; node++) {
             const int i = D * node; /* branch-free over the 5 DOFs of a node */
-            double e[D];
+            double e[D], g[D];
             for (int j = 0; j < D; j++) {
+                const int free = kind[i + j] == WFF_DOF_FREE;
                 double vn = v[i + j] - half * f[i + j] / mass[i + j];
-                e[j] = kind[i + j] == WFF_DOF_FREE ? mass[i + j] * vn * vn : 0;
+                e[j] = free ? mass[i + j] * vn * vn : 0;
+                g[j] = free ? f[i + j] * f[i + j] / mass[i + j] : 0;
             }
+            force += g[0] + g[1] + g[2] + g[3] + g[4];
             inplane += e[0] + e[1];
             transverse += e[2];
             amplitude += e[3] + e[4];
@@ -136,11 +139,12 @@ void wff_step_kinetic(const wff_model *m, double half, double k3[3])
         part_e[k][0] = inplane;
         part_e[k][1] = transverse;
         part_e[k][2] = amplitude;
+        part_e[k][3] = force;
     }
-    k3[0] = k3[1] = k3[2] = 0;
+    k4[0] = k4[1] = k4[2] = k4[3] = 0;
     for (int k = 0; k < parts; k++)
-        for (int j = 0; j < 3; j++)
-            k3[j] += part_e[k][j];
+        for (int j = 0; j < 4; j++)
+            k4[j] += part_e[k][j];
 }
 
 int wff_step_candidates(const wff_model *m, double reach, int *candidates)

@@ -101,6 +101,10 @@ typedef struct wff_energies {
                                  of stored energy since the start */
     double dissipated_ply_contact; /* the kinetic energy ply-to-ply contact removed (pack.h),
                                  a term of D in error */
+    double kinetic_stagger;   /* (Δt²/8) Σ f²/m over the free DOFs and the projectile: the
+                                 kinetic energies above (at the integer step, v^{n+½} −
+                                 ½Δt a^n) less this is ½ Σ m v^{n−½}·v^{n+½}, the kinetic
+                                 energy of the balance in error (docs/model.md §12) */
 } wff_energies;
 
 /* A boundary condition as it was set, by group name, so that a mesh
@@ -523,7 +527,7 @@ double wff_model_clamp_correct(wff_model *m, double *V, double dt_mid);
  * so energies.error measures the integration only. On failure m is
  * unchanged and usable. report may be NULL. */
 typedef struct wff_remesh_report {
-    double before, after;   /* stored + kinetic energy, whole specimen, J */
+    double before, after;   /* stored + kinetic energy (the balance's, K − S), whole specimen, J */
     double retraction;      /* the projectile moved back by this, m */
     int snapped_nodes;      /* new nodes outside the old mesh by round-off */
     double largest_snap;    /* the farthest of them, m */

@@ -51,7 +51,7 @@ static double kinetic_stored(const wff_model *m)
     wff_energies e;
     wff_model_energies(m, &e);
     return e.internal + e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude +
-           e.kinetic_projectile;
+           e.kinetic_projectile - e.kinetic_stagger; /* (the balance's kinetic energy) */
 }
 
 /* 1. The same mesh: u, γᶠ, vⁿ and the energies as they were. */

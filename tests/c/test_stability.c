@@ -271,9 +271,10 @@ static int bump_model(wff_model *m, double dtfactor, int preload, wff_error *err
 }
 
 /* 4. The bumped square released at rest: error after the first step at dtfactor
- * 0.1, 0.05, 0.025. It is −(ωΔt)²/4 of the leapfrog energy measure for the
- * amplitude oscillation the release excites (0.75 % at 0.1), and halves twice
- * per halving of the step. */
+ * 0.1, 0.05, 0.025. With the integer-step kinetic energy alone it was −(ωΔt)²/4
+ * of the amplitude oscillation the release excites (0.74 % at 0.1), falling as
+ * Δt²; the balance's kinetic energy ½ m v^{n−½}·v^{n+½} (docs/model.md §14)
+ * leaves the scheme's own error: at least second order, and below 1e-4 at 0.1. */
 static double bump_one_step(check_state *st, double dtfactor)
 {
     wff_model m;
@@ -296,9 +297,9 @@ static void check_bump_start(check_state *st)
            e3 = bump_one_step(st, 0.025);
     printf("  bumped square from rest, energy error after one step: %.4e (0.1), %.4e (0.05), "
            "%.4e (0.025): ratios %.3f, %.3f\n", e1, e2, e3, e1 / e2, e2 / e3);
-    CHECK(st, fabs(e1 / e2 - 4) < 0.05 && fabs(e2 / e3 - 4) < 0.05,
+    CHECK(st, fabs(e1 / e2) > 3.8 && fabs(e2 / e3) > 3.8,
           "one-step energy error not second order: ratios %g, %g", e1 / e2, e2 / e3);
-    CHECK(st, fabs(e1) < 1e-2, "one-step energy error at 0.1 of the estimate: %g", e1);
+    CHECK(st, fabs(e1) < 1e-4, "one-step energy error at 0.1 of the estimate: %g", e1);
 }
 
 /* 5. The bumped square of the issue "Stable from any state", released at rest
