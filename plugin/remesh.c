@@ -461,12 +461,19 @@ static int replay_bcs(const wff_model *m, wff_model *nm, wff_error *err)
     return 0;
 }
 
-static double stored_plus_kinetic(const wff_model *m)
+/* Stored + kinetic energy (the balance's kinetic energy: the integer-step one
+ * less the stagger (Δt²/8) Σ f²/m at the model's step), J, whole specimen;
+ * *stagger: that stagger. The stagger goes as Δt²: a transfer re-plans the
+ * step (from the new mesh's stable step), and its change is counted in the
+ * transfer with the state's (onto the same mesh the state's is 0, the step's
+ * not: the stable step is re-estimated at the state now). */
+static double stored_plus_kinetic(const wff_model *m, double *stagger)
 {
     wff_energies e;
     wff_model_energies(m, &e);
+    *stagger = e.kinetic_stagger;
     return e.internal + e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude +
-           e.kinetic_projectile - e.kinetic_stagger; /* (the balance's kinetic energy) */
+           e.kinetic_projectile - *stagger;
 }
 
 int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report,
@@ -591,9 +598,14 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     } else if (nm.projectile.active) {
         wff_contact_refresh_candidates(&nm);
     }
-    double e_before = stored_plus_kinetic(m), e_after = stored_plus_kinetic(&nm);
-    if (nm.v_half_valid) /* a run that has not started measures its energy from here */
+    double s_before, s_after; /* (the staggers) */
+    double e_before = stored_plus_kinetic(m, &s_before);
+    double e_after = stored_plus_kinetic(&nm, &s_after);
+    if (nm.v_half_valid) { /* a run that has not started measures its energy from here */
         nm.transfer_energy += (e_after - e_before) / nm.symmetry_factor;
+        /* the integer-step balance (the detector's) carried over unchanged too */
+        nm.stagger_reference += (s_after - s_before) / nm.symmetry_factor;
+    }
     locator_free(&L);
     /* swap: the old model's arrays go, the rest moves over */
     wff_model old = *m;

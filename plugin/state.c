@@ -34,9 +34,9 @@ int wff_model_get_vector(const wff_model *m, const char *which, double *out, wff
     return 0;
 }
 
-/* Kinetic (the balance's: less the stagger) + stored energy now, model part
- * (what a set may change). */
-static void state_energy(const wff_model *m, double *kinetic, double *stored)
+/* Kinetic (the balance's: less the stagger) + stored energy now and the
+ * stagger, model part (what a set may change). */
+static void state_energy(const wff_model *m, double *kinetic, double *stored, double *stagger)
 {
     wff_energies e;
     wff_model_energies(m, &e);
@@ -44,6 +44,7 @@ static void state_energy(const wff_model *m, double *kinetic, double *stored)
     *kinetic = (e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude +
                 e.kinetic_projectile - e.kinetic_stagger) / s;
     *stored = m->internal_energy;
+    *stagger = e.kinetic_stagger / s;
 }
 
 /* Check a vector to be set; -1 naming the first DOF at fault. */
@@ -118,8 +119,8 @@ static int set_vector_model(wff_model *m, int w, const double *in, wff_error *er
     if (check_vector(m, w, in, err))
         return -1;
     size_t bytes = sizeof(double) * (size_t)m->n_dofs;
-    double k0, e0, k1, e1;
-    state_energy(m, &k0, &e0);
+    double k0, e0, k1, e1, s0, s1;
+    state_energy(m, &k0, &e0, &s0);
     if (w) {
         memcpy(m->v, in, bytes);
     } else {
@@ -149,10 +150,11 @@ static int set_vector_model(wff_model *m, int w, const double *in, wff_error *er
         }
         free(saved);
     }
-    state_energy(m, &k1, &e1);
+    state_energy(m, &k1, &e1, &s1);
     if (m->v_half_valid) { /* after steps: the set moves the balance's reference */
         m->initial_kinetic += k1 - k0;
         m->initial_total += (k1 - k0) + (e1 - e0);
+        m->stagger_reference += s1 - s0;
     }
     return 0;
 }

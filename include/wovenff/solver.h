@@ -95,7 +95,12 @@ typedef struct wff_energies {
                                  (wff_model_remesh), a term of the balance like W */
     double error;             /* (E_now + D − W) − E_0, relative to the reference energy
                                  (D: shear, friction and failure dissipation and the
-                                 eroded energy) */
+                                 eroded energy); the kinetic energy in E_now is the
+                                 staggered one (kinetic_stagger) */
+    double error_integer_step; /* the same balance with the integer-step kinetic energy
+                                 (the instability detector's: the staggered balance is kept
+                                 by a growing linear mode too, its kinetic and stored
+                                 energies running apart with opposite signs) */
     double reference;         /* normaliser: the largest of the initial kinetic energy,
                                  the external work, the kinetic energy now and the change
                                  of stored energy since the start */
@@ -177,7 +182,9 @@ struct wff_model {
     double *eroded_now_energy; /* their stored energy at erosion, J (model part) */
     int n_eroded_now;
     double initial_total;     /* kinetic + internal at the start, J (model part) */
-    double initial_kinetic;
+    double initial_kinetic;   /* the balance's (staggered) kinetic energy at the start */
+    double stagger_reference; /* the stagger (Δt²/8)Σf²/m counted out of initial_total, J
+                                 (model part): error_integer_step puts it back */
     int v_half_valid;         /* 1 once v holds a half-step velocity */
     long element_steps;       /* elements × steps done, for cost figures */
     long amplitude_iterations; /* static amplitudes: Newton iterations over all points and
@@ -426,12 +433,13 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 6 /* 2: the projectile's impulse_total added; 3: the points'
+#define WFF_CHECKPOINT_VERSION 7 /* 2: the projectile's impulse_total added; 3: the points'
                                     generic state (n_state and names in the header, every
                                     state saved), failure and eroded energies; 4: the
                                     erosion rule (header) and the eroded flags; 5: the
                                     orientation (header); 6: the amplitudes' travel limit and its
-                                    count */
+                                    count; 7: the initial kinetic energy the staggered one,
+                                    its stagger kept (stagger_reference) */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 
