@@ -387,6 +387,14 @@ int wff_default_threads(void);
 /* Energies now (whole specimen: model part × symmetry_factor). */
 void wff_model_energies(const wff_model *m, wff_energies *out);
 
+/* The physical invariants now (plugin/invariants.c): every dissipation (the
+ * model's and each part's) not negative, the projectile's kinetic energy not
+ * above all the energy the run was given; beyond round-off (1e-9 of the
+ * balance's reference energy). Returns the number violated and describes them
+ * in out[size] ("" when none), "; "-separated, each naming the quantity and
+ * its value. A violation does not stop the run. */
+int wff_model_invariants(const wff_model *m, char *out, size_t size);
+
 /* The time step the next advance would take from the current state (s):
  * dtfactor × the stable step over the elements (the state is not changed; a
  * scene checks with it, before the loop, that a run takes at least one step). */

@@ -19,6 +19,7 @@
 //   int step = wovenffLoadState(md, file) // continue it in a model built the same way
 //                                      // (mesh, material, preload, BCs, settings, projectile;
 //                                      // refused, saying what differs); bitwise continuation
+//   string bad = wovenffInvariants(md) // the physical invariants violated now ("" none)
 //   string msg = wovenffLastError(md)  // after try { } catch (...) { }: that model's last
 //                                      // error; md = -1: the last error of any function here
 //                                      // (e.g. wovenffModel, which has no handle yet)
@@ -339,6 +340,14 @@ string *ffMechNames(Stack stack, const long &id)
     return Add2StackOfPtr2Free(stack, new string(names));
 }
 
+string *ffInvariants(Stack stack, const long &id)
+{
+    const wff_model *m = model_of(id, "wovenffInvariants");
+    char text[WFF_ERROR_MAX];
+    wff_model_invariants(m, text, sizeof text);
+    return Add2StackOfPtr2Free(stack, new string(text));
+}
+
 string *ffLastError(Stack stack, const long &id)
 {
     return Add2StackOfPtr2Free(stack, new string(wff_ff_model_last_error(id)));
@@ -379,5 +388,6 @@ void wff_ff_register_solver()
     Global.Add("wovenffEnergySplit", "(",
                new OneOperator2_<long, long, KN<double> *>(ffEnergySplit));
     Global.Add("wovenffMechNames", "(", new OneOperator1s_<string *, long>(ffMechNames));
+    Global.Add("wovenffInvariants", "(", new OneOperator1s_<string *, long>(ffInvariants));
     Global.Add("wovenffLastError", "(", new OneOperator1s_<string *, long>(ffLastError));
 }

@@ -14,7 +14,7 @@
 # draws: its -e settings logged by a gnuplot stand-in on PATH, the axis range printed);
 # damage.csv has a block per ply and damage.png a panel per ply, each titled with its ply
 # and its eroded elements (the summary's ply_eroded); 8 plies at dtfactor 0.8 to 0.5 ms
-# never show a negative ply-contact dissipation; every bad input exits 2 naming
+# never show a negative ply-contact dissipation (and the summary's "invariants" is "ok"); every bad input exits 2 naming
 # the option with nothing written.
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}"
@@ -156,6 +156,8 @@ else
     echo "-plies 8 -dtfactor 0.8 to 0.5 ms: ply contact dissipated $(num ply_contact_dissipated "$dir") J, lowest $low J, largest energy error $(num max_energy_error "$dir")"
     awk -v l="$low" 'BEGIN { exit !(l != "" && l >= 0) }' \
         || { echo "-plies 8 -dtfactor 0.8: the ply contact's dissipation fell to $low J: energy put in"; fail=1; }
+    grep -q '^  "invariants": "ok",' "$dir/summary.json" \
+        || { echo "-plies 8 -dtfactor 0.8: summary invariants not ok: $(grep '"invariants"' "$dir/summary.json")"; fail=1; }
 fi
 # a layup at 45 struck at the centre: the full specimen, said
 dir="$out-45"
