@@ -387,8 +387,11 @@ int wff_default_threads(void);
 /* Energies now (whole specimen: model part × symmetry_factor). */
 void wff_model_energies(const wff_model *m, wff_energies *out);
 
-/* The physical invariants now (plugin/invariants.c): every dissipation (the
- * model's and each part's) not negative, the projectile's kinetic energy not
+/* The physical invariants now (plugin/invariants.c): every dissipation not
+ * negative (the shear flow's, the failure's, the eroded energy; the contacts'
+ * and friction's, the model's and each part's, as one sum: two contacts acting
+ * on one node share its velocity change by the accounting's convention), the
+ * projectile's kinetic energy not
  * above all the energy the run was given; beyond round-off (1e-9 of the
  * balance's reference energy). Returns the number violated and describes them
  * in out[size] ("" when none), "; "-separated, each naming the quantity and
