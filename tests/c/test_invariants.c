@@ -11,7 +11,6 @@
 #include "solver_internal.h"
 #include "test_meshes.h"
 #include "wovenff/pack.h"
-#include "wovenff/renumber.h"
 #include "wovenff/solver.h"
 
 #include <math.h>
@@ -20,27 +19,12 @@
 
 #define KEVLAR "freefem_scripts/materials/kevlar_s706.txt"
 
-/* A 6 cm square of triangles, 2 plies 0.3 mm apart, edges fixed, struck at
- * 60 m/s. */
+/* The pack tests' struck square (test_meshes.h), 2 plies 0.3 mm apart. */
 static int struck_pack(check_state *st, wff_model *m)
 {
-    test_rect r = {-0.03, 0.03, -0.03, 0.03, 12, 12, TEST_MESH_TRI, 1, 0.2, 7};
-    wff_mesh mesh;
     wff_error err;
-    if (test_mesh_rect(&r, &mesh) || wff_model_create_ordered(m, &mesh, KEVLAR, 1, &err) ||
-        wff_model_set_plies(m, 2, 3e-4, &err)) {
+    if (test_model_struck(m, 12, KEVLAR, 2, 3e-4, &err)) {
         CHECK(st, 0, "model: %s", err.message);
-        return -1;
-    }
-    static const char *const edges[] = {"left", "right", "bottom", "top"};
-    for (int g = 0; g < 4; g++)
-        for (int c = WFF_UX; c <= WFF_UZ; c++)
-            if (wff_model_fix_group(m, edges[g], c, &err) < 0) {
-                CHECK(st, 0, "fix: %s", err.message);
-                return -1;
-            }
-    if (wff_model_set_projectile(m, 0.0025, 0.002, 60, 0.2, &err)) {
-        CHECK(st, 0, "projectile: %s", err.message);
         return -1;
     }
     return 0;

@@ -38,25 +38,12 @@ static int square(check_state *st, wff_model *m, int n)
     return 0;
 }
 
-/* Edges fixed, a projectile at 60 m/s; plies (0: none) at gap. */
+/* Edges fixed, a projectile at 60 m/s; plies (0: none) at gap (test_meshes.h). */
 static int impact(check_state *st, wff_model *m, int plies, double gap)
 {
     wff_error err;
-    if (square(st, m, 12))
-        return -1;
-    if (plies > 0 && wff_model_set_plies(m, plies, gap, &err)) {
-        CHECK(st, 0, "plies: %s", err.message);
-        return -1;
-    }
-    static const char *const edges[] = {"left", "right", "bottom", "top"};
-    for (int g = 0; g < 4; g++)
-        for (int c = WFF_UX; c <= WFF_UZ; c++)
-            if (wff_model_fix_group(m, edges[g], c, &err) < 0) {
-                CHECK(st, 0, "fix: %s", err.message);
-                return -1;
-            }
-    if (wff_model_set_projectile(m, 0.0025, 0.002, 60, 0.2, &err)) {
-        CHECK(st, 0, "projectile: %s", err.message);
+    if (test_model_struck(m, 12, KEVLAR, plies, gap, &err)) {
+        CHECK(st, 0, "struck square, %d plies: %s", plies, err.message);
         return -1;
     }
     return 0;

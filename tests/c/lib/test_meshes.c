@@ -1,6 +1,8 @@
 /* Structured rectangle meshes for the C tests, see test_meshes.h. */
 #include "test_meshes.h"
 #include "rng.h"
+#include "wovenff/pack.h"
+#include "wovenff/renumber.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -104,4 +106,23 @@ int test_model_rect(wff_model *m, const test_rect *r, const char *material, wff_
     if (test_mesh_rect(r, &mesh))
         return wff_fail(err, "test mesh %dx%d: invalid or out of memory", r->nx, r->ny);
     return wff_model_create_from_mesh(m, &mesh, material, err);
+}
+
+int test_model_struck(wff_model *m, int n, const char *material, int plies, double gap,
+                      wff_error *err)
+{
+    test_rect r = {-0.03, 0.03, -0.03, 0.03, n, n, TEST_MESH_TRI, 1, 0.2, 7};
+    wff_mesh mesh;
+    if (test_mesh_rect(&r, &mesh))
+        return wff_fail(err, "test mesh %dx%d: invalid or out of memory", n, n);
+    if (wff_model_create_ordered(m, &mesh, material, 1, err))
+        return -1;
+    if (plies > 0 && wff_model_set_plies(m, plies, gap, err))
+        return -1;
+    static const char *const edges[] = {"left", "right", "bottom", "top"};
+    for (int g = 0; g < 4; g++)
+        for (int c = WFF_UX; c <= WFF_UZ; c++)
+            if (wff_model_fix_group(m, edges[g], c, err) < 0)
+                return -1;
+    return wff_model_set_projectile(m, 0.0025, 0.002, 60, 0.2, err) ? -1 : 0;
 }

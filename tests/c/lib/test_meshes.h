@@ -31,4 +31,12 @@ int test_mesh_rect(const test_rect *r, wff_mesh *mesh);
 /* A model on that mesh with the given material file; -1 with err set. */
 int test_model_rect(wff_model *m, const test_rect *r, const char *material, wff_error *err);
 
+/* The struck square of the pack tests: a 6 cm square of n x n cells of
+ * triangles (alternate diagonals, jitter 0.2, seed 7) of `material`,
+ * renumbered (as the binding's models are); plies (0: none) at gap; the four
+ * edges fixed in u_x u_y u_z; a projectile of radius 2.5 mm and 2 g at 60 m/s,
+ * 0.2 mm from the fabric. -1 with err set. */
+int test_model_struck(wff_model *m, int n, const char *material, int plies, double gap,
+                      wff_error *err);
+
 #endif
