@@ -265,7 +265,7 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     /* initial + external work = kinetic + internal + shear + friction + failure + eroded,
      * the kinetic energy the staggered one ½ m v^{n−½}·v^{n+½} */
     const double kinetic = k[0] + k[1] + k[2] + k[3];
-    double total = kinetic - k[4] + m->internal_energy +
+    double total = kinetic - k[4] + m->stagger_shift + m->internal_energy +
                    m->dissipated_shear + m->dissipated_friction + m->dissipated_failure +
                    m->eroded_energy - m->external_work - m->transfer_energy + parts;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
@@ -278,7 +278,7 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     ref = fmax(ref, 1e-9 * m->fabric_mass * 1.0 /* (m/s)^2 */);
     out->reference = s * ref;
     out->error = m->v_half_valid ? (total - m->initial_total) / ref : 0; /* not started: exact */
-    out->error_integer_step = m->v_half_valid ? (total + k[4] - m->initial_total -
+    out->error_integer_step = m->v_half_valid ? (total + k[4] - m->stagger_shift - m->initial_total -
                                                  m->stagger_reference) / ref : 0;
 }
 
@@ -423,6 +423,13 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
              * step grows the energy by a large factor per step */
             wff_energies e;
             wff_model_energies(m, &e);
+            /* the stagger (Δt²/8) Σ f²/m is of the step planned: a step that
+             * changes shifts the staggered kinetic energy at the same state,
+             * which the central difference with the new step then conserves
+             * (exactly on a linear system); the shift is the balance's
+             * (docs/model.md §12) */
+            if (m->dt != dt)
+                m->stagger_shift += e.kinetic_stagger / m->symmetry_factor * (1 - dt * dt / (m->dt * m->dt));
             /* (with the integer-step kinetic energy: the staggered balance of
              * e.error is conserved by a growing linear mode too) */
             const double created = e.error_integer_step;

@@ -450,7 +450,7 @@ static int apply_dtfactor(wff_model *m, double value, wff_error *err)
     (void)err;
     m->dt_factor = value;
     if (m->dt_stable > 0)
-        m->dt = value * m->dt_stable;
+        wff_step_replan(m, value * m->dt_stable); /* (after steps: v^{n+½} for it) */
     return 0;
 }
 

@@ -30,6 +30,7 @@ double wff_step_positions(wff_model *m, double dt);
 void wff_step_zero(const wff_model *m, double *f, int n);
 double wff_step_velocities(wff_model *m, double dt_mid, double dt_done);
 void wff_step_kinetic(const wff_model *m, double half, double sums[4]);
+void wff_step_replan(wff_model *m, double dt_new);
 /* The travel limit (docs/model.md §12): a step moves no free amplitude more
  * than this fraction (× dtfactor) of its cell's amplitude length. Measured on
  * a square released from a bump with its amplitudes far from balance (swings

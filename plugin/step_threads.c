@@ -176,3 +176,28 @@ int wff_step_candidates(const wff_model *m, double reach, int *candidates)
     }
     return total;
 }
+
+/* The step planned changed between two advances (a set of dtfactor): v^{n+½}
+ * re-planned for it, v^{n−½} + ½(Δt_{n−½} + Δt_new) aⁿ (the integer-step
+ * velocity the same), and the stagger's move, (Δt_new² − Δt_old²)/8 Σ f²/m,
+ * booked as the advance books a step that changes: exact on a linear system
+ * again (docs/model.md §14). Before the first step, only the step. */
+void wff_step_replan(wff_model *m, double dt_new)
+{
+    const double dt_old = m->dt;
+    m->dt = dt_new;
+    if (!m->v_half_valid || !(dt_old > 0) || dt_new == dt_old)
+        return;
+    const double dv = 0.5 * (dt_new - dt_old);
+    for (int i = 0; i < m->n_dofs; i++)
+        if (m->dof_kind[i] == WFF_DOF_FREE)
+            m->v[i] += dv * m->f[i] / m->mass[i];
+    double sums[4];
+    wff_step_kinetic(m, 0, sums);
+    double force_sq = sums[3];
+    if (m->projectile.active) {
+        m->projectile.velocity += dv * m->projectile.force / m->projectile.mass;
+        force_sq += m->projectile.force * m->projectile.force / m->projectile.mass;
+    }
+    m->stagger_shift += (dt_new * dt_new - dt_old * dt_old) / 8 * force_sq;
+}

@@ -185,6 +185,10 @@ struct wff_model {
     double initial_kinetic;   /* the balance's (staggered) kinetic energy at the start */
     double stagger_reference; /* the stagger (Δt²/8)Σf²/m counted out of initial_total, J
                                  (model part): error_integer_step puts it back */
+    double stagger_shift;     /* Σ over the steps of the stagger's change with the step,
+                                 (Δt_{n+½}² − Δt_{n−½}²)/8 Σ f_n²/m, J (model part): the
+                                 staggered balance's term for a step that changes (with it,
+                                 exact on a linear system at any sequence of steps) */
     int v_half_valid;         /* 1 once v holds a half-step velocity */
     long element_steps;       /* elements × steps done, for cost figures */
     long amplitude_iterations; /* static amplitudes: Newton iterations over all points and
@@ -444,13 +448,14 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 7 /* 2: the projectile's impulse_total added; 3: the points'
+#define WFF_CHECKPOINT_VERSION 8 /* 2: the projectile's impulse_total added; 3: the points'
                                     generic state (n_state and names in the header, every
                                     state saved), failure and eroded energies; 4: the
                                     erosion rule (header) and the eroded flags; 5: the
                                     orientation (header); 6: the amplitudes' travel limit and its
                                     count; 7: the initial kinetic energy the staggered one,
-                                    its stagger kept (stagger_reference) */
+                                    its stagger kept (stagger_reference); 8: the stagger's
+                                    shift with the step (stagger_shift) */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 
