@@ -333,9 +333,8 @@ void wff_contact_refresh_candidates(wff_model *m)
  * masses, that puts it back on the surface (perfectly inelastic, like a hard
  * contact in an explicit code); then Coulomb friction limits the tangential
  * impulse to μ times the normal one. The impulses enter f as forces
- * impulse/dt_mid, and their work J·vⁿ (vⁿ the integer-step velocity, the
- * central-difference measure of the displacement over the step) is what the
- * contact dissipates. Returns -1 (err set) if a node is found deep inside,
+ * impulse/dt_mid; their work is booked after every part's correction
+ * (wff_contact_book). Returns -1 (err set) if a node is found deep inside,
  * i.e. the projectile has gone through the fabric. */
 int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
 {
@@ -415,26 +414,59 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
             p->max_penetration = rest;
     }
     p->n_contact = touched;
-    /* forces and their work over the step */
-    double work = 0;
+    /* the impulses as forces over the step (their work: wff_contact_book) */
     for (int c = 0; c < touched; c++) {
         int n = p->contact_node[c];
         const double *jc = p->impulse + 3 * c;
-        for (int i = 0; i < 3; i++) {
-            int k = D * n + i;
-            if (m->dof_kind[k] != WFF_DOF_FREE)
-                continue;
-            m->f[k] += jc[i] / dt_mid;
-            double v_int = m->v[k] - 0.5 * dt_mid * m->f[k] / m->mass[k]; /* vⁿ */
-            work += jc[i] * v_int;
-        }
+        for (int i = 0; i < 3; i++)
+            if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
+                m->f[D * n + i] += jc[i] / dt_mid;
     }
     double dv = p->velocity - v_proj_before;
+    p->contact_dv = dv;
     p->force = -p->mass * dv / dt_mid;
     p->impulse_total -= p->mass * dv;
-    work += p->mass * dv * (p->velocity - 0.5 * dv);
-    m->dissipated_friction -= work;
     return 0;
+}
+
+/* The work of an impulse j on DOF k at the central difference's measure,
+ * j·(v^{n+½} − ½Δt_before a^n) (part.h's book op), at the step's final
+ * velocity and force. */
+static inline double impulse_work(const wff_model *m, int k, double j, double dt_before)
+{
+    return j * (m->v[k] - 0.5 * dt_before * m->f[k] / m->mass[k]);
+}
+
+double wff_contact_book(wff_model *m, double dt_before)
+{
+    wff_projectile *p = &m->projectile;
+    if (!p->active || p->n_contact == 0)
+        return 0;
+    double work = 0, power = 0;
+    for (int c = 0; c < p->n_contact; c++) {
+        const int n = p->contact_node[c];
+        const double *jc = p->impulse + 3 * c;
+        for (int i = 0; i < 3; i++) {
+            const int k = D * n + i;
+            if (m->dof_kind[k] != WFF_DOF_FREE || jc[i] == 0)
+                continue;
+            work += impulse_work(m, k, jc[i], dt_before);
+            power += jc[i] * m->v[k];
+        }
+    }
+    /* the projectile: its own change by this contact, at its final velocity
+     * and acceleration (p->force: every contact's, the plies' included) */
+    const double j = p->mass * p->contact_dv, a = -p->force / p->mass;
+    work += j * (p->velocity - 0.5 * dt_before * a);
+    power += j * p->velocity;
+    m->dissipated_friction -= work;
+    return power;
+}
+
+static double contact_book(wff_model *m, double dt_before, double dt_mid)
+{
+    (void)dt_mid;
+    return wff_contact_book(m, dt_before);
 }
 
 /* The candidates follow the stable step's refresh (the nodes the projectile can
@@ -449,4 +481,5 @@ const wff_part_ops wff_projectile_contact_part = {
     .name = "projectile_contact",
     .refresh = contact_refresh,
     .correct = wff_contact_correct,
+    .book = contact_book,
 };

@@ -265,7 +265,11 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     /* initial + external work = kinetic + internal + shear + friction + failure + eroded,
      * the kinetic energy the staggered one ½ m v^{n−½}·v^{n+½} */
     const double kinetic = k[0] + k[1] + k[2] + k[3];
-    double total = kinetic - k[4] + m->stagger_shift + m->internal_energy +
+    out->impulse_stagger = s * m->impulse_stagger;
+    /* the balance's kinetic measure, ½ Σ m v^{n+½}·(v^{n+½} − Δt_{n+½} a_elastic^n): the
+     * staggered one with the contact forces' part of the stagger taken back out
+     * (their work is booked at the trapezoidal rule's measure, part.h's book) */
+    double total = kinetic - k[4] + m->impulse_stagger + m->stagger_shift + m->internal_energy +
                    m->dissipated_shear + m->dissipated_friction + m->dissipated_failure +
                    m->eroded_energy - m->external_work - m->transfer_energy + parts;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
@@ -278,8 +282,26 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     ref = fmax(ref, 1e-9 * m->fabric_mass * 1.0 /* (m/s)^2 */);
     out->reference = s * ref;
     out->error = m->v_half_valid ? (total - m->initial_total) / ref : 0; /* not started: exact */
-    out->error_integer_step = m->v_half_valid ? (total + k[4] - m->stagger_shift - m->initial_total -
+    out->error_integer_step = m->v_half_valid ? (total + k[4] - m->impulse_stagger -
+                                                 m->stagger_shift - m->initial_total -
                                                  m->stagger_reference) / ref : 0;
+}
+
+/* After the parts' corrections: their impulses' work booked at the final
+ * velocities (part.h's book), and the impulses' share of the stagger the
+ * balance's kinetic measure takes back out, ½ Δt_{n+½} Σ v^{n+½}·g with g =
+ * j/Δt_mid the contact forces (wff_model_energies). With the elastic forces
+ * alone in the measure's stagger and the impulses' work at j·(v^{n+½} −
+ * ½Δt_{n−½} a^n), the trapezoidal rule's ½(gⁿ + gⁿ⁺¹)·Δu summed, the balance is
+ * exact on a linear system with any impulses at any sequence of steps (with
+ * the stagger's shift); booked at the integer-step velocity and with the
+ * contact forces in the stagger it was off by ½ j·v^{n+½} at every step and by
+ * ¼(Δt_{n+½} − Δt_{n−½})Δt_mid g·M⁻¹f summed over the steps that change (the
+ * 8-ply pack at dtfactor 0.8: 3.6e-4 of the impact energy, now 8e-6:
+ * docs/model.md §14). */
+static void book_impulses(wff_model *m, double dt_before, double dt_mid)
+{
+    m->impulse_stagger = 0.5 * m->dt / dt_mid * wff_parts_book(m, dt_before, dt_mid);
 }
 
 double wff_model_step_estimate(const wff_model *m)
@@ -372,15 +394,18 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         travel_limit(m);
         if (stop < INFINITY)
             lands = plan_stop_step(m, stop);
-        /* the balance's kinetic energy at the start, ½ m v^{−½}·v^{½} with
-         * v^{∓½} = v⁰ ∓ ½Δt a⁰: the given one less the stagger of the first step */
-        kinetic_now(m, k); /* (its k[4] only: k[0..3] are at v⁰ − ½Δt a⁰ here) */
-        m->initial_kinetic = given - k[4];
-        m->stagger_reference = k[4];
-        m->initial_total = m->initial_kinetic + m->internal_energy;
         update_velocities(m, 0.5 * m->dt, 0);
         if (wff_parts_correct(m, m->dt, 0.5 * m->dt, err))
             return -1;
+        book_impulses(m, 0, 0.5 * m->dt);
+        /* the balance's energy at the start: the given kinetic energy less the
+         * stagger of the first half step's forces (its contact impulses too: the
+         * first step's term of the stagger's shift, from Δt_{−½} = 0), and the
+         * stored energy */
+        kinetic_now(m, k); /* (its k[4] only) */
+        m->initial_kinetic = given - k[4];
+        m->stagger_reference = k[4];
+        m->initial_total = m->initial_kinetic + m->internal_energy;
     }
     wff_parts_refresh(m);
     if (m->adaptive && m->snapshot_step[m->snapshot_newest] < 0 && start_adaptive(m, err))
@@ -419,6 +444,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         update_velocities(m, 0.5 * (dt + m->dt), dt);
         if (wff_parts_correct(m, m->dt, 0.5 * (dt + m->dt), err))
             return -1;
+        book_impulses(m, dt, 0.5 * (dt + m->dt));
         {   /* every step (a pass over the DOFs, ~4 % of a step): an unstable
              * step grows the energy by a large factor per step */
             wff_energies e;

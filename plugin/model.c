@@ -55,6 +55,7 @@ void wff_model_free(wff_model *m)
     free(m->projectile.impulse);
     free(m->clamp.node);
     free(m->clamp.normal_force);
+    free(m->clamp.impulse);
     free(m->operator_scratch);
     free(m->snapshot[0]);
     free(m->snapshot[1]);
@@ -386,10 +387,12 @@ int wff_model_clamp_friction(wff_model *m, const char *group, double normal_forc
                         wff_model_user_node(m, uz.conflict) + 1);
     free(m->clamp.node);
     free(m->clamp.normal_force);
+    free(m->clamp.impulse);
     m->clamp.n = 0;
     m->clamp.node = malloc(sizeof(int) * (size_t)m->n_nodes);
     m->clamp.normal_force = malloc(sizeof(double) * (size_t)m->n_nodes);
-    if (!m->clamp.node || !m->clamp.normal_force)
+    m->clamp.impulse = calloc(2 * (size_t)m->n_nodes, sizeof(double));
+    if (!m->clamp.node || !m->clamp.normal_force || !m->clamp.impulse)
         return wff_fail(err, "out of memory");
     int count = for_group_nodes(m, group, err, add_clamp_node, NULL);
     if (count < 0)

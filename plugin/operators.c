@@ -219,6 +219,8 @@ int wff_model_contact(wff_model *m, const double *U, double *V, double *R, doubl
     m->v = Vm;
     m->f = Rm;
     int rc = wff_contact_correct(m, dt, dt_mid, err);
+    if (rc == 0) /* its impulses' work: the step before this one is 2 dt_mid − dt */
+        wff_contact_book(m, 2 * dt_mid - dt);
     m->u = u;
     m->v = v;
     m->f = f;
@@ -257,7 +259,7 @@ double wff_model_clamp_correct(wff_model *m, double *V, double dt_mid)
         if (!(b = model_copies(m, in, 1, &err)))
             return 0;
     }
-    double dissipated = wff_clamp_correct_all(m, b ? b : V, dt_mid);
+    double dissipated = wff_clamp_correct_all(m, b ? b : V, dt_mid, 0);
     if (b) {
         wff_model_nodes_to_user(m, b, V, D);
         free(b);

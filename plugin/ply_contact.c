@@ -611,40 +611,58 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
             P->penetration = fmax(P->penetration, rest);
         }
     }
-    /* forces and the work of the impulses at the integer-step velocities; a
-     * node the projectile pushed too: its impulse j1 worked at the integer-step
-     * velocity before this correction, which moved that by j / 2m (the work of
-     * j1 + j at the final one is j1·v + j·v) */
-    double work = 0;
+    /* the impulses as forces over the step (their work: the book op, once every
+     * part has corrected) */
     for (int t = 0; t < P->n_touched; t++) {
-        int n = P->touched_list[t];
-        const int pc = P->on_projectile[n];
+        const int n = P->touched_list[t];
+        for (int c = 0; c < 3; c++)
+            if (P->impulse[3 * n + c] != 0)
+                m->f[D * n + c] += P->impulse[3 * n + c] / dt_mid;
+    }
+    for (int c = 0; pr->active && c < pr->n_contact; c++)
+        P->on_projectile[pr->contact_node[c]] = -1;
+    if (P->projectile_dv != 0) { /* the projectile's share: its momentum */
+        const double dv = pr->velocity - vp_before;
+        pr->force -= pr->mass * dv / dt_mid;
+        pr->impulse_total -= pr->mass * dv;
+    }
+    P->seconds += wff_wall_seconds() - started;
+    return 0;
+}
+
+/* The book op (part.h): this step's impulses' work at the final velocities,
+ * j·(v^{n+½} − ½Δt_before a^n), the projectile's share (the velocity change
+ * the plies gave it) at its own; the impulses cleared for the next step. */
+static double ply_contact_book(wff_model *m, double dt_before, double dt_mid)
+{
+    (void)dt_mid;
+    struct wff_pack *P = m->pack;
+    if (!P || P->n < 2 || !P->impulse)
+        return 0;
+    double work = 0, power = 0;
+    for (int t = 0; t < P->n_touched; t++) {
+        const int n = P->touched_list[t];
         for (int c = 0; c < 3; c++) {
-            int k = D * n + c;
-            double j = P->impulse[3 * n + c];
+            const int k = D * n + c;
+            const double j = P->impulse[3 * n + c];
             if (j == 0)
                 continue;
-            m->f[k] += j / dt_mid;
-            double v_int = m->v[k] - 0.5 * dt_mid * m->f[k] / m->mass[k];
-            work += j * v_int;
-            if (pc >= 0)
-                work += pr->impulse[3 * pc + c] * 0.5 * j / m->mass[k];
+            work += j * (m->v[k] - 0.5 * dt_before * m->f[k] / m->mass[k]);
+            power += j * m->v[k];
             P->impulse[3 * n + c] = 0;
         }
         P->touched[n] = 0;
     }
-    for (int c = 0; pr->active && c < pr->n_contact; c++)
-        P->on_projectile[pr->contact_node[c]] = -1;
-    if (P->projectile_dv != 0) { /* the projectile's share: its momentum and energy */
-        const double dv = pr->velocity - vp_before;
-        pr->force -= pr->mass * dv / dt_mid;
-        pr->impulse_total -= pr->mass * dv;
-        work += 0.5 * pr->mass * (pr->velocity * pr->velocity - vp_before * vp_before);
-    }
     P->n_touched = 0;
+    const wff_projectile *pr = &m->projectile;
+    if (P->projectile_dv != 0) {
+        const double j = pr->mass * P->projectile_dv, a = -pr->force / pr->mass;
+        work += j * (pr->velocity - 0.5 * dt_before * a);
+        power += j * pr->velocity;
+        P->projectile_dv = 0;
+    }
     P->dissipated -= work;
-    P->seconds += wff_wall_seconds() - started;
-    return 0;
+    return power;
 }
 
 /* The kinetic energy the ply contact removed, J (model part). */
@@ -656,5 +674,6 @@ static double ply_contact_dissipated(const wff_model *m)
 const wff_part_ops wff_ply_contact_part = {
     .name = "ply_contact",
     .correct = wff_ply_contact_correct,
+    .book = ply_contact_book,
     .dissipated = ply_contact_dissipated,
 };

@@ -462,16 +462,17 @@ static int replay_bcs(const wff_model *m, wff_model *nm, wff_error *err)
 }
 
 /* Stored + kinetic energy (the balance's kinetic energy: the integer-step one
- * less the stagger (Δt²/8) Σ f²/m at the model's step), J, whole specimen;
- * *stagger: that stagger. The stagger goes as Δt²: a transfer re-plans the
- * step (from the new mesh's stable step), and its change is counted in the
- * transfer with the state's (onto the same mesh the state's is 0, the step's
- * not: the stable step is re-estimated at the state now). */
+ * less the stagger (Δt²/8) Σ f²/m at the model's step, the contact impulses'
+ * share of it counted back), J, whole specimen; *stagger: the stagger less that
+ * share (what the integer-step reading puts back). The stagger goes as Δt²: a
+ * transfer re-plans the step (from the new mesh's stable step), and its change
+ * is counted in the transfer with the state's (onto the same mesh the state's
+ * is 0, the step's not: the stable step is re-estimated at the state now). */
 static double stored_plus_kinetic(const wff_model *m, double *stagger)
 {
     wff_energies e;
     wff_model_energies(m, &e);
-    *stagger = e.kinetic_stagger;
+    *stagger = e.kinetic_stagger - e.impulse_stagger;
     return e.internal + e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude +
            e.kinetic_projectile - *stagger;
 }
@@ -573,6 +574,8 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     }
     nm.internal_energy = tot.internal_energy;
     nm.blowup_steps = 0;
+    nm.impulse_stagger = 0; /* (no impulse on the new mesh unless its contact gives one) */
+    double contact_booked = 0; /* J (model part) */
     if (nm.v_half_valid) {
         int worst;
         double dt = wff_elements_stable_step(&nm.el, &nm.em, nm.mesh.xy, nm.u, &worst);
@@ -594,6 +597,10 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
                                      0.5 * m->dt * m->projectile.force / m->projectile.mass;
             if (wff_contact_correct(&nm, nm.dt, 0.5 * nm.dt, err))
                 goto fail_prefixed;
+            /* its impulses' work, as at the start of a run (no step before) */
+            const double before = nm.dissipated_friction;
+            nm.impulse_stagger = wff_contact_book(&nm, 0);
+            contact_booked = nm.dissipated_friction - before;
         }
     } else if (nm.projectile.active) {
         wff_contact_refresh_candidates(&nm);
@@ -602,7 +609,9 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     double e_before = stored_plus_kinetic(m, &s_before);
     double e_after = stored_plus_kinetic(&nm, &s_after);
     if (nm.v_half_valid) { /* a run that has not started measures its energy from here */
-        nm.transfer_energy += (e_after - e_before) / nm.symmetry_factor;
+        /* (the contact's dissipation at the new half step is the transfer's too:
+         * its kinetic energy is in e_after) */
+        nm.transfer_energy += (e_after - e_before) / nm.symmetry_factor + contact_booked;
         /* the integer-step balance (the detector's) carried over unchanged too */
         nm.stagger_reference += (s_after - s_before) / nm.symmetry_factor;
     }

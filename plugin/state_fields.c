@@ -35,6 +35,7 @@ int wff_state_fields(wff_model *m, int n_candidates, wff_state_field *f)
     FIELD(&m->initial_kinetic, 1);
     FIELD(&m->stagger_reference, 1);
     FIELD(&m->stagger_shift, 1);
+    FIELD(&m->impulse_stagger, 1);
     FIELD(&m->v_half_valid, 1);
     FIELD(&m->element_steps, 1);
     FIELD(&m->blowup_steps, 1);

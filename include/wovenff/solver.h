@@ -58,6 +58,8 @@ typedef struct wff_projectile {
     int *contact_node;    /* nodes corrected in the last step (workspace, n_nodes) */
     int n_contact;        /* how many (the ply contact of a pack reads them: pack.h) */
     double *impulse;      /* their contact impulses, 3 each, N·s (workspace) */
+    double contact_dv;    /* the projectile's velocity change by its own contact in the
+                             last step, m/s (its share, booked by the part's book op) */
     double max_penetration;  /* largest penetration left after a contact correction, m */
     double force;         /* mean contact force on the projectile along −z over the last
                              step, N (model part) */
@@ -71,6 +73,8 @@ typedef struct wff_clamp {
     int n;                /* nodes held between the clamp faces */
     int *node;
     double *normal_force; /* clamping force on each node, N (modelled part) */
+    double *impulse;      /* each node's friction impulse in the last step, x and y, N·s
+                             (workspace, 2 per clamp node) */
     double force_whole;   /* total clamping force as given, whole specimen, N */
     double mu;            /* Coulomb friction, each of two faces */
     int region;           /* physical surface tag the force is shared over by area (-1: a
@@ -110,6 +114,12 @@ typedef struct wff_energies {
                                  kinetic energies above (at the integer step, v^{n+½} −
                                  ½Δt a^n) less this is ½ Σ m v^{n−½}·v^{n+½}, the kinetic
                                  energy of the balance in error (docs/model.md §12) */
+    double impulse_stagger;   /* the contact impulses' part of that stagger, ½Δt Σ v^{n+½}·g
+                                 (g the contact forces): the balance's kinetic measure is
+                                 the kinetic energies less kinetic_stagger plus this, i.e.
+                                 with the elastic forces alone in the stagger (the contact
+                                 forces' work booked by the trapezoidal rule instead:
+                                 docs/model.md §14) */
 } wff_energies;
 
 /* A boundary condition as it was set, by group name, so that a mesh
@@ -189,6 +199,10 @@ struct wff_model {
                                  (Δt_{n+½}² − Δt_{n−½}²)/8 Σ f_n²/m, J (model part): the
                                  staggered balance's term for a step that changes (with it,
                                  exact on a linear system at any sequence of steps) */
+    double impulse_stagger;   /* ½ Δt_{n+½}/Δt_mid Σ j·v^{n+½} over the last step's contact
+                                 impulses j (the parts' book op), J (model part): the
+                                 contact forces' share of the stagger, counted back out of
+                                 the balance's kinetic measure (wff_energies) */
     int v_half_valid;         /* 1 once v holds a half-step velocity */
     long element_steps;       /* elements × steps done, for cost figures */
     long amplitude_iterations; /* static amplitudes: Newton iterations over all points and
@@ -448,14 +462,15 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 8 /* 2: the projectile's impulse_total added; 3: the points'
+#define WFF_CHECKPOINT_VERSION 9 /* 2: the projectile's impulse_total added; 3: the points'
                                     generic state (n_state and names in the header, every
                                     state saved), failure and eroded energies; 4: the
                                     erosion rule (header) and the eroded flags; 5: the
                                     orientation (header); 6: the amplitudes' travel limit and its
                                     count; 7: the initial kinetic energy the staggered one,
                                     its stagger kept (stagger_reference); 8: the stagger's
-                                    shift with the step (stagger_shift) */
+                                    shift with the step (stagger_shift); 9: the contact
+                                    impulses' share of the stagger (impulse_stagger) */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 
