@@ -146,18 +146,19 @@ static int clamp_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
     wff_clamp_correct_all(m, m->v, dt_mid, 1);
     for (int c = 0; c < m->clamp.n; c++) {
         const int n = m->clamp.node[c];
-        m->f[D * n + WFF_UX] += m->clamp.impulse[2 * c] / dt_mid;
-        m->f[D * n + WFF_UY] += m->clamp.impulse[2 * c + 1] / dt_mid;
+        for (int k = 0; k < 2; k++) {
+            m->f[D * n + k] += m->clamp.impulse[2 * c + k] / dt_mid;
+            m->contact_force[D * n + k] += m->clamp.impulse[2 * c + k] / dt_mid;
+        }
     }
     return 0;
 }
 
 /* The book op (part.h): the friction impulses' work at the final velocities,
  * j·(v^{n+½} − ½Δt_before a^n), counted with the friction. */
-static double clamp_book(wff_model *m, double dt_before, double dt_mid)
+static void clamp_book(wff_model *m, double dt_before)
 {
-    (void)dt_mid;
-    double work = 0, power = 0;
+    double work = 0;
     for (int c = 0; c < m->clamp.n; c++) {
         const int n = m->clamp.node[c];
         for (int k = 0; k < 2; k++) {
@@ -166,11 +167,9 @@ static double clamp_book(wff_model *m, double dt_before, double dt_mid)
                 continue;
             const int i = D * n + k;
             work += j * (m->v[i] - 0.5 * dt_before * m->f[i] / m->mass[i]);
-            power += j * m->v[i];
         }
     }
     m->dissipated_friction -= work;
-    return power;
 }
 
 const wff_part_ops wff_clamp_part = {

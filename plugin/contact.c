@@ -419,8 +419,11 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
         int n = p->contact_node[c];
         const double *jc = p->impulse + 3 * c;
         for (int i = 0; i < 3; i++)
-            if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
+            if (m->dof_kind[D * n + i] == WFF_DOF_FREE) {
                 m->f[D * n + i] += jc[i] / dt_mid;
+                if (m->contact_force)
+                    m->contact_force[D * n + i] += jc[i] / dt_mid;
+            }
     }
     double dv = p->velocity - v_proj_before;
     p->contact_dv = dv;
@@ -437,12 +440,12 @@ static inline double impulse_work(const wff_model *m, int k, double j, double dt
     return j * (m->v[k] - 0.5 * dt_before * m->f[k] / m->mass[k]);
 }
 
-double wff_contact_book(wff_model *m, double dt_before)
+void wff_contact_book(wff_model *m, double dt_before)
 {
     wff_projectile *p = &m->projectile;
     if (!p->active || p->n_contact == 0)
-        return 0;
-    double work = 0, power = 0;
+        return;
+    double work = 0;
     for (int c = 0; c < p->n_contact; c++) {
         const int n = p->contact_node[c];
         const double *jc = p->impulse + 3 * c;
@@ -451,22 +454,13 @@ double wff_contact_book(wff_model *m, double dt_before)
             if (m->dof_kind[k] != WFF_DOF_FREE || jc[i] == 0)
                 continue;
             work += impulse_work(m, k, jc[i], dt_before);
-            power += jc[i] * m->v[k];
         }
     }
     /* the projectile: its own change by this contact, at its final velocity
      * and acceleration (p->force: every contact's, the plies' included) */
     const double j = p->mass * p->contact_dv, a = -p->force / p->mass;
     work += j * (p->velocity - 0.5 * dt_before * a);
-    power += j * p->velocity;
     m->dissipated_friction -= work;
-    return power;
-}
-
-static double contact_book(wff_model *m, double dt_before, double dt_mid)
-{
-    (void)dt_mid;
-    return wff_contact_book(m, dt_before);
 }
 
 /* The candidates follow the stable step's refresh (the nodes the projectile can
@@ -481,5 +475,5 @@ const wff_part_ops wff_projectile_contact_part = {
     .name = "projectile_contact",
     .refresh = contact_refresh,
     .correct = wff_contact_correct,
-    .book = contact_book,
+    .book = wff_contact_book,
 };

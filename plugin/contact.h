@@ -19,9 +19,9 @@ void wff_contact_refresh_candidates(wff_model *m);
  * through the fabric. */
 int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
 /* Its impulses' work booked into the friction dissipation at the final
- * velocities (part.h's book op: after every correction of the step);
- * returns Σ j·v^{n+½} over them and the projectile's share, J. */
-double wff_contact_book(wff_model *m, double dt_before);
+ * velocities (part.h's book op: after every correction of the step; dt_before
+ * the step just taken, 0 at a start). */
+void wff_contact_book(wff_model *m, double dt_before);
 
 /* The symmetry factor changed (or the axis did): the projectile's
  * modelled mass follows; -1 (err set) if its axis is off the symmetry

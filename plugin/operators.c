@@ -133,7 +133,7 @@ int wff_model_travel_step(const wff_model *m, const double *V, const double *R, 
                           wff_error *err)
 {
     *dt = INFINITY;
-    const double length = wff_zones_amplitude_length(m), reach = WFF_TRAVEL * length;
+    const double length = wff_zones_amplitude_length(m), reach = m->travel_fraction * length;
     if (!(length < INFINITY))
         return 0;
     for (int user = 0; user < m->n_nodes; user++) {
@@ -218,9 +218,12 @@ int wff_model_contact(wff_model *m, const double *U, double *V, double *R, doubl
     m->u = Um; /* contact.c works on the model's arrays: lend it the caller's */
     m->v = Vm;
     m->f = Rm;
+    double *g = m->contact_force;
+    m->contact_force = NULL; /* (the caller keeps its own balance: R holds the forces) */
     int rc = wff_contact_correct(m, dt, dt_mid, err);
     if (rc == 0) /* its impulses' work: the step before this one is 2 dt_mid − dt */
         wff_contact_book(m, 2 * dt_mid - dt);
+    m->contact_force = g;
     m->u = u;
     m->v = v;
     m->f = f;

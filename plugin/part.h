@@ -56,10 +56,9 @@ typedef struct wff_part_ops {
      * a^n) (a^n = f/m, every part's impulses in f as j/dt_mid; dt_before the
      * step just taken, 0 at the start): the trapezoidal work of an impulsive
      * force, exact in the staggered balance at any sequence of steps
-     * (docs/model.md §14). Returns Σ j·v^{n+½} over its impulses, J (the
-     * projectile's share included): the balance's kinetic measure counts the
-     * contact forces back out of its stagger with it (impulse_stagger). */
-    double (*book)(wff_model *m, double dt_before, double dt_mid);
+     * (docs/model.md §14). (The part also adds its impulses to
+     * m->contact_force, where it adds them to f.) */
+    void (*book)(wff_model *m, double dt_before);
 
     /* Its term of the energy balance: the energy it has dissipated so far,
      * J (model part), a term of D in wff_energies.error. */
@@ -102,9 +101,8 @@ void wff_parts_refresh(wff_model *m);
 double wff_parts_after_forces(wff_model *m, const double *u, const double *state,
                               double dt_flow);
 int wff_parts_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
-/* After wff_parts_correct: every part's book op; the sum of what they return
- * (J). */
-double wff_parts_book(wff_model *m, double dt_before, double dt_mid);
+/* After wff_parts_correct: every part's book op. */
+void wff_parts_book(wff_model *m, double dt_before);
 double wff_parts_dissipated(const wff_model *m);
 void wff_parts_follow(wff_model *m, const char *what, double value);
 /* The part's setting row named key (NULL: none); the parts' setting names,

@@ -65,13 +65,11 @@ int wff_parts_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
     return 0;
 }
 
-double wff_parts_book(wff_model *m, double dt_before, double dt_mid)
+void wff_parts_book(wff_model *m, double dt_before)
 {
-    double sum = 0;
     EACH_PART(p)
         if ((*p)->book)
-            sum += (*p)->book(m, dt_before, dt_mid);
-    return sum;
+            (*p)->book(m, dt_before);
 }
 
 double wff_parts_dissipated(const wff_model *m)

@@ -616,8 +616,10 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
     for (int t = 0; t < P->n_touched; t++) {
         const int n = P->touched_list[t];
         for (int c = 0; c < 3; c++)
-            if (P->impulse[3 * n + c] != 0)
+            if (P->impulse[3 * n + c] != 0) {
                 m->f[D * n + c] += P->impulse[3 * n + c] / dt_mid;
+                m->contact_force[D * n + c] += P->impulse[3 * n + c] / dt_mid;
+            }
     }
     for (int c = 0; pr->active && c < pr->n_contact; c++)
         P->on_projectile[pr->contact_node[c]] = -1;
@@ -633,13 +635,12 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
 /* The book op (part.h): this step's impulses' work at the final velocities,
  * j·(v^{n+½} − ½Δt_before a^n), the projectile's share (the velocity change
  * the plies gave it) at its own; the impulses cleared for the next step. */
-static double ply_contact_book(wff_model *m, double dt_before, double dt_mid)
+static void ply_contact_book(wff_model *m, double dt_before)
 {
-    (void)dt_mid;
     struct wff_pack *P = m->pack;
     if (!P || P->n < 2 || !P->impulse)
-        return 0;
-    double work = 0, power = 0;
+        return;
+    double work = 0;
     for (int t = 0; t < P->n_touched; t++) {
         const int n = P->touched_list[t];
         for (int c = 0; c < 3; c++) {
@@ -648,7 +649,6 @@ static double ply_contact_book(wff_model *m, double dt_before, double dt_mid)
             if (j == 0)
                 continue;
             work += j * (m->v[k] - 0.5 * dt_before * m->f[k] / m->mass[k]);
-            power += j * m->v[k];
             P->impulse[3 * n + c] = 0;
         }
         P->touched[n] = 0;
@@ -658,11 +658,9 @@ static double ply_contact_book(wff_model *m, double dt_before, double dt_mid)
     if (P->projectile_dv != 0) {
         const double j = pr->mass * P->projectile_dv, a = -pr->force / pr->mass;
         work += j * (pr->velocity - 0.5 * dt_before * a);
-        power += j * pr->velocity;
         P->projectile_dv = 0;
     }
     P->dissipated -= work;
-    return power;
 }
 
 /* The kinetic energy the ply contact removed, J (model part). */

@@ -574,7 +574,6 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     }
     nm.internal_energy = tot.internal_energy;
     nm.blowup_steps = 0;
-    nm.impulse_stagger = 0; /* (no impulse on the new mesh unless its contact gives one) */
     double contact_booked = 0; /* J (model part) */
     if (nm.v_half_valid) {
         int worst;
@@ -592,6 +591,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
             else
                 nm.reaction[i] = -nm.f[i];
         }
+        nm.dt_mid = 0.5 * nm.dt;
         if (nm.projectile.active) {
             nm.projectile.velocity = m->projectile.velocity +
                                      0.5 * m->dt * m->projectile.force / m->projectile.mass;
@@ -599,7 +599,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
                 goto fail_prefixed;
             /* its impulses' work, as at the start of a run (no step before) */
             const double before = nm.dissipated_friction;
-            nm.impulse_stagger = wff_contact_book(&nm, 0);
+            wff_contact_book(&nm, 0);
             contact_booked = nm.dissipated_friction - before;
         }
     } else if (nm.projectile.active) {

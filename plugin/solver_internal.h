@@ -29,15 +29,19 @@ int wff_force_pass(wff_model *m, const double *u, double *f, double *state, doub
 double wff_step_positions(wff_model *m, double dt);
 void wff_step_zero(const wff_model *m, double *f, int n);
 double wff_step_velocities(wff_model *m, double dt_mid, double dt_done);
-void wff_step_kinetic(const wff_model *m, double half, double sums[4]);
+void wff_step_kinetic(const wff_model *m, double half, double sums[5]);
 void wff_step_replan(wff_model *m, double dt_new);
 /* The travel limit (docs/model.md §12): a step moves no free amplitude more
- * than this fraction (× dtfactor) of its cell's amplitude length. Measured on
- * a square released from a bump with its amplitudes far from balance (swings
- * of ±20-60 µm at up to ~600 m/s into the compaction exponential, 1/a = 10 µm):
- * 1.25 went unstable within 500 steps at dtfactor 0.8, 0.625 held 10,000 at
- * 0.8 and 0.9, with and without the preload (the paper's scene never meets it). */
-#define WFF_TRAVEL 0.625
+ * than this fraction (× dtfactor) of its cell's amplitude length; the default
+ * of the setting travel_fraction. Measured on a square released from a bump
+ * with its amplitudes far from balance (swings of ±20-60 µm at up to ~600 m/s
+ * into the compaction exponential, 1/a = 10 µm), 10,000 steps at dtfactor 0.8:
+ * 1.25 went unstable within 500 steps; 0.625 held, with an energy error of
+ * 7.3e-3-2.6e-2 (the central difference's on the swing, falling as the
+ * fraction squared); 0.1 6.7e-4/4.1e-4/9.3e-4, 0.08 6.0e-4 at most (0.9:
+ * 7.6e-4). The paper's scene never meets it; where it binds it costs steps (300
+ * m/s: 11,202 to 0.2 ms against 5,630 at 0.625). */
+#define WFF_TRAVEL 0.08
 
 /* The longest step, s, in which a DOF moving at `speed` (m/s) under `accel`
  * (m/s²) travels no more than `reach` (m): the root of dt (speed + dt accel)

@@ -35,7 +35,7 @@ int wff_state_fields(wff_model *m, int n_candidates, wff_state_field *f)
     FIELD(&m->initial_kinetic, 1);
     FIELD(&m->stagger_reference, 1);
     FIELD(&m->stagger_shift, 1);
-    FIELD(&m->impulse_stagger, 1);
+    FIELD(&m->dt_mid, 1);
     FIELD(&m->v_half_valid, 1);
     FIELD(&m->element_steps, 1);
     FIELD(&m->blowup_steps, 1);
@@ -51,6 +51,7 @@ int wff_state_fields(wff_model *m, int n_candidates, wff_state_field *f)
     FIELD(m->u, m->n_dofs);
     FIELD(m->v, m->n_dofs);
     FIELD(m->f, m->n_dofs);
+    FIELD(m->contact_force, m->n_dofs);
     FIELD(m->reaction, m->n_dofs);
     FIELD(m->v_prescribed, m->n_dofs);
     FIELD(m->state, n_points(m) * (size_t)m->n_state); /* every point's every state */

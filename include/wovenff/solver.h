@@ -160,6 +160,9 @@ struct wff_model {
                                  exactly (setting "t_stop"; 0: none), s */
     int travel_off;           /* setting travel_limit 0: the step is dtfactor × the stable
                                  step only (the amplitudes' travel not limited) */
+    double travel_fraction;   /* setting travel_fraction: the share of its cell's amplitude
+                                 length a free amplitude may travel in one step, × dtfactor
+                                 (WFF_TRAVEL by default; docs/model.md §12) */
     long travel_steps;        /* steps the travel limit shortened */
     double dt_travel;         /* the travel limit at the last step, s (0: none yet) */
     int adaptive;             /* setting adaptive_step: an instability halves dtfactor and
@@ -199,10 +202,11 @@ struct wff_model {
                                  (Δt_{n+½}² − Δt_{n−½}²)/8 Σ f_n²/m, J (model part): the
                                  staggered balance's term for a step that changes (with it,
                                  exact on a linear system at any sequence of steps) */
-    double impulse_stagger;   /* ½ Δt_{n+½}/Δt_mid Σ j·v^{n+½} over the last step's contact
-                                 impulses j (the parts' book op), J (model part): the
-                                 contact forces' share of the stagger, counted back out of
-                                 the balance's kinetic measure (wff_energies) */
+    double *contact_force;    /* per DOF, N: the last step's impulses j of every part that
+                                 gives them (contacts, the friction clamp) as forces
+                                 j/Δt_mid, also in f; the balance keeps them out of its
+                                 stagger and books their work instead (docs/model.md §14) */
+    double dt_mid;            /* the last velocity update's Δt_mid, s */
     int v_half_valid;         /* 1 once v holds a half-step velocity */
     long element_steps;       /* elements × steps done, for cost figures */
     long amplitude_iterations; /* static amplitudes: Newton iterations over all points and
@@ -470,7 +474,7 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
                                     count; 7: the initial kinetic energy the staggered one,
                                     its stagger kept (stagger_reference); 8: the stagger's
                                     shift with the step (stagger_shift); 9: the contact
-                                    impulses' share of the stagger (impulse_stagger) */
+                                    forces (contact_force) and the last Δt_mid */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 
