@@ -156,7 +156,7 @@ static int clamp_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
 
 /* The book op (part.h): the friction impulses' work at the final velocities,
  * j·(v^{n+½} − ½Δt_before a^n), counted with the friction. */
-static void clamp_book(wff_model *m, double dt_before)
+void wff_clamp_book(wff_model *m, double dt_before, double dt_mid)
 {
     double work = 0;
     for (int c = 0; c < m->clamp.n; c++) {
@@ -166,7 +166,7 @@ static void clamp_book(wff_model *m, double dt_before)
             if (j == 0)
                 continue;
             const int i = D * n + k;
-            work += j * (m->v[i] - 0.5 * dt_before * m->f[i] / m->mass[i]);
+            work += wff_impulse_work(m, i, j, dt_before, dt_mid);
         }
     }
     m->dissipated_friction -= work;
@@ -175,5 +175,5 @@ static void clamp_book(wff_model *m, double dt_before)
 const wff_part_ops wff_clamp_part = {
     .name = "friction_clamp",
     .correct = clamp_correct,
-    .book = clamp_book,
+    .book = wff_clamp_book,
 };

@@ -29,4 +29,9 @@ double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid, doubl
  * when `keep`; returns the dissipation as wff_clamp_node, J (model part). */
 double wff_clamp_correct_all(const wff_model *m, double *v, double dt_mid, int keep);
 
+/* The book op's work (part.h) of the impulses in m->clamp.impulse at m's
+ * velocities and forces, counted with the friction; dt_before the step before
+ * (0 at a start), dt_mid the step's Δt_mid. */
+void wff_clamp_book(wff_model *m, double dt_before, double dt_mid);
+
 #endif

@@ -432,15 +432,7 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
     return 0;
 }
 
-/* The work of an impulse j on DOF k at the central difference's measure,
- * j·(v^{n+½} − ½Δt_before a^n) (part.h's book op), at the step's final
- * velocity and force. */
-static inline double impulse_work(const wff_model *m, int k, double j, double dt_before)
-{
-    return j * (m->v[k] - 0.5 * dt_before * m->f[k] / m->mass[k]);
-}
-
-void wff_contact_book(wff_model *m, double dt_before)
+void wff_contact_book(wff_model *m, double dt_before, double dt_mid)
 {
     wff_projectile *p = &m->projectile;
     if (!p->active || p->n_contact == 0)
@@ -453,13 +445,12 @@ void wff_contact_book(wff_model *m, double dt_before)
             const int k = D * n + i;
             if (m->dof_kind[k] != WFF_DOF_FREE || jc[i] == 0)
                 continue;
-            work += impulse_work(m, k, jc[i], dt_before);
+            work += wff_impulse_work(m, k, jc[i], dt_before, dt_mid);
         }
     }
     /* the projectile: its own change by this contact, at its final velocity
      * and acceleration (p->force: every contact's, the plies' included) */
-    const double j = p->mass * p->contact_dv, a = -p->force / p->mass;
-    work += j * (p->velocity - 0.5 * dt_before * a);
+    work += wff_projectile_impulse_work(m, p->mass * p->contact_dv, dt_before, dt_mid);
     m->dissipated_friction -= work;
 }
 

@@ -23,6 +23,11 @@
 /* ... or at once beyond this (50 times the reference energy created). */
 #define ENERGY_BLOWUP_NOW 50.0
 
+/* The amplitudes' share of the energy in play that the travel limit follows is
+ * held at its largest, decaying by this factor a step (a swing's kinetic energy
+ * falls to 0 at each turn). */
+#define TRAVEL_SHARE_HOLD 0.99
+
 /* The travel limit grows by at most this factor a step (it falls at once): a
  * step following every turn of a swing changes by ~30 % a step, and the
  * central difference does not keep its energy across such jumps (the bumped
@@ -206,7 +211,13 @@ static void travel_limit(wff_model *m)
     const double length = m->travel_off ? INFINITY : wff_zones_amplitude_length(m);
     if (!(length < INFINITY))
         return;
-    double limit = wff_step_travel(m, m->dt_factor * m->travel_fraction * length);
+    /* the fraction: travel_fraction where the amplitudes' swings carry all the
+     * energy in play, loosening as 1/sqrt of their share (solver_internal.h) */
+    const double loose = fmax(WFF_TRAVEL_LOOSE, m->travel_fraction);
+    const double fraction = m->travel_share > 0
+                                ? fmin(loose, m->travel_fraction / sqrt(m->travel_share))
+                                : loose;
+    double limit = wff_step_travel(m, m->dt_factor * fraction * length);
     /* down at once, up slowly: the step follows the fastest swing, not each turn */
     if (m->dt_travel > 0 && limit > TRAVEL_GROWTH * m->dt_travel)
         limit = TRAVEL_GROWTH * m->dt_travel;
@@ -305,7 +316,7 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
  * change (docs/model.md §14). */
 static void book_impulses(wff_model *m, double dt_before, double dt_mid)
 {
-    wff_parts_book(m, dt_before);
+    wff_parts_book(m, dt_before, dt_mid);
     m->dt_mid = dt_mid;
 }
 
@@ -396,18 +407,18 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         travel_limit(m);
         if (stop < INFINITY)
             lands = plan_stop_step(m, stop);
+        /* the balance's energy at the start: the given kinetic energy less the
+         * stagger of the first half step's elastic forces, and the stored energy;
+         * the start's impulses act at t = 0, their work the kinetic energy they
+         * change there (book_impulses) */
+        kinetic_now(m, k); /* (its k[4] only: f the elastic forces here) */
+        m->initial_kinetic = given - k[4];
+        m->stagger_reference = k[4];
+        m->initial_total = m->initial_kinetic + m->internal_energy;
         update_velocities(m, 0.5 * m->dt, 0);
         if (wff_parts_correct(m, m->dt, 0.5 * m->dt, err))
             return -1;
         book_impulses(m, 0, 0.5 * m->dt);
-        /* the balance's energy at the start: the given kinetic energy less the
-         * stagger of the first half step's forces (its contact impulses too: the
-         * first step's term of the stagger's shift, from Δt_{−½} = 0), and the
-         * stored energy */
-        kinetic_now(m, k); /* (its k[4] only) */
-        m->initial_kinetic = given - k[4];
-        m->stagger_reference = k[4];
-        m->initial_total = m->initial_kinetic + m->internal_energy;
     }
     wff_parts_refresh(m);
     if (m->adaptive && m->snapshot_step[m->snapshot_newest] < 0 && start_adaptive(m, err))
@@ -481,6 +492,9 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
                 return fail_unstable(m, what, err);
             }
             m->last_error = created;
+            /* the amplitudes' share of the energy in play, held (travel_limit) */
+            const double share = e.reference > 0 ? e.kinetic_amplitude / e.reference : 0;
+            m->travel_share = fmax(share, TRAVEL_SHARE_HOLD * m->travel_share);
         }
         if (m->adaptive && m->step % m->dt_interval == 0 && wff_model_snapshot(m, err))
             return -1;

@@ -166,6 +166,7 @@ int wff_model_setup(wff_model *m, wff_error *err)
             m->dof_kind[D * n + 3] = m->dof_kind[D * n + 4] = WFF_DOF_FIXED;
     m->dt_factor = 0.8;
     m->travel_fraction = WFF_TRAVEL;
+    m->travel_share = 1; /* (before a step: as tight as the limit goes) */
     m->dt_interval = 20;
     m->snapshot_step[0] = m->snapshot_step[1] = -1;
     m->symmetry_factor = 1;

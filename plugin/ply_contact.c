@@ -372,6 +372,8 @@ static int pair_gradient(wff_model *m, int A, int B, int i, const double n[3], c
 static int correct_pair(wff_model *m, int pair, int i, double h, double dt, double dt_mid,
                         int apply, double *rest, double *moved)
 {
+    const double full = m->dt_factor * m->dt_stable;
+    const double recovery = full > 0 && dt < full ? RECOVERY * dt / full : RECOVERY;
     const struct wff_pack *P = m->pack;
     const int A = pair * P->nodes + i;
     if (!P->live[A])
@@ -418,14 +420,16 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
     *rest = delta;
     if (!apply)
         return 0;
-    /* closer than h now already: only RECOVERY of that per step, the rest of the
-     * correction stops the approach (pushing it all out at once would put energy
-     * in: the push-out parts the pair at up to RECOVERY RECOVERY_SPAN h / dt);
-     * above RECOVERY_SPAN h, only the approach is stopped */
+    /* closer than h now already: only RECOVERY of that per full step (dtfactor ×
+     * the stable step; a step the travel limit shortens pushes out its share of
+     * it, so the push-out's speed does not grow as the step falls), the rest of
+     * the correction stops the approach (pushing it all out at once would put
+     * energy in: the push-out parts the pair at up to RECOVERY RECOVERY_SPAN h /
+     * the full step); above RECOVERY_SPAN h, only the approach is stopped */
     if (now > RECOVERY_SPAN * h)
         delta -= now;
     else if (now > 0)
-        delta -= (1 - RECOVERY) * now;
+        delta -= (1 - recovery) * now;
     if (delta <= ROUND_OFF * h)
         return 0;
     *moved = delta;
@@ -635,7 +639,7 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
 /* The book op (part.h): this step's impulses' work at the final velocities,
  * j·(v^{n+½} − ½Δt_before a^n), the projectile's share (the velocity change
  * the plies gave it) at its own; the impulses cleared for the next step. */
-static void ply_contact_book(wff_model *m, double dt_before)
+static void ply_contact_book(wff_model *m, double dt_before, double dt_mid)
 {
     struct wff_pack *P = m->pack;
     if (!P || P->n < 2 || !P->impulse)
@@ -648,7 +652,7 @@ static void ply_contact_book(wff_model *m, double dt_before)
             const double j = P->impulse[3 * n + c];
             if (j == 0)
                 continue;
-            work += j * (m->v[k] - 0.5 * dt_before * m->f[k] / m->mass[k]);
+            work += wff_impulse_work(m, k, j, dt_before, dt_mid);
             P->impulse[3 * n + c] = 0;
         }
         P->touched[n] = 0;
@@ -656,8 +660,7 @@ static void ply_contact_book(wff_model *m, double dt_before)
     P->n_touched = 0;
     const wff_projectile *pr = &m->projectile;
     if (P->projectile_dv != 0) {
-        const double j = pr->mass * P->projectile_dv, a = -pr->force / pr->mass;
-        work += j * (pr->velocity - 0.5 * dt_before * a);
+        work += wff_projectile_impulse_work(m, pr->mass * P->projectile_dv, dt_before, dt_mid);
         P->projectile_dv = 0;
     }
     P->dissipated -= work;

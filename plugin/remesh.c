@@ -498,11 +498,12 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     memset(new_mesh, 0, sizeof *new_mesh);
     memset(&nm.el, 0, sizeof nm.el);
     nm.u = nm.v = nm.f = nm.mass = nm.v_prescribed = nm.state = nm.reaction = NULL;
+    nm.contact_force = NULL;
     nm.dof_kind = NULL;
     nm.projectile.candidates = nm.projectile.contact_node = NULL;
     nm.projectile.impulse = NULL;
     nm.projectile.n_candidates = 0;
-    nm.clamp.node = NULL, nm.clamp.normal_force = NULL, nm.clamp.n = 0;
+    nm.clamp.node = NULL, nm.clamp.normal_force = NULL, nm.clamp.impulse = NULL, nm.clamp.n = 0;
     nm.bc = NULL, nm.n_bc = 0;
     nm.operator_scratch = NULL; /* operators.c's workspace: the new model allocates its own */
     nm.node_user = nm.node_model = nm.element_user = nm.element_model = NULL;
@@ -592,16 +593,19 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
                 nm.reaction[i] = -nm.f[i];
         }
         nm.dt_mid = 0.5 * nm.dt;
-        if (nm.projectile.active) {
+        if (nm.projectile.active)
             nm.projectile.velocity = m->projectile.velocity +
                                      0.5 * m->dt * m->projectile.force / m->projectile.mass;
-            if (wff_contact_correct(&nm, nm.dt, 0.5 * nm.dt, err))
-                goto fail_prefixed;
-            /* its impulses' work, as at the start of a run (no step before) */
-            const double before = nm.dissipated_friction;
-            wff_contact_book(&nm, 0);
-            contact_booked = nm.dissipated_friction - before;
-        }
+        /* the parts' corrections of the new half step (the friction clamp's, the
+         * projectile's contact): what they change is the transfer's, not a
+         * dissipation (their kinetic energy is in e_after): the accounts as they
+         * were carried */
+        const double friction = nm.dissipated_friction, parts = wff_parts_dissipated(&nm);
+        if (wff_parts_correct(&nm, nm.dt, 0.5 * nm.dt, err))
+            goto fail_prefixed;
+        wff_parts_book(&nm, 0, 0.5 * nm.dt);
+        nm.dissipated_friction = friction;
+        contact_booked = wff_parts_dissipated(&nm) - parts; /* (0: a pack refuses a transfer) */
     } else if (nm.projectile.active) {
         wff_contact_refresh_candidates(&nm);
     }
@@ -609,8 +613,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     double e_before = stored_plus_kinetic(m, &s_before);
     double e_after = stored_plus_kinetic(&nm, &s_after);
     if (nm.v_half_valid) { /* a run that has not started measures its energy from here */
-        /* (the contact's dissipation at the new half step is the transfer's too:
-         * its kinetic energy is in e_after) */
+        /* (a part's dissipation at the new half step is the transfer's too) */
         nm.transfer_energy += (e_after - e_before) / nm.symmetry_factor + contact_booked;
         /* the integer-step balance (the detector's) carried over unchanged too */
         nm.stagger_reference += (s_after - s_before) / nm.symmetry_factor;

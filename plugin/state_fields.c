@@ -21,6 +21,7 @@ int wff_state_fields(wff_model *m, int n_candidates, wff_state_field *f)
     FIELD(&m->dt, 1);
     FIELD(&m->dt_stable, 1);
     FIELD(&m->dt_travel, 1);
+    FIELD(&m->travel_share, 1);
     FIELD(&m->travel_steps, 1);
     FIELD(&m->step, 1);
     FIELD(&m->dt_worst_element, 1);

@@ -163,6 +163,10 @@ struct wff_model {
     double travel_fraction;   /* setting travel_fraction: the share of its cell's amplitude
                                  length a free amplitude may travel in one step, × dtfactor
                                  (WFF_TRAVEL by default; docs/model.md §12) */
+    double travel_share;      /* the amplitudes' kinetic energy's share of the balance's
+                                 reference, held (its largest, decaying by TRAVEL_SHARE_HOLD
+                                 a step; 1 before the first step): the travel limit's
+                                 fraction follows it */
     long travel_steps;        /* steps the travel limit shortened */
     double dt_travel;         /* the travel limit at the last step, s (0: none yet) */
     int adaptive;             /* setting adaptive_step: an instability halves dtfactor and
@@ -543,6 +547,13 @@ int wff_model_contact(wff_model *m, const double *U, double *V, double *R, doubl
  * dt_mid; returns the energy dissipated, J, whole specimen (added to the
  * model's dissipated_friction too). No-op (0) without a friction clamp. */
 double wff_model_clamp_correct(wff_model *m, double *V, double dt_mid);
+/* The same as the built-in step does it: the friction impulses also added to
+ * the caller's forces R as forces over dt_mid, and the energy dissipated at the
+ * balance's measure, the work j·(V − ½Δt_before R/M) with Δt_before = 2 dt_mid −
+ * dt (docs/model.md §14; dt the step to be taken next), J, whole specimen. -1
+ * (err set) on bad steps or out of memory. */
+int wff_model_clamp_correct_booked(wff_model *m, double *V, double *R, double dt,
+                                   double dt_mid, double *dissipated, wff_error *err);
 /* Mesh transfer (plugin/remesh.c): carry the whole state of m onto new_mesh,
  * a new mesh of the same specimen (every new node inside the old mesh, to
  * 1e-7 of its bounding-box diagonal; nearer than that a node outside snaps
