@@ -207,9 +207,9 @@ int wff_angle_degrees(double deg, const char *what, double *reduced, double *the
     if (!isfinite(deg))
         return wff_fail(err, "%s = %g: must be a finite angle in degrees", what, deg);
     if (fabs(deg) > WFF_ANGLE_MAX_DEG)
-        return wff_fail(err, "%s = %g deg: beyond +-%g degrees (%g turns), no angle a user "
+        return wff_fail(err, "%s = %g deg: beyond +-1e6 degrees (%.0f turns), no angle a user "
                         "means, and a double holds it only to within %.2g deg: give it "
-                        "modulo 360", what, deg, WFF_ANGLE_MAX_DEG, WFF_ANGLE_MAX_DEG / 360,
+                        "modulo 360", what, deg, WFF_ANGLE_MAX_DEG / 360,
                         nextafter(fabs(deg), INFINITY) - fabs(deg));
     double r = fmod(deg, 360.0); /* exact */
     if (r == 0)
@@ -225,9 +225,8 @@ int wff_model_set_orientation(wff_model *m, double theta, wff_error *err)
     if (!isfinite(theta))
         return wff_fail(err, "orientation = %g rad: must be a finite angle", theta);
     if (fabs(theta) > WFF_ANGLE_MAX_DEG * (M_PI / 180))
-        return wff_fail(err, "orientation = %g rad (%g deg): an angle beyond +-%g degrees is "
-                        "refused (give it modulo 360)", theta, theta * 180 / M_PI,
-                        WFF_ANGLE_MAX_DEG);
+        return wff_fail(err, "orientation = %g rad (%g deg): an angle beyond +-1e6 degrees is "
+                        "refused (give it modulo 360)", theta, theta * 180 / M_PI);
     if ((m->step > 0 || m->v_half_valid) && theta != m->em.orientation)
         return wff_fail(err, "orientation = %g deg: the run has started (t = %g s, step %ld) "
                         "at %g deg; the warp direction is part of the initial state: set it "
