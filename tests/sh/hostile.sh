@@ -111,6 +111,11 @@ probe pack_3000 0 - "perforated, the projectile's nose is through a hole in ever
             -v tip="$(field "$tmp/pack_3000/summary.json" final_projectile_tip)" \
             -v d="$(field "$tmp/pack_3000/summary.json" verdict)" \
             'BEGIN { exit !(d == "\"perforated\"" && v > 0 && v <= 3000 && tip > 0.001) }'
+# the cost limit with the step factor a pack of 8 chooses (0.4): refused before the first step (the
+# estimate needs the model: its folder emptied again)
+probe pack_maxsteps 2 - "dtfactor 0.4 x the stable step" "more than -maxsteps 2000" \
+    -- $ballistic -mesh coarse -plots 0 -out "$tmp/pack_maxsteps" -plies 8 -failure on -velocity 60 -maxsteps 2000
+check pack_maxsteps_empty "the refused run's folder is left empty" test -z "$(ls -A "$tmp/pack_maxsteps" 2>/dev/null)"
 # a restart given -plies 1 (the default) writes the checkpointed run's columns, and the reverse
 probe restart_base 0 - -- $ballistic -mesh coarse -tend 4e-5 -plots 0 -checkpoint 2 -out "$tmp/rs"
 probe restart_plies_1 0 - -- $ballistic -mesh coarse -tend 8e-5 -plots 0 -restart "$tmp/rs" -plies 1
@@ -126,6 +131,9 @@ probe velocity_0_failure 0 - "stopped, the projectile moves on no more (0 m/s)" 
     check velocity_0_summary "a valid run: verdict stopped, dtfactor_used 0.6, valid JSON" \
         sh -c "grep -q '\"verdict\": \"stopped\"' '$tmp/v0/summary.json' && grep -q '\"dtfactor_used\": 0.6' '$tmp/v0/summary.json'"
 check velocity_0_no_division "no division by zero" sh -c "! grep -q 'Div by 0' '$tmp/velocity_0_failure.log'"
+for f in "$tmp/v0/summary.json" "$tmp/pack_3000/summary.json" "$tmp/angle_450/summary.json"; do
+    check "strict_json_$(basename "$(dirname "$f")")" "$f: strict JSON (no inf, no nan)" strict_json "$f"
+done
 probe erosion_alone 2 "$tmp/erosion" "-erosion either is a setting of -failure on" \
     -- $ballistic $short -out "$tmp/erosion" -erosion either
 probe failure_choice 2 "$tmp/failure_choice" "-failure 'maybe': must be one of on|off" \
