@@ -228,6 +228,8 @@ vr[2] = sqrt(-1.0);
 c = 0; try { wovenffLambertJonas(vs, vr, fit); } catch (...) { c = 1; } say("residual_nan", c);
 cout << "case visible: " << wovenffVisible("a\\tb\\nc") << endl;
 cout << "case run_tab: exit " << wovenffRun("printf\\t%s|\\t" + wovenffArg("x\\ty\\\\z"), "$tmp/api_run.log") << endl;
+c = 0; try { wovenffPerforation(md); } catch (...) { c = 1; } say("perforation_no_projectile", c);
+c = 0; try { wovenffPlies(md, 3, 2e-4); } catch (...) { c = 1; } say("plies_twice", c);
 c = 0; try { wovenffMaterial("$tmp/m.fifo"); } catch (...) { c = 1; } say("material_pipe", c);
 EOF
 probe api_calls 0 - \
@@ -239,6 +241,8 @@ probe api_calls 0 - \
     "case residual_equal_striking: accepted" \
     "case residual_nan: refused: wovenffLambertJonas: Lambert-Jonas fit: run 3" \
     'case visible: a\tb\nc' "case run_tab: exit 0" \
+    "case perforation_no_projectile: refused: wovenffPerforation: perforation: the model has no projectile" \
+    "case plies_twice: refused: wovenffPlies" \
     "wovenffMaterial: material file $tmp/m.fifo is a pipe" \
     -- "$tmp/api.edp"
 check api_run_tab "wovenffRun: an argument with a tab and a backslash reached the program whole" \
