@@ -99,12 +99,13 @@ fail_before=$fail; checked_before=$checked
 check rescaled "$tmp/strip_rescaled.gp" "$vars" > "$tmp/rescaled.txt" 2>&1
 check percent "$tmp/strip_percent.gp" "$vars" > "$tmp/percent.txt" 2>&1
 fail=$fail_before; checked=$checked_before
-grep -q "curve.*load_static.* (N/m).*y label 'load per width (N/mm)'" "$tmp/rescaled.txt" \
-    && grep -q "curve.*x values.*rescaled?\|curve.*no column, sum or difference of two (rescaled?)" "$tmp/rescaled.txt" \
+grep -q "curve \"warp, explicit strip\": the y values are not a quantity of the y label's unit (y: no column, sum or difference of two (rescaled?); y label 'load per width (N/mm)'" "$tmp/rescaled.txt" \
+    && grep -q "curve \"warp, static point (GSL)\": the y values .*load_static (N/m).*y label 'load per width (N/mm)'" "$tmp/rescaled.txt" \
     || { echo "a strip picture in N/mm was not caught:"; cat "$tmp/rescaled.txt"; fail=1; }
-grep -q "the x label says 'nominal strain (%)'" "$tmp/percent.txt" \
+grep -q "x is strain (-); the x label says 'nominal strain (%)'" "$tmp/percent.txt" \
     || { echo "a strip picture labelled % was not caught:"; cat "$tmp/percent.txt"; fail=1; }
 echo "caught: $(grep -m1 'no column' "$tmp/rescaled.txt" | cut -c1-200)"
+echo "caught: $(grep -m1 'load_static' "$tmp/rescaled.txt" | cut -c1-200)"
 echo "caught: $(grep -m1 'x label says' "$tmp/percent.txt" | cut -c1-200)"
 echo "$checked pictures traced ($n_png PNGs drawn)"
 exit $fail

@@ -128,7 +128,7 @@ END { finish(); if (nplot == 0) { print picture ": no plot traced (the hook did 
 
 # ---- one curve
 function fail(msg) { printf "%s, plot %d, curve %s: %s\n", picture, nplot, title, msg; bad = 1 }
-function finish(   fi, c, i, step, ok, n, xunits, yexpr, u, what, dims, d) {
+function finish(   fi, c, i, k, step, ok, n, xunits, xok, u) {
     if (!in_curve) return
     in_curve = 0
     if (npts == 0 || npoints_said == 7777) return   # no defined point, or a function
@@ -137,7 +137,7 @@ function finish(   fi, c, i, step, ok, n, xunits, yexpr, u, what, dims, d) {
     nsel = 0
     for (i = 1; i <= npts; i += step) sel[++nsel] = i
     # the x axis: which columns hold every x?
-    xunits = ""; found = 0
+    xunits = ""; found = 0; xok = 0
     for (fi = 1; fi <= nfiles; fi++) for (c = 1; c <= ncol[fi]; c++) {
         ok = 1
         for (i = 1; i <= nsel && ok; i++) {
@@ -150,13 +150,15 @@ function finish(   fi, c, i, step, ok, n, xunits, yexpr, u, what, dims, d) {
         u = cunit[fi, c]
         xunits = xunits (xunits == "" ? "" : ", ") cname[fi, c] " (" u ")"
         if (!axis_ok("x", u)) continue
+        xok = 1
         # the other coordinates, on the rows found
         if (check_dims(fi)) { return }
     }
     if (!found) { fail("its x values (" pt[sel[1], "x"] (nsel > 1 ? ", " pt[sel[2], "x"] : "") (nsel > 2 ? ", " pt[sel[3], "x"] : "") \
                        ", ...) are no column of " files_said() ": rescaled?"); return }
-    fail("x is " xunits "; the x label says '" lab["x"] "'" (lab["x"] == "" ? " (tics " fmt["x"] ")" : "") \
-         ", or y is not a column of that unit (" y_report "; y label '" lab["y"] "'" (lab["y2"] != "" ? ", y2 label '" lab["y2"] "'" : "") ")")
+    if (!xok) fail("x is " xunits "; the x label says '" lab["x"] "'" (lab["x"] == "" ? " (tic labels '" fmt["x"] "')" : ""))
+    else fail("the y values are not a quantity of the y label's unit (" y_report "; y label '" lab["y"] "'" \
+              (lab["y2"] != "" ? ", y2 label '" lab["y2"] "'" : "") (lab["cb"] != "" ? ", colour box '" lab["cb"] "'" : "") ")")
 }
 function files_said(   s, fi) { s = ""; for (fi = 1; fi <= nfiles; fi++) s = s (fi > 1 ? ", " : "") base(fname[fi]); return s }
 # the axis ax may show unit u: its label's unit is u, or it is hidden (no label, no tic labels)
