@@ -31,6 +31,59 @@
 
 uint64_t wff_hash_bytes(const void *data, size_t size) { return wff_fnv1a(WFF_FNV_START, data, size); }
 
+size_t wff_arg_escape(const char *in, int backslash, char *out, size_t size)
+{
+    size_t n = 0;
+    for (const unsigned char *p = (const unsigned char *)in; *p; p++) {
+        char esc[5] = {0};
+        if (*p == '\\' && backslash)
+            memcpy(esc, "\\\\", 2);
+        else if (*p == '\t')
+            memcpy(esc, "\\t", 2);
+        else if (*p == '\n')
+            memcpy(esc, "\\n", 2);
+        else if (*p == '\r')
+            memcpy(esc, "\\r", 2);
+        else if (*p < 0x20 || *p == 0x7f)
+            snprintf(esc, sizeof esc, "\\x%02x", *p);
+        else
+            esc[0] = (char)*p;
+        for (const char *e = esc; *e; e++, n++)
+            if (size > 0 && n < size - 1)
+                out[n] = *e;
+    }
+    if (size > 0)
+        out[n < size ? n : size - 1] = '\0';
+    return n;
+}
+
+static int hex_digit(char c)
+{
+    return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10
+                                          : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+}
+
+void wff_arg_unescape(char *s)
+{
+    char *w = s;
+    for (const char *r = s; *r; r++) {
+        if (*r != '\\' || !r[1]) {
+            *w++ = *r;
+            continue;
+        }
+        char c = r[1];
+        if (c == '\\' || c == 't' || c == 'n' || c == 'r') {
+            *w++ = c == 't' ? '\t' : c == 'n' ? '\n' : c == 'r' ? '\r' : '\\';
+            r++;
+        } else if (c == 'x' && hex_digit(r[2]) >= 0 && hex_digit(r[3]) >= 0) {
+            *w++ = (char)(hex_digit(r[2]) * 16 + hex_digit(r[3]));
+            r += 3;
+        } else
+            *w++ = *r;
+    }
+    *w = '\0';
+}
+
 int wff_path_check(const char *path, const char *what, wff_error *err)
 {
     if (!path[0])
@@ -620,6 +673,8 @@ int wff_run_jobs(const char *list, int jobs, int *status, long max, long *count,
                 break;
         }
         fields[f++] = NULL;
+        for (long k = start[job]; k < f - 1; k++) /* (each field escaped: wff_arg_escape) */
+            wff_arg_unescape(fields[k]);
         if (f - start[job] < 4) {
             int rc = wff_fail(err, "%s line %ld: expected label, log, program and arguments "
                               "separated by tabs", list, job + 1);

@@ -180,6 +180,12 @@ int wff_limit_fit_run(const double *vs, const double *vr, int n, wff_limit_fit *
                             "Lambert-Jonas fit: run %d: striking speed %g m/s, residual %g m/s: "
                             "the striking speed must be > 0 and the residual >= 0",
                             i + 1, vs[i], vr[i]);
+        if (vr[i] > vs[i])
+            return wff_fail(err,
+                            "Lambert-Jonas fit: run %d: residual speed %g m/s above the striking "
+                            "speed %g m/s: a projectile leaves the target no faster than it "
+                            "struck (residual <= striking)",
+                            i + 1, vr[i], vs[i]);
         if (vr[i] > 0) {
             out->n_perforated++;
             perforated_min = fmin(perforated_min, vs[i]);

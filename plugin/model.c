@@ -207,10 +207,32 @@ int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[
     return 0;
 }
 
+int wff_angle_degrees(double deg, const char *what, double *reduced, double *theta,
+                      wff_error *err)
+{
+    if (!isfinite(deg))
+        return wff_fail(err, "%s = %g: must be a finite angle in degrees", what, deg);
+    if (fabs(deg) > WFF_ANGLE_MAX_DEG)
+        return wff_fail(err, "%s = %g deg: beyond +-1e6 degrees (%.0f turns), no angle a user "
+                        "means, and a double holds it only to within %.2g deg: give it "
+                        "modulo 360", what, deg, WFF_ANGLE_MAX_DEG / 360,
+                        nextafter(fabs(deg), INFINITY) - fabs(deg));
+    double r = fmod(deg, 360.0); /* exact */
+    if (r == 0)
+        r = 0; /* (-0: 0) */
+    double right_angles = r / 90;
+    *reduced = r;
+    *theta = right_angles == nearbyint(right_angles) ? right_angles * M_PI_2 : r * (M_PI / 180);
+    return 0;
+}
+
 int wff_model_set_orientation(wff_model *m, double theta, wff_error *err)
 {
     if (!isfinite(theta))
         return wff_fail(err, "orientation = %g rad: must be a finite angle", theta);
+    if (fabs(theta) > WFF_ANGLE_MAX_DEG * (M_PI / 180))
+        return wff_fail(err, "orientation = %g rad (%g deg): an angle beyond +-1e6 degrees is "
+                        "refused (give it modulo 360)", theta, theta * 180 / M_PI);
     if ((m->step > 0 || m->v_half_valid) && theta != m->em.orientation)
         return wff_fail(err, "orientation = %g deg: the run has started (t = %g s, step %ld) "
                         "at %g deg; the warp direction is part of the initial state: set it "
@@ -678,17 +700,16 @@ static int apply_clamp_radius(wff_model *m, double value, wff_error *err)
 static int check_orientation(const wff_model *m, double value, wff_error *err)
 {
     (void)m;
-    if (!isfinite(value))
-        return wff_fail(err, "orientation = %g: must be a finite angle in degrees", value);
-    return 0;
+    double reduced, theta;
+    return wff_angle_degrees(value, "orientation", &reduced, &theta, err);
 }
 
-/* degrees; exact multiples of 90 degrees: exactly k pi/2 */
+/* degrees, reduced modulo 360 first; exact multiples of 90 degrees: exactly k pi/2 */
 static int apply_orientation(wff_model *m, double value, wff_error *err)
 {
-    double right_angles = value / 90;
-    double theta = right_angles == nearbyint(right_angles) ? right_angles * M_PI_2
-                                                           : value * (M_PI / 180);
+    double reduced, theta;
+    if (wff_angle_degrees(value, "orientation", &reduced, &theta, err))
+        return -1;
     return wff_model_set_orientation(m, theta, err);
 }
 

@@ -220,6 +220,10 @@ int wff_model_ply_orientation(wff_model *m, int ply, double theta, wff_error *er
         return -1;
     if (!isfinite(theta))
         return wff_fail(err, "ply %d orientation = %g rad: must be a finite angle", ply, theta);
+    if (fabs(theta) > WFF_ANGLE_MAX_DEG * (M_PI / 180))
+        return wff_fail(err, "ply %d orientation = %g rad (%g deg): an angle beyond +-1e6 "
+                        "degrees is refused (give it modulo 360)", ply, theta,
+                        theta * 180 / M_PI);
     if (wff_pack_plies(m) == 1)
         return wff_model_set_orientation(m, theta, err);
     struct wff_pack *P = m->pack;

@@ -11,40 +11,44 @@
 # data: rows time,ply,position,z,fabric; times: the section times (s) present;
 # half: half the history interval (s), to match the times; gap: the plies'
 # spacing (m); tend: the run's end time (s; its line says "the end"); tips: the
-# projectile's tip (m, its z) at each of the times.
+# projectile's tip (m, its z) at each of the times. The values are the CSV's as
+# they are (SI: m, the times in s); the tips, not in section.csv, are marks (labels
+# with a point) on the axis, not curves.
 set datafile separator ','
+# a number from its text: gnuplot reads "2e-05" + 0 as 2 followed by junk (an error), so a
+# mantissa without a point gets one
+num(s) = (p_ = strstrt(s, "e"), p_ > 0 && strstrt(s, ".") == 0 ? (s[1:p_ - 1] . ".0" . s[p_:]) + 0 : s + 0)
 set datafile columnheaders
 set terminal pngcairo size 1100,700 font ',11'
 set output out
-stats data using (column('fabric') == 1 ? column('z') * 1e3 : 0) nooutput name 'A'
-stats data using (column('position') * 1e3) nooutput name 'X'   # (before any range is set: stats keeps to it)
+stats data using (column('fabric') == 1 ? column('z') : 0) nooutput name 'A'
+stats data using (column('position')) nooutput name 'X'   # (before any range is set: stats keeps to it)
 zmin = A_min; zmax = A_max
-do for [i = 1:words(tips)] { tip = word(tips, i) * 1e3; zmin = tip < zmin ? tip : zmin; zmax = tip > zmax ? tip : zmax }
-span = zmax - zmin > 1e-3 ? zmax - zmin : 1.0
+do for [i = 1:words(tips)] { tip = num(word(tips, i)); zmin = tip < zmin ? tip : zmin; zmax = tip > zmax ? tip : zmax }
+span = zmax - zmin > 1e-6 ? zmax - zmin : 1e-3
 zlow = zmin - 0.05 * span; zhigh = zmax + 0.05 * span
 inside(z) = z >= zlow && z <= zhigh
 stats data using (column('fabric') == 0 ? 1 : 0) nooutput name 'F'
-stats data using (column('fabric') == 0 && !inside(column('z') * 1e3) ? 1 : 0) nooutput name 'FOUT'
+stats data using (column('fabric') == 0 && !inside(column('z')) ? 1 : 0) nooutput name 'FOUT'
 stats data using (column('fabric') == -1 ? 1 : 0) nooutput name 'E'
-set title sprintf("The pack's cross-section through the point of impact along x (%d plies, gap %.3g mm)\nthe attached fabric; eroded elements (%d points) left out", \
-                  plies, gap * 1e3, E_sum)
-set xlabel 'distance from the point of impact (mm)'
-set ylabel 'z (mm, up: the projectile''s direction +z)'
+set title sprintf("The pack's cross-section through the point of impact along x (%d plies, gap %.3g m)\nthe attached fabric; eroded elements (%d points) left out", \
+                  plies, gap, E_sum)
+set xlabel 'distance from the point of impact (m)'
+set ylabel 'z (m, up: the projectile''s direction +z)'
+set format x '%h'; set format y '%h'
 set yrange [zlow:zhigh]
 set grid
 set key right top box opaque title 'colour: time; each ply a line'
 at(t, p) = abs(column('time') - t) < half && column('ply') == p
-label(t) = sprintf('%.3g ms%s', t * 1e3, abs(t - tend) < half ? ' (the end)' : '')
+label(t) = sprintf('t = %.3g s%s', t, abs(t - tend) < half ? ' (the end)' : '')
 set xrange [-0.015 * X_max:X_max]   # (room for the tips on the axis)
-set print $tip_points   # (CSV with a header, as the data: the datafile settings hold for it too)
-print 'position,z,time'
-do for [i = 1:words(tips)] { print sprintf('0,%.6g,%d', word(tips, i) * 1e3, i) }
-unset print
+# the tips: a mark on the axis at each time, in the time's colour
+do for [i = 1:words(tips)] { set label 100 + i '' at 0, num(word(tips, i)) point pt 9 ps 2.2 lc i front }
 plot for [i = 1:words(times)] for [p = 0:plies - 1] data \
-        using (at(word(times, i) + 0, p) && column('fabric') == 1 ? column('position') * 1e3 : NaN):(column('z') * 1e3) \
+        using (at(num(word(times, i)), p) && column('fabric') == 1 ? column('position') : NaN):(column('z')) \
         with lines lw (p == 0 || p == plies - 1 ? 2.5 : 1) lc i \
-        title (p == 0 ? label(word(times, i) + 0) : ''), \
-     data using (column('fabric') == 0 ? column('position') * 1e3 : NaN):(column('z') * 1e3) \
+        title (p == 0 ? label(num(word(times, i))) : ''), \
+     data using (column('fabric') == 0 ? column('position') : NaN):(column('z')) \
         with points pt 2 ps 0.7 lc rgb '#808080' \
         title (F_sum > 0 ? sprintf('fragments torn off: %d points, %d beyond this scale', F_sum, FOUT_sum) : ''), \
-     $tip_points using 1:2:3 with points pt 9 ps 2.2 lc variable title "the projectile's tip"
+     NaN with points pt 9 ps 2.2 lc rgb 'black' title "the projectile's tip (colour: time)"

@@ -100,9 +100,21 @@ int wff_wait_program(long pid, int *status, wff_error *err);
  * gives status 127). */
 int wff_run_logged(char *const argv[], const char *log, int *status, wff_error *err);
 
+/* A value as one field of a job list or an argument line (wff_run_jobs,
+ * wovenffRun): a backslash, a tab, a newline, a carriage return and any other
+ * control character escaped (\\ \t \n \r \xHH), so no value splits into
+ * fields or lines nobody gave; with backslash 0 only the control characters
+ * (a value shown in a message). Writes at most size bytes with its NUL;
+ * returns the length the whole escaped text needs (as snprintf). */
+size_t wff_arg_escape(const char *in, int backslash, char *out, size_t size);
+
+/* Undo wff_arg_escape(…, 1, …) in place (an unknown escape is kept as is). */
+void wff_arg_unescape(char *s);
+
 /* Run the jobs of the text file list, at most `jobs` at once, no shell. One
  * job a line: label, log file, then the program and its arguments, fields
- * separated by tabs (a tab cannot be in a path wff_path_check accepts). Each
+ * separated by tabs, each field escaped by wff_arg_escape (its tabs, newlines
+ * and backslashes: a value is data, never split again) and unescaped here. Each
  * job runs as wff_run_logged; as each ends a progress line
  * "  [done/total] label: ok|failed (exit N), S s" goes to stdout. The exit
  * codes in status[0..] (max entries at most; 128 + signal if killed, 127 not

@@ -67,8 +67,9 @@ typedef struct wff_limit_fit {
 double wff_lambert_jonas(double vs, double vbl, double a, double p);
 
 /* Fit n pairs (vs[i], vr[i]) (m/s; vr = 0 a stopped run). Refuses (−1, a
- * message naming the run) non-finite or negative values, vs = 0, fewer than
- * 3 perforating runs. */
+ * message naming the run) non-finite or negative values, vs = 0, a residual
+ * above its striking speed (a physical invariant: vr <= vs), fewer than 3
+ * perforating runs. */
 int wff_limit_fit_run(const double *vs, const double *vr, int n, wff_limit_fit *out,
                       wff_error *err);
 

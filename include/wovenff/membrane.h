@@ -155,7 +155,9 @@ static inline void wff_orientation_map(double theta, const double Fp[4], double 
     double c = cos(theta), s = sin(theta);
     double quarter = theta / (2 * atan(1.0)); /* θ in right angles */
     if (quarter == nearbyint(quarter)) { /* exactly 0, 90, 180, 270 degrees mod 360 */
-        long k = ((long)nearbyint(quarter) % 4 + 4) % 4;
+        double k = fmod(nearbyint(quarter), 4); /* (no integer cast: any size) */
+        if (k < 0)
+            k += 4;
         c = k == 0 ? 1 : k == 2 ? -1 : 0;
         s = k == 1 ? 1 : k == 3 ? -1 : 0;
     }

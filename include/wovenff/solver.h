@@ -284,10 +284,25 @@ int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[
  * F_mesh R(θ) F_pre, its stress goes back through R(θ)ᵀ; the preload is a
  * material-frame state). Every zone's material takes the model's orientation.
  * Before the first step (setting it again to the value it has is allowed
- * after, as a restart does); theta must be finite. 0 by default: exactly the
+ * after, as a restart does); theta must be finite and at most
+ * WFF_ANGLE_MAX_DEG degrees in size. 0 by default: exactly the
  * results without orientation. The setting "orientation" of
  * wff_model_set_option takes degrees. */
 int wff_model_set_orientation(wff_model *m, double theta, wff_error *err);
+
+/* The largest angle the model takes, degrees: beyond it an angle reduced
+ * modulo 360 keeps less than ~1e-10 degree of what was meant (a double's
+ * spacing grows with its size; at 1e30 degrees it is 1e14 degrees). */
+#define WFF_ANGLE_MAX_DEG 1e6
+
+/* An angle in degrees (an orientation, a ply's) as the model takes it: -1
+ * and a message naming `what` when it is not finite or beyond
+ * ±WFF_ANGLE_MAX_DEG; else *reduced = deg modulo 360 (exact: fmod, in
+ * (-360, 360), the sign kept, -0 as 0) and *theta its radians, exactly
+ * k π/2 at multiples of 90 degrees. Every angle the model takes goes through
+ * it before any test (the quarter model's multiple of 90 among them). */
+int wff_angle_degrees(double deg, const char *what, double *reduced, double *theta,
+                      wff_error *err);
 
 /* Fix DOF `component` (WFF_UX..WFF_DA2) of every node on the physical curve
  * named `curve` (dim 1) or in the physical surface (dim 2) named so. Returns

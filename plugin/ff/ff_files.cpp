@@ -34,10 +34,13 @@
 //                                       // regular file (a pipe, <(...), a folder); "" if absent
 //   int wovenffGnuplot(vars, script)    // gnuplot -e vars script, no shell; its exit code
 //   int wovenffRun(argv, log)           // argv: the program and its arguments separated by
-//                                       // tabs; no shell, stdout and stderr into log; exit code
+//                                       // tabs, each a wovenffArg; no shell, stdout and stderr
+//                                       // into log; exit code
 //   int wovenffRunJobs(list, jobs, status) // the jobs of list (a line: label, log, program,
-//                                       // arguments, tab-separated), jobs at once, a progress
-//                                       // line as each ends; their exit codes in status; count
+//                                       // arguments, tab-separated, each a wovenffArg), jobs at
+//                                       // once, a progress line as each ends; exit codes; count
+//   string wovenffArg(text)             // text as one such field: \\ \t \n \r \xHH escaped
+//   string wovenffVisible(text)         // text with its control characters shown (\t ...)
 // Knows nothing of scenes or models beyond the checkpoint call.
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
@@ -388,6 +391,18 @@ string *ffFormat(Stack stack, const double &x, const long &digits)
     return ret(stack, format(x, digits < 1 ? 1 : digits > 17 ? 17 : digits));
 }
 
+std::string escaped(const std::string &text, int backslash)
+{
+    std::string out(wff_arg_escape(text.c_str(), backslash, nullptr, 0) + 1, '\0');
+    wff_arg_escape(text.c_str(), backslash, &out[0], out.size());
+    out.resize(out.size() - 1);
+    return out;
+}
+
+string *ffArg(Stack stack, string *const &text) { return ret(stack, escaped(*text, 1)); }
+
+string *ffVisible(Stack stack, string *const &text) { return ret(stack, escaped(*text, 0)); }
+
 string *ffPathProblem(Stack stack, string *const &path, string *const &what)
 {
     wff_error err;
@@ -431,8 +446,11 @@ long ffRun(string *const &args, string *const &log)
     if (words.empty() || words[0].empty())
         wff_ff_fail("wovenffRun", "no program to run");
     std::vector<char *> argv;
-    for (std::string &w : words)
+    for (std::string &w : words) {
+        wff_arg_unescape(&w[0]); // (each word escaped: wovenffArg)
+        w.resize(std::char_traits<char>::length(w.c_str()));
         argv.push_back(&w[0]);
+    }
     argv.push_back(nullptr);
     int status;
     wff_error err;
@@ -496,6 +514,8 @@ void wff_ff_register_files()
                new OneOperator2s_<string *, string *, string *>(ffPathProblem));
     Global.Add("wovenffGnuplot", "(", new OneOperator2_<long, string *, string *>(ffGnuplot));
     Global.Add("wovenffRun", "(", new OneOperator2_<long, string *, string *>(ffRun));
+    Global.Add("wovenffArg", "(", new OneOperator1s_<string *, string *>(ffArg));
+    Global.Add("wovenffVisible", "(", new OneOperator1s_<string *, string *>(ffVisible));
     Global.Add("wovenffRunJobs", "(",
                new OneOperator3_<long, string *, long, KN<double> *>(ffRunJobs));
 }

@@ -63,10 +63,11 @@ long ffPlyOrientation(const long &id, const long &p, const double &deg)
     if (p < 0 || p >= wff_model_ply_count(m))
         wff_ff_model_fail(fn, "ply " + std::to_string(p) + ": the pack has plies 0 to " +
                           std::to_string(wff_model_ply_count(m) - 1), id);
-    double right_angles = deg / 90; // exact at multiples of 90 degrees, as "orientation"
-    double theta = right_angles == std::nearbyint(right_angles) ? right_angles * M_PI_2
-                                                                : deg * (M_PI / 180);
     wff_error err;
+    double reduced, theta; // modulo 360, exact at multiples of 90 degrees, as "orientation"
+    if (wff_angle_degrees(deg, ("ply " + std::to_string(p) + " angle").c_str(), &reduced, &theta,
+                          &err))
+        wff_ff_model_fail(fn, err.message, id);
     if (wff_model_ply_orientation(m, (int)p, theta, &err))
         wff_ff_model_fail(fn, err.message, id);
     return 0;

@@ -184,6 +184,35 @@ int main(void)
                    strcmp(text, "job three") == 0, "job 2's log: '%s'", text ? text : "");
     free(text);
     CHECK(&st, wff_run_jobs(list, 2, codes, 3, &count, &err) != 0, "4 jobs accepted into 3 codes");
+    /* a value with a tab, a newline, a backslash and a control character stays one
+     * argument (escaped in the list, unescaped for the program): data, not fields */
+    {
+        const char *value = "a\tb\nc\\d\x01" "e";
+        char esc[128], job[1200];
+        size_t need = wff_arg_escape(value, 1, esc, sizeof esc);
+        CHECK(&st, need == strlen(esc) && strcmp(esc, "a\\tb\\nc\\\\d\\x01e") == 0 &&
+                       !strchr(esc, '\t') && !strchr(esc, '\n'),
+              "escaped '%s' (%zu)", esc, need);
+        char back[128];
+        snprintf(back, sizeof back, "%s", esc);
+        wff_arg_unescape(back);
+        CHECK(&st, strcmp(back, value) == 0, "unescaped differs");
+        char shown[128];
+        wff_arg_escape(value, 0, shown, sizeof shown);
+        CHECK(&st, strcmp(shown, "a\\tb\\nc\\d\\x01e") == 0, "visible '%s'", shown);
+        char small[4];
+        CHECK(&st, wff_arg_escape(value, 1, small, sizeof small) == need && strlen(small) == 3,
+              "truncated");
+        int len = snprintf(job, sizeof job, "one\t%s\tprintf\t%%s|\t%s\n", log[0], esc);
+        CHECK(&st, wff_write_whole(list, job, (size_t)len, &err) == 0 &&
+                       wff_run_jobs(list, 1, codes, 4, &count, &err) == 0 && count == 1 &&
+                       codes[0] == 0, "escaped job: %s", err.message);
+        text = NULL;
+        CHECK(&st, wff_read_text_file(log[0], "log", 1024, &text, &err) == 0 && text &&
+                       strcmp(text, "a\tb\nc\\d\x01" "e|") == 0,
+              "the value as the program got it: '%s'", text ? text : "");
+        free(text);
+    }
     CHECK(&st, wff_write_whole(list, "label\tlog only\n", 14, &err) == 0 &&
                    wff_run_jobs(list, 1, codes, 4, &count, &err) != 0,
           "a job without a program accepted");

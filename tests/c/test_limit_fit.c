@@ -52,12 +52,15 @@ static void test_law(check_state *st)
 
 static void test_noiseless(check_state *st)
 {
-    static const double laws[][3] = {{120, 0.9, 2.0}, {300, 1.0, 1.5}, {80, 0.7, 3.5},
-                                     {450, 1.2, 6.0}};
+    /* V_bl, a, p, the runs' speeds from lo to hi x V_bl (450, 1.2, 6: the law
+     * passes the striking speed above 482 m/s; its runs stop at 475 m/s, as
+     * no projectile leaves faster than it struck and the fit refuses that) */
+    static const double laws[][5] = {{120, 0.9, 2.0, 0.6, 2.2}, {300, 1.0, 1.5, 0.6, 2.2},
+                                     {80, 0.7, 3.5, 0.6, 2.2}, {450, 1.2, 6.0, 0.9, 1.055}};
     for (size_t k = 0; k < sizeof laws / sizeof *laws; k++) {
         double vs[N_RUNS], vr[N_RUNS];
         double vbl = laws[k][0], a = laws[k][1], p = laws[k][2];
-        make_runs(vbl, a, p, 0.6 * vbl, 2.2 * vbl, N_RUNS, 0, NULL, vs, vr);
+        make_runs(vbl, a, p, laws[k][3] * vbl, laws[k][4] * vbl, N_RUNS, 0, NULL, vs, vr);
         wff_limit_fit f;
         wff_error err;
         int rc = wff_limit_fit_run(vs, vr, N_RUNS, &f, &err);
@@ -160,6 +163,14 @@ static void test_bad_input(check_state *st)
     vr[0] = -1;
     CHECK(st, wff_limit_fit_run(vs, vr, 5, &f, &err) != 0, "negative residual accepted");
     CHECK(st, strstr(err.message, "run 1") && strstr(err.message, ">= 0"), "message: %s",
+          err.message);
+    vr[0] = 0;
+    vr[3] = vs[3] * 1.01; /* a residual above its striking speed: no projectile does that */
+    CHECK(st, wff_limit_fit_run(vs, vr, 5, &f, &err) != 0, "residual above striking accepted");
+    CHECK(st, strstr(err.message, "run 4") && strstr(err.message, "above the striking speed"),
+          "message: %s", err.message);
+    vr[3] = vs[3]; /* equal: allowed (nothing lost) */
+    CHECK(st, wff_limit_fit_run(vs, vr, 5, &f, &err) == 0, "residual = striking refused: %s",
           err.message);
     double v50, gap;
     double bs[3] = {100, 110, 130}, br[3] = {0, 0, 20};

@@ -412,6 +412,28 @@ static void check_bad_input(check_state *st)
         CHECK(st, wff_model_set_option(&m, "orientation", bad[i], &err) != 0 &&
                       contains(err.message, "finite"), "option: %s", err.message);
     }
+    /* angles beyond +-1e6 degrees (a double holds 1e30 only to 1e14 degrees: the old
+     * test took it for a multiple of 90 and ran at a random angle); reduced modulo 360
+     * exactly (450 is 90, -450 is -90, 720 is 0: k pi/2 exactly) */
+    const double huge[3] = {1e30, -1e30, 1.000001e6};
+    for (int i = 0; i < 3; i++) {
+        err.message[0] = 0;
+        CHECK(st, wff_model_set_option(&m, "orientation", huge[i], &err) != 0 &&
+                      contains(err.message, "beyond +-1e6 degrees") &&
+                      contains(err.message, "modulo 360"),
+              "angle %g deg: %s", huge[i], err.message);
+        CHECK(st, wff_model_set_orientation(&m, huge[i] * kDeg, &err) != 0 &&
+                      contains(err.message, "beyond +-1e6 degrees"), "theta: %s", err.message);
+    }
+    const double given[5] = {450, -450, 720, 1e6, 405.5}, want[5] = {90, -90, 0, 280, 45.5};
+    for (int i = 0; i < 5; i++) {
+        double reduced = -1, theta = -1;
+        CHECK(st, wff_angle_degrees(given[i], "angle", &reduced, &theta, &err) == 0 &&
+                      reduced == want[i] && (want[i] != 0 || !signbit(reduced)) &&
+                      (fmod(want[i], 90) != 0 || theta == want[i] / 90 * M_PI_2),
+              "%g deg reduced to %.17g (theta %.17g), want %g", given[i], reduced, theta,
+              want[i]);
+    }
     CHECK(st, m.em.orientation == 30 * kDeg, "a refused angle leaves the model as it was");
     double e;
     if (run_to(st, &m, 0.01e-3, &e)) {

@@ -109,19 +109,19 @@ else
         "$dir/section.csv" || { echo "section.csv: no section at the run's end ($tend s) with its hole"; fail=1; }
     # the attached fabric's z range and the eroded samples' largest z
     scale=$(awk -F, 'NR > 1 && $5 == 1 { if (lo == "" || $4 < lo) lo = $4; if (hi == "" || $4 > hi) hi = $4 }
-                     NR > 1 && $5 != 1 && (far == "" || $4 > far) { far = $4 } END { print lo * 1e3, hi * 1e3, far * 1e3 }' "$dir/section.csv")
+                     NR > 1 && $5 != 1 && (far == "" || $4 > far) { far = $4 } END { print lo, hi, far }' "$dir/section.csv")
     if [ -n "$gp" ]; then
         vars=$(awk -F'\t' '$1 ~ /section[.]gp$/ { print $2 }' "$dir.gnuplot" | tail -1)
         range=$("$gp" -e "$vars; out='$dir.section_check.png'" freefem_scripts/plots/section.gp -e 'print GPVAL_Y_MIN, GPVAL_Y_MAX, tips' 2>&1 | tail -1)
-        echo "section.png: z from $(echo "$range" | cut -d' ' -f1,2) mm (tips $(echo "$range" | cut -d' ' -f3-) m); attached fabric, the eroded samples' largest z (mm): $scale"
-        echo "$range $scale" | awk '{ lo = $1; hi = $2; tip = 0; for (i = 3; i <= NF - 3; i++) if ($i * 1e3 > tip) tip = $i * 1e3
+        echo "section.png: z from $(echo "$range" | cut -d' ' -f1,2) m (tips $(echo "$range" | cut -d' ' -f3-) m); attached fabric, the eroded samples' largest z (m): $scale"
+        echo "$range $scale" | awk '{ lo = $1; hi = $2; tip = 0; for (i = 3; i <= NF - 3; i++) if ($i > tip) tip = $i
             alo = $(NF - 2); ahi = $(NF - 1); far = $NF; top = (ahi > tip ? ahi : tip); span = top - (alo < 0 ? alo : 0)
             if (!(lo < hi)) { print "section.png: the z axis does not run up (" lo " to " hi ")"; bad = 1 }
-            if (!(lo <= alo && hi >= ahi)) { print "section.png: the attached fabric (" alo " to " ahi " mm) not inside " lo " to " hi; bad = 1 }
-            if (!(hi >= tip && hi <= top + 0.1 * span)) { print "section.png: top " hi " mm, not the scale of the fabric and the tip (" top " mm)"; bad = 1 }
+            if (!(lo <= alo && hi >= ahi)) { print "section.png: the attached fabric (" alo " to " ahi " m) not inside " lo " to " hi; bad = 1 }
+            if (!(hi >= tip && hi <= top + 0.1 * span)) { print "section.png: top " hi " m, not the scale of the fabric and the tip (" top " m)"; bad = 1 }
             # (since the ply contact acts along the gradient of its constraint this case flings no
             # eroded sample past the scale: the exclusion is then not exercised here, said)
-            if (!(far > hi)) print "section.png: no eroded sample beyond the scale (" far " mm): the exclusion of flung fabric not exercised by this case"
+            if (!(far > hi)) print "section.png: no eroded sample beyond the scale (" far " m): the exclusion of flung fabric not exercised by this case"
             exit bad }' || fail=1
         grep -q 'reverse' freefem_scripts/plots/section.gp && { echo "section.gp reverses an axis"; fail=1; }
         # damage: a block and a panel per ply, each titled with its ply and its eroded elements

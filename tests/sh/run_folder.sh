@@ -65,7 +65,7 @@ done
 nl="$tmp/new
 line"
 run newline 2 $short -plots 0 -out "$nl"
-says newline "a path with a control character (newline, tab, ...) is refused"
+says newline "-out '$tmp/new\\nline': a value with a control character (a tab, a newline, ...) is refused"
 [ -e "$nl" ] && { echo "newline: the folder was made"; fail=1; }
 echo "paths: quote, space, unicode work, a newline is refused"
 

@@ -9,10 +9,25 @@
 # - equal force: both yarns carry the load; shear: the spars are engaged at the
 #   largest shear and carry more than at the start; a lock angle in summary.json;
 # - the PNGs and summary.json exist and are not empty;
+# - stiffening.png (warp and weft strips against equibiaxial) is drawn from this
+#   run's three CSVs (the call gnuplot got, seen through a stand-in on PATH that
+#   logs its -e settings; its four curves, traced with `set table`, are the
+#   CSVs' P11 and P22 against strain), and the stiffening is there: at every
+#   strain of both paths the equibiaxial P_kk is above the strip's;
+# - the locking angle: summary.json's locking_angle (rad) lies within the shear
+#   path, locking_angle_deg is it in degrees, the path's rows bracket it (below
+#   it a spar idle, F_L1 or F_L2 = 0, above it both carrying force), it agrees
+#   with the angle computed from the material file and the preloaded
+#   state (the spar k engages where d_k = sqrt((lambda_l p0_l cos g)^2 + A_k^2)
+#   falls to d_k0 = sqrt(p0_l^2 + A0_k^2), docs/model.md §4; the last of the two;
+#   2e-5 rad: the amplitudes move a little as the engaged spar pushes),
+#   and shear.png's vertical line is drawn at it (the lock= its call got);
 # then the shear path with dynamic amplitudes and shear flow: gamma_f has
 # flowed (0 < gamma_f < gamma), the amplitudes stay near their static balance.
 # basket_2x2, warp and shear, 4 levels: its own header (F_P1, F_P2), energies
-# add up, crimp interchange, the 3-D picture drawn.
+# add up, crimp interchange, the 3-D picture drawn; no stiffening.png (no
+# equibiaxial path), a locking angle within the path.
+# linear_yarns: no spars, locking_angle null naming why.
 # linear_yarns, warp, weft and shear, 4 levels: no amplitude columns; the strip
 # load is stiffness x strain (P11 = S_1 e, P22 = 0; T1 = P11 yarn_spacing_1;
 # the weft P22 = S_2 e), E_shear = G gamma^2 / 2; dynamic amplitudes are
@@ -26,10 +41,19 @@ tmp="${WFF_TEST_TMP:-/tmp}"
 out="$tmp/unit_cell_explorer"
 rm -rf "$out" "$out".*
 fail=0
+# gnuplot on PATH logs each call's script and -e settings (into $out.NAME.gnuplot)
+gp=$(command -v gnuplot)
+mkdir -p "$tmp/uce_bin"
+if [ -n "$gp" ]; then
+    printf '#!/bin/sh\nprintf "%%s\\t%%s\\n" "$3" "$2" >> "${WFF_GNUPLOT_CALLS:-/dev/null}"\nexec "%s" "$@"\n' "$gp" > "$tmp/uce_bin/gnuplot"
+    chmod +x "$tmp/uce_bin/gnuplot"
+fi
 # explore NAME ARGS...: run the explorer into $out.NAME, stop the test on a failure
 explore() {
     name=$1; shift
-    sh tools/ff.sh freefem_scripts/unit_cell_explorer.edp -out "$out.$name" "$@" > "$out.$name.log" 2>&1
+    rm -f "$out.$name.gnuplot"
+    PATH="$tmp/uce_bin:$PATH" WFF_GNUPLOT_CALLS="$out.$name.gnuplot" \
+        sh tools/ff.sh freefem_scripts/unit_cell_explorer.edp -out "$out.$name" "$@" > "$out.$name.log" 2>&1
     rc=$?
     [ $rc -eq 0 ] || { echo "explorer $name exited $rc"; cat "$out.$name.log"; exit 1; }
 }
@@ -77,6 +101,73 @@ done
 [ -s "$out.king/summary.json" ] || { echo "missing or empty: summary.json"; fail=1; }
 grep -q '"lock_angle_deg": [0-9]' "$out.king/summary.json" || { echo "summary.json: no lock angle"; fail=1; }
 
+# stiffening.png: drawn from this run's strips and equibiaxial CSVs, the stiffening there
+[ -s "$out.king/stiffening.png" ] || { echo "missing or empty: king stiffening.png"; fail=1; }
+stiff=$(awk -F'\t' '$1 ~ /explorer_stiffening[.]gp$/ { print $2 }' "$out.king.gnuplot")
+for f in warp weft equi; do
+    want=$out.king/$f.csv; [ $f = equi ] && want=$out.king/equibiaxial.csv
+    printf '%s\n' "$stiff" | grep -qF "$f='$want'" || { echo "stiffening.png: not drawn from $want ($stiff)"; fail=1; }
+done
+if [ -n "$gp" ] && [ -n "$stiff" ]; then
+    # its curves as drawn (set table before each plot), against the CSVs' (strain, P_kk)
+    sed 's/^\( *\)plot /\1unset table; print $T; set table $T; plot /' freefem_scripts/plots/explorer_stiffening.gp > "$tmp/uce_stiff.gp"
+    "$gp" -e "$stiff; out='$tmp/uce_stiff.png'" -e 'set print $T; print ""; unset print' "$tmp/uce_stiff.gp" \
+        -e 'unset table; print $T' 2> "$tmp/uce_stiff.txt" >/dev/null
+    for pair in "warp P11 0" "equibiaxial P11 1" "weft P22 2" "equibiaxial P22 3"; do
+        set -- $pair
+        # curve $3 of the trace (in drawing order) against column $2 of $1.csv
+        awk -F, -v want="$3" -v col="$2" -v csv="$out.king/$1.csv" '
+            BEGIN { while ((getline l < csv) > 0) { n = split(l, v, ","); if (!h) { for (i = 1; i <= n; i++) c[v[i]] = i; h = 1; continue }
+                                                    rows++; x[rows] = v[1]; y[rows] = v[c[col]] } }
+            /^# Curve [0-9]/ { k++ } /^#/ { next } split($0, w, " ") < 3 { next }
+            k - 1 == want { m++; d = w[2] - y[m]; if (d < 0) d = -d; e = w[1] - x[m]; if (e < 0) e = -e   # (6 digits: %g)
+                            if (m > rows || d > 1e-5 * (y[m] < 0 ? -y[m] : y[m]) + 1e-9 || e > 1e-5 * x[m] + 1e-12) bad = 1 }
+            END { if (bad || m != rows) { printf "stiffening.png curve %d: not %s of %s (%d points, %d rows)\n", want, col, csv, m, rows; exit 1 } }' \
+            "$tmp/uce_stiff.txt" || fail=1
+    done
+fi
+# the stiffening: at each strain both paths reach, equibiaxial P_kk above the strip's (linear between levels)
+for pair in "warp P11" "weft P22"; do
+    set -- $pair
+    awk -F, -v col="$2" -v strip="$out.king/$1.csv" -v equi="$out.king/equibiaxial.csv" '
+        function load(f, X, Y,   l, v, n, i, c, h, r) { while ((getline l < f) > 0) { n = split(l, v, ",")
+            if (!h) { for (i = 1; i <= n; i++) c[v[i]] = i; h = 1; continue } r++; X[r] = v[1]; Y[r] = v[c[col]] } return r }
+        BEGIN { ns = load(strip, sx, sy); ne = load(equi, ex, ey)
+            for (j = 2; j <= ne; j++) for (i = 2; i <= ns; i++) if (sx[i - 1] <= ex[j] && ex[j] <= sx[i]) {
+                s = sy[i - 1] + (sy[i] - sy[i - 1]) * (ex[j] - sx[i - 1]) / (sx[i] - sx[i - 1]); n++
+                if (!(ey[j] > s)) { printf "%s: equibiaxial %s %g not above the strip'"'"'s %g at strain %g\n", strip, col, ey[j], s, ex[j]; bad = 1 }
+                if (ex[j] == ex[ne] || j == ne) last = sprintf("%s at strain %g: equibiaxial %g, strip %g N/m", col, ex[j], ey[j], s) }
+            if (n < 3) { print strip ": fewer than 3 strains shared with the equibiaxial path"; bad = 1 }
+            print "stiffening, " last; exit bad }' || fail=1
+done
+
+# the locking angle: within the path, bracketed by its rows, the material's, on shear.png
+lock=$(sed -n 's/^  "locking_angle": \([0-9.e+-]*\),$/\1/p' "$out.king/summary.json")
+lockdeg=$(sed -n 's/^  "locking_angle_deg": \([0-9.e+-]*\),$/\1/p' "$out.king/summary.json")
+mat=freefem_scripts/materials/kevlar_s706.txt
+awk -F, -v g="$lock" -v gd="$lockdeg" -v mat="$mat" "$hdr"'
+    { q[NR - 1] = $1; engaged[NR - 1] = $c["F_L1"] > 0 && $c["F_L2"] > 0
+      if (NR == 2) { l1 = $c["lambda1"]; l2 = $c["lambda2"]; a1 = $c["dA1"]; a2 = $c["dA2"] } n = NR - 1 }
+    END {
+        if (g == "" || !(g > 0 && g <= q[n])) { print "shear: locking_angle \"" g "\" not within the path (0, " q[n] "]"; exit 1 }
+        if (gd == "" || (gd - g * 180 / atan2(0, -1))^2 > (1e-9 * gd)^2) { print "shear: locking_angle_deg " gd " is not " g " rad"; exit 1 }
+        for (j = 1; j <= n; j++) if (q[j - 1] < g && g <= q[j] && (engaged[j - 1] || !engaged[j])) {
+            print "shear: rows at " q[j - 1] " and " q[j] " rad do not bracket the locking angle " g " (spars engaged: " engaged[j - 1] ", " engaged[j] ")"; exit 1 }
+        while ((getline line < mat) > 0) { split(line, w, " "); if (w[2] == "=") m[w[1]] = w[3] + 0 }
+        # spar k engages where its length d_k = sqrt((lambda_l p0_l cos g)^2 + A_k^2) falls to
+        # d_k0 = sqrt(p0_l^2 + A0_k^2) (lengths kept by the picture frame; the amplitudes at the preload)
+        A1 = m["A0_1"] + a1; A2 = m["A0_2"] + a2
+        c1 = sqrt(m["p0_2"]^2 + m["A0_1"]^2 - A1^2) / (l2 * m["p0_2"])
+        c2 = sqrt(m["p0_1"]^2 + m["A0_2"]^2 - A2^2) / (l1 * m["p0_1"])
+        g1 = c1 >= 1 ? 0 : atan2(sqrt(1 - c1^2), c1); g2 = c2 >= 1 ? 0 : atan2(sqrt(1 - c2^2), c2)
+        want = g1 > g2 ? g1 : g2
+        printf "locking angle %.6f rad (%.3f deg), from the material %.6f (warp spar %.6f, weft spar %.6f): %.1e rad apart\n", \
+            g, gd, want, g1, g2, g - want
+        if ((g - want)^2 > 2e-5^2) { print "shear: the locking angle is not the material'"'"'s"; exit 1 } }' \
+    "$out.king/shear.csv" || fail=1
+shearvars=$(awk -F'\t' '$1 ~ /explorer_path[.]gp$/ && $2 ~ /path='"'"'shear'"'"'/ { print $2 }' "$out.king.gnuplot")
+printf '%s\n' "$shearvars" | grep -qF "lock=$lock" || { echo "shear.png: not given lock=$lock (${shearvars##*; })"; fail=1; }
+
 explore dyn -path shear -steps 6 -amplitudes dynamic -dynamic 1 -plots 0
 check_csv "$out.dyn/shear.csv" "shear_angle,$king" 7
 expect_end "$out.dyn/shear.csv" '$c["gamma_f"] > 0 && $c["gamma_f"] < $c["gamma"]' "dynamic shear: want 0 < gamma_f < gamma"
@@ -93,6 +184,8 @@ expect_end "$out.basket/warp.csv" '$c["dA1"] < 0 && $c["dA2"] > 0' "basket warp 
 for f in warp.png cell_warp.png shear.png cell_shear.png; do
     [ -s "$out.basket/$f" ] || { echo "missing or empty: basket $f"; fail=1; }
 done
+[ -e "$out.basket/stiffening.png" ] && { echo "basket: stiffening.png without an equibiaxial path"; fail=1; }
+grep -q '^  "locking_angle": [0-9]' "$out.basket/summary.json" || { echo "basket: no locking_angle"; fail=1; }
 
 # ---- linear_yarns (S_1 = S_2 = 5.15e6 N/m, G = 179 N/m, yarn_spacing_1 = 0.747e-3 m)
 explore linear -material freefem_scripts/materials/kevlar_linear.txt -path warp,weft,shear -steps 4 \
@@ -112,6 +205,8 @@ awk -F, "$hdr"' { g = $c["gamma"]; w = 0.5 * 179 * g * g; if (sqrt(($c["E_shear"
 grep -q "cell linear_yarns has no crimp amplitudes" "$out.linear.log" || { echo "linear: no note on the amplitudes"; fail=1; }
 [ -s "$out.linear/warp.png" ] || { echo "missing or empty: linear warp.png"; fail=1; }
 [ -e "$out.linear/cell_warp.png" ] && { echo "linear: a 3-D picture without a reference geometry"; fail=1; }
+grep -q '^  "locking_angle": null,' "$out.linear/summary.json" && grep -q '"locking_note": "the cell linear_yarns has no locking spars' "$out.linear/summary.json" \
+    || { echo "linear: locking_angle not null with its reason"; fail=1; }
 
 # ---- errors: exit 2 naming the option, nothing written
 # bad NAME PATTERN ARGS...
