@@ -305,10 +305,11 @@ static void check_bump_start(check_state *st)
 /* 5. The bumped square of the issue "Stable from any state", released at rest
  * (no preload; the 1 N preload with its amplitudes overwritten by the bump's,
  * each yarn ~50 N out of balance; the preload's amplitudes kept and the bump's
- * added): 10,000 built-in steps at dtfactor 0.8 and 0.9. Without the travel
- * limit these stopped as unstable at steps 108, 10 and 214 (0.8): the released
- * amplitudes swing through several lengths 1/a of the compaction exponential in
- * one step. */
+ * added): 10,000 built-in steps at dtfactor 0.8 and 0.9, the energy error below
+ * 1e-3. Without the travel limit these stopped as unstable at steps 108, 10 and
+ * 214 (0.8): the released amplitudes swing through several lengths 1/a of the
+ * compaction exponential in one step; with it at 0.625 of 1/a they ran with
+ * errors of 7.3e-3-2.6e-2, the scheme's on the swing (docs/model.md §12). */
 static void check_bump_long(check_state *st)
 {
     static const double factors[] = {0.8, 0.9};
@@ -335,7 +336,7 @@ static void check_bump_long(check_state *st)
                    1e3 * m.time, m.travel_steps, worst);
             CHECK(st, rc == 0 && m.step == 10000, "bumped square, %s, dtfactor %g: %s",
                   what[preload], factors[f], rc ? err.message : "");
-            CHECK(st, worst < 0.5, "bumped square, %s, dtfactor %g: energy error %g",
+            CHECK(st, worst < 1e-3, "bumped square, %s, dtfactor %g: energy error %g",
                   what[preload], factors[f], worst);
             wff_model_free(&m);
         }
