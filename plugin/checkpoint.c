@@ -91,6 +91,8 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
     g = wff_fnv1a(g, &m->em.static_amplitudes, sizeof(int));
     if (m->travel_off) /* (the default leaves the hash as it was) */
         g = wff_fnv1a(g, &m->travel_off, sizeof(int));
+    if (m->travel_fraction != WFF_TRAVEL)
+        g = wff_fnv1a(g, &m->travel_fraction, sizeof(double));
     g = wff_fnv1a(g, &m->projectile.search_all, sizeof(int));
     g = wff_fnv1a(g, &m->el.n_threads, sizeof(int));
     /* the projectile's nose and axis, when not the default (older checkpoints of a

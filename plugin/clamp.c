@@ -87,11 +87,13 @@ int wff_clamp_share(wff_model *m, wff_error *err)
 /* friction clamp: in-plane, two faces, on the node's free in-plane
  * components (a node on a symmetry line slides along it and is held by
  * friction there too) */
-double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid)
+double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid, double *impulse)
 {
     double dissipated = 0;
     int n = m->clamp.node[c];
     double *vn = v + D * n;
+    if (impulse)
+        impulse[0] = impulse[1] = 0;
     int free_x = m->dof_kind[D * n + WFF_UX] == WFF_DOF_FREE;
     int free_y = m->dof_kind[D * n + WFF_UY] == WFF_DOF_FREE;
     double speed = hypot(free_x ? vn[0] : 0, free_y ? vn[1] : 0);
@@ -101,9 +103,12 @@ double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid)
     double pressed = 2 * m->clamp.normal_force[c];
     if (m->clamp.edge_reaction)
         pressed += fabs(m->reaction[D * n + WFF_UZ]);
-    double impulse = friction_impulse(m->mass[D * n], speed,
-                                      m->clamp.mu * pressed * dt_mid, &dissipated);
-    double scale = 1 - impulse / (m->mass[D * n] * speed);
+    double friction = friction_impulse(m->mass[D * n], speed,
+                                       m->clamp.mu * pressed * dt_mid, &dissipated);
+    double scale = 1 - friction / (m->mass[D * n] * speed);
+    if (impulse) /* (what the scaling below takes off the node's momentum) */
+        for (int k = 0; k < 2; k++)
+            impulse[k] = (k ? free_y : free_x) ? -(1 - scale) * m->mass[D * n] * vn[k] : 0;
     if (free_x)
         vn[0] *= scale;
     if (free_y)
@@ -115,7 +120,7 @@ double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid)
 /* Clamped nodes per part of the threaded pass (step_parts.h). */
 #define CLAMP_GRAIN 64
 
-double wff_clamp_correct_all(const wff_model *m, double *v, double dt_mid)
+double wff_clamp_correct_all(const wff_model *m, double *v, double dt_mid, int keep)
 {
     const int n_clamp = m->clamp.n, parts = wff_part_count(n_clamp, CLAMP_GRAIN);
     double part_dissipated[MAX_PARTS];
@@ -124,23 +129,51 @@ double wff_clamp_correct_all(const wff_model *m, double *v, double dt_mid)
         const int end = wff_part_begin(n_clamp, parts, k + 1);
         double d = 0;
         for (int c = wff_part_begin(n_clamp, parts, k); c < end; c++)
-            d += wff_clamp_node(m, v, c, dt_mid);
+            d += wff_clamp_node(m, v, c, dt_mid, keep ? m->clamp.impulse + 2 * c : NULL);
         part_dissipated[k] = d;
     }
     return wff_sum_parts(part_dissipated, parts);
 }
 
 /* After the velocity update: the Coulomb correction of every clamped node,
- * its dissipation counted with the friction. */
+ * its impulses kept and added to f as forces over dt_mid (their work: the book
+ * op). */
 static int clamp_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
 {
     (void)dt, (void)err;
-    if (m->clamp.n)
-        m->dissipated_friction += wff_clamp_correct_all(m, m->v, dt_mid);
+    if (!m->clamp.n)
+        return 0;
+    wff_clamp_correct_all(m, m->v, dt_mid, 1);
+    for (int c = 0; c < m->clamp.n; c++) {
+        const int n = m->clamp.node[c];
+        for (int k = 0; k < 2; k++) {
+            m->f[D * n + k] += m->clamp.impulse[2 * c + k] / dt_mid;
+            m->contact_force[D * n + k] += m->clamp.impulse[2 * c + k] / dt_mid;
+        }
+    }
     return 0;
+}
+
+/* The book op (part.h): the friction impulses' work at the final velocities,
+ * j·(v^{n+½} − ½Δt_before a^n), counted with the friction. */
+void wff_clamp_book(wff_model *m, double dt_before, double dt_mid)
+{
+    double work = 0;
+    for (int c = 0; c < m->clamp.n; c++) {
+        const int n = m->clamp.node[c];
+        for (int k = 0; k < 2; k++) {
+            const double j = m->clamp.impulse[2 * c + k];
+            if (j == 0)
+                continue;
+            const int i = D * n + k;
+            work += wff_impulse_work(m, i, j, dt_before, dt_mid);
+        }
+    }
+    m->dissipated_friction -= work;
 }
 
 const wff_part_ops wff_clamp_part = {
     .name = "friction_clamp",
     .correct = clamp_correct,
+    .book = wff_clamp_book,
 };

@@ -19,10 +19,19 @@ extern const struct wff_part_ops wff_clamp_part;
 int wff_clamp_share(wff_model *m, wff_error *err);
 /* The Coulomb correction of clamped node c (index into m->clamp.node) in v
  * (5 per node) over dt_mid: in-plane, two faces, on the node's free in-plane
- * components; returns the energy it dissipates, J (model part). */
-double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid);
+ * components; its impulse (x, y, N·s) into impulse[2] unless NULL; returns the
+ * energy it dissipates by the friction force over the slip left, J (model
+ * part: a script's own loop's measure; the built-in step books the impulse
+ * by part.h's book op instead). */
+double wff_clamp_node(const wff_model *m, double *v, int c, double dt_mid, double *impulse);
 /* The correction of every clamped node in v, threaded (the model's thread
- * count) with the same bits for any; returns the dissipation, J (model part). */
-double wff_clamp_correct_all(const wff_model *m, double *v, double dt_mid);
+ * count) with the same bits for any, the impulses into m->clamp.impulse
+ * when `keep`; returns the dissipation as wff_clamp_node, J (model part). */
+double wff_clamp_correct_all(const wff_model *m, double *v, double dt_mid, int keep);
+
+/* The book op's work (part.h) of the impulses in m->clamp.impulse at m's
+ * velocities and forces, counted with the friction; dt_before the step before
+ * (0 at a start), dt_mid the step's Δt_mid. */
+void wff_clamp_book(wff_model *m, double dt_before, double dt_mid);
 
 #endif

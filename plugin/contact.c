@@ -333,9 +333,8 @@ void wff_contact_refresh_candidates(wff_model *m)
  * masses, that puts it back on the surface (perfectly inelastic, like a hard
  * contact in an explicit code); then Coulomb friction limits the tangential
  * impulse to μ times the normal one. The impulses enter f as forces
- * impulse/dt_mid, and their work J·vⁿ (vⁿ the integer-step velocity, the
- * central-difference measure of the displacement over the step) is what the
- * contact dissipates. Returns -1 (err set) if a node is found deep inside,
+ * impulse/dt_mid; their work is booked after every part's correction
+ * (wff_contact_book). Returns -1 (err set) if a node is found deep inside,
  * i.e. the projectile has gone through the fabric. */
 int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
 {
@@ -415,26 +414,44 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
             p->max_penetration = rest;
     }
     p->n_contact = touched;
-    /* forces and their work over the step */
-    double work = 0;
+    /* the impulses as forces over the step (their work: wff_contact_book) */
     for (int c = 0; c < touched; c++) {
         int n = p->contact_node[c];
         const double *jc = p->impulse + 3 * c;
-        for (int i = 0; i < 3; i++) {
-            int k = D * n + i;
-            if (m->dof_kind[k] != WFF_DOF_FREE)
-                continue;
-            m->f[k] += jc[i] / dt_mid;
-            double v_int = m->v[k] - 0.5 * dt_mid * m->f[k] / m->mass[k]; /* vⁿ */
-            work += jc[i] * v_int;
-        }
+        for (int i = 0; i < 3; i++)
+            if (m->dof_kind[D * n + i] == WFF_DOF_FREE) {
+                m->f[D * n + i] += jc[i] / dt_mid;
+                if (m->contact_force)
+                    m->contact_force[D * n + i] += jc[i] / dt_mid;
+            }
     }
     double dv = p->velocity - v_proj_before;
+    p->contact_dv = dv;
     p->force = -p->mass * dv / dt_mid;
     p->impulse_total -= p->mass * dv;
-    work += p->mass * dv * (p->velocity - 0.5 * dv);
-    m->dissipated_friction -= work;
     return 0;
+}
+
+void wff_contact_book(wff_model *m, double dt_before, double dt_mid)
+{
+    wff_projectile *p = &m->projectile;
+    if (!p->active || p->n_contact == 0)
+        return;
+    double work = 0;
+    for (int c = 0; c < p->n_contact; c++) {
+        const int n = p->contact_node[c];
+        const double *jc = p->impulse + 3 * c;
+        for (int i = 0; i < 3; i++) {
+            const int k = D * n + i;
+            if (m->dof_kind[k] != WFF_DOF_FREE || jc[i] == 0)
+                continue;
+            work += wff_impulse_work(m, k, jc[i], dt_before, dt_mid);
+        }
+    }
+    /* the projectile: its own change by this contact, at its final velocity
+     * and acceleration (p->force: every contact's, the plies' included) */
+    work += wff_projectile_impulse_work(m, p->mass * p->contact_dv, dt_before, dt_mid);
+    m->dissipated_friction -= work;
 }
 
 /* The candidates follow the stable step's refresh (the nodes the projectile can
@@ -449,4 +466,5 @@ const wff_part_ops wff_projectile_contact_part = {
     .name = "projectile_contact",
     .refresh = contact_refresh,
     .correct = wff_contact_correct,
+    .book = wff_contact_book,
 };

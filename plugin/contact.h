@@ -18,6 +18,10 @@ void wff_contact_refresh_candidates(wff_model *m);
  * to f as forces over dt_mid; -1 (err set) if the projectile has passed
  * through the fabric. */
 int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
+/* Its impulses' work booked into the friction dissipation at the final
+ * velocities (part.h's book op: after every correction of the step; dt_before
+ * the step just taken, 0 at a start; dt_mid the step's Δt_mid). */
+void wff_contact_book(wff_model *m, double dt_before, double dt_mid);
 
 /* The symmetry factor changed (or the axis did): the projectile's
  * modelled mass follows; -1 (err set) if its axis is off the symmetry

@@ -23,6 +23,11 @@
 /* ... or at once beyond this (50 times the reference energy created). */
 #define ENERGY_BLOWUP_NOW 50.0
 
+/* The amplitudes' share of the energy in play that the travel limit follows is
+ * held at its largest, decaying by this factor a step (a swing's kinetic energy
+ * falls to 0 at each turn). */
+#define TRAVEL_SHARE_HOLD 0.99
+
 /* The travel limit grows by at most this factor a step (it falls at once): a
  * step following every turn of a swing changes by ~30 % a step, and the
  * central difference does not keep its energy across such jumps (the bumped
@@ -206,7 +211,13 @@ static void travel_limit(wff_model *m)
     const double length = m->travel_off ? INFINITY : wff_zones_amplitude_length(m);
     if (!(length < INFINITY))
         return;
-    double limit = wff_step_travel(m, m->dt_factor * WFF_TRAVEL * length);
+    /* the fraction: travel_fraction where the amplitudes' swings carry all the
+     * energy in play, loosening as 1/sqrt of their share (solver_internal.h) */
+    const double loose = fmax(WFF_TRAVEL_LOOSE, m->travel_fraction);
+    const double fraction = m->travel_share > 0
+                                ? fmin(loose, m->travel_fraction / sqrt(m->travel_share))
+                                : loose;
+    double limit = wff_step_travel(m, m->dt_factor * fraction * length);
     /* down at once, up slowly: the step follows the fastest swing, not each turn */
     if (m->dt_travel > 0 && limit > TRAVEL_GROWTH * m->dt_travel)
         limit = TRAVEL_GROWTH * m->dt_travel;
@@ -222,12 +233,15 @@ static void travel_limit(wff_model *m)
  * stagger (Δt²/8) Σ f²/m (k[4]): the integer-step kinetic energy less it is
  * ½ Σ m v^{n−½}·v^{n+½}, which with the stored energy at step n the central
  * difference conserves exactly on a linear system at any stable step (the
- * integer-step one swings by (ωΔt)²/4 of a mode's energy). No allocation: the
+ * integer-step one swings by (ωΔt)²/4 of a mode's energy); and the contact
+ * forces' share of that stagger, ½Δt Σ v^{n+½}·g (k[5]: the balance takes them
+ * back out of it, their work booked by the parts' book op). No allocation: the
  * advance loop calls it every step. */
-static void kinetic_now(const wff_model *m, double k[5])
+static void kinetic_now(const wff_model *m, double k[6])
 {
     const double half = m->v_half_valid ? 0.5 * m->dt : 0;
-    double sums[4]; /* Σ m v² in-plane, transverse, amplitude, Σ f²/m (threaded: step_threads.c) */
+    double sums[5]; /* Σ m v² in-plane, transverse, amplitude, Σ f²/m, Σ v^{n+½}·g
+                       (threaded: step_threads.c) */
     wff_step_kinetic(m, half, sums);
     const double inplane = sums[0], transverse = sums[1], amplitude = sums[2];
     k[0] = 0.5 * inplane;
@@ -241,11 +255,14 @@ static void kinetic_now(const wff_model *m, double k[5])
         force_sq += m->projectile.force * m->projectile.force / m->projectile.mass;
     }
     k[4] = 0.5 * half * half * force_sq; /* (Δt²/8 Σ f²/m, half = Δt/2) */
+    /* the contact forces' share of it, ½Δt Σ v^{n+½}·g (the projectile's force
+     * on it is −force, all contact) */
+    k[5] = half * (sums[4] - (m->projectile.active ? m->projectile.velocity * m->projectile.force : 0));
 }
 
 void wff_model_energies(const wff_model *m, wff_energies *out)
 {
-    double k[5];
+    double k[6];
     kinetic_now(m, k);
     double s = m->symmetry_factor;
     out->kinetic_inplane = s * k[0];
@@ -265,7 +282,11 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     /* initial + external work = kinetic + internal + shear + friction + failure + eroded,
      * the kinetic energy the staggered one ½ m v^{n−½}·v^{n+½} */
     const double kinetic = k[0] + k[1] + k[2] + k[3];
-    double total = kinetic - k[4] + m->stagger_shift + m->internal_energy +
+    out->impulse_stagger = s * k[5];
+    /* the balance's kinetic measure, ½ Σ m v^{n+½}·(v^{n+½} − Δt_{n+½} a_elastic^n): the
+     * staggered one with the contact forces' part of the stagger taken back out
+     * (their work is booked at the trapezoidal rule's measure, part.h's book) */
+    double total = kinetic - k[4] + k[5] + m->stagger_shift + m->internal_energy +
                    m->dissipated_shear + m->dissipated_friction + m->dissipated_failure +
                    m->eroded_energy - m->external_work - m->transfer_energy + parts;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
@@ -278,8 +299,25 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     ref = fmax(ref, 1e-9 * m->fabric_mass * 1.0 /* (m/s)^2 */);
     out->reference = s * ref;
     out->error = m->v_half_valid ? (total - m->initial_total) / ref : 0; /* not started: exact */
-    out->error_integer_step = m->v_half_valid ? (total + k[4] - m->stagger_shift - m->initial_total -
+    out->error_integer_step = m->v_half_valid ? (total + k[4] - k[5] -
+                                                 m->stagger_shift - m->initial_total -
                                                  m->stagger_reference) / ref : 0;
+}
+
+/* After the parts' corrections: their impulses' work booked at the final
+ * velocities (part.h's book), the kick's Δt_mid kept (a re-planned step
+ * re-expresses the contact forces with it). With the contact forces g out of
+ * the balance's stagger (wff_model_energies) and the impulses' work at
+ * j·(v^{n+½} − ½Δt_{n−½} aⁿ), the trapezoidal rule's ½(gⁿ + gⁿ⁺¹)·Δu summed,
+ * the balance is exact on a linear system with any impulses at any sequence of
+ * steps (with the stagger's shift); booked at the integer-step velocity with
+ * the contact forces in the stagger it was off by ½ j·v^{n+½} at every step
+ * and by ¼(Δt_{n+½} − Δt_{n−½})Δt_mid g·M⁻¹f summed over the steps that
+ * change (docs/model.md §14). */
+static void book_impulses(wff_model *m, double dt_before, double dt_mid)
+{
+    wff_parts_book(m, dt_before, dt_mid);
+    m->dt_mid = dt_mid;
 }
 
 double wff_model_step_estimate(const wff_model *m)
@@ -337,12 +375,9 @@ static int cut_step(wff_model *m)
         return 0;
     m->step_cuts++;
     m->dt_factor *= 0.5;
-    /* v^{n+½} was kicked with ½(Δt_done + Δt): the new half of the kick */
-    const double dt_old = m->dt, dt_new = 0.5 * m->dt;
-    for (int i = 0; i < m->n_dofs; i++)
-        if (m->dof_kind[i] == WFF_DOF_FREE)
-            m->v[i] += 0.5 * (dt_new - dt_old) * m->f[i] / m->mass[i];
-    m->dt = dt_new;
+    /* v^{n+½} was kicked with ½(Δt_done + Δt): the new half of the kick, the
+     * stagger's move booked (step_threads.c) */
+    wff_step_replan(m, 0.5 * m->dt);
     m->dt_travel = m->dt_travel > 0 ? 0.5 * m->dt_travel : 0;
     m->blowup_steps = m->growth_steps = 0;
     return 1;
@@ -364,7 +399,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         wff_parts_refresh(m);
         if (compute_forces(m, 0, err))
             return -1;
-        double k[5];
+        double k[6];
         kinetic_now(m, k); /* v_half_valid is 0: the velocities as given */
         const double given = k[0] + k[1] + k[2] + k[3];
         m->v_half_valid = 1;
@@ -372,15 +407,18 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         travel_limit(m);
         if (stop < INFINITY)
             lands = plan_stop_step(m, stop);
-        /* the balance's kinetic energy at the start, ½ m v^{−½}·v^{½} with
-         * v^{∓½} = v⁰ ∓ ½Δt a⁰: the given one less the stagger of the first step */
-        kinetic_now(m, k); /* (its k[4] only: k[0..3] are at v⁰ − ½Δt a⁰ here) */
+        /* the balance's energy at the start: the given kinetic energy less the
+         * stagger of the first half step's elastic forces, and the stored energy;
+         * the start's impulses act at t = 0, their work the kinetic energy they
+         * change there (book_impulses) */
+        kinetic_now(m, k); /* (its k[4] only: f the elastic forces here) */
         m->initial_kinetic = given - k[4];
         m->stagger_reference = k[4];
         m->initial_total = m->initial_kinetic + m->internal_energy;
         update_velocities(m, 0.5 * m->dt, 0);
         if (wff_parts_correct(m, m->dt, 0.5 * m->dt, err))
             return -1;
+        book_impulses(m, 0, 0.5 * m->dt);
     }
     wff_parts_refresh(m);
     if (m->adaptive && m->snapshot_step[m->snapshot_newest] < 0 && start_adaptive(m, err))
@@ -419,6 +457,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         update_velocities(m, 0.5 * (dt + m->dt), dt);
         if (wff_parts_correct(m, m->dt, 0.5 * (dt + m->dt), err))
             return -1;
+        book_impulses(m, dt, 0.5 * (dt + m->dt));
         {   /* every step (a pass over the DOFs, ~4 % of a step): an unstable
              * step grows the energy by a large factor per step */
             wff_energies e;
@@ -453,6 +492,9 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
                 return fail_unstable(m, what, err);
             }
             m->last_error = created;
+            /* the amplitudes' share of the energy in play, held (travel_limit) */
+            const double share = e.reference > 0 ? e.kinetic_amplitude / e.reference : 0;
+            m->travel_share = fmax(share, TRAVEL_SHARE_HOLD * m->travel_share);
         }
         if (m->adaptive && m->step % m->dt_interval == 0 && wff_model_snapshot(m, err))
             return -1;

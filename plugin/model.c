@@ -50,11 +50,13 @@ void wff_model_free(wff_model *m)
     free(m->v_prescribed);
     free(m->state);
     free(m->reaction);
+    free(m->contact_force);
     free(m->projectile.candidates);
     free(m->projectile.contact_node);
     free(m->projectile.impulse);
     free(m->clamp.node);
     free(m->clamp.normal_force);
+    free(m->clamp.impulse);
     free(m->operator_scratch);
     free(m->snapshot[0]);
     free(m->snapshot[1]);
@@ -133,9 +135,11 @@ int wff_model_alloc_arrays(wff_model *m)
     m->dof_kind = calloc(nd, 1);
     m->v_prescribed = calloc(nd, sizeof(double));
     m->reaction = calloc(nd, sizeof(double));
+    m->contact_force = calloc(nd, sizeof(double));
     size_t ns = nq * (size_t)m->n_state;
     m->state = calloc(ns ? ns : 1, sizeof(double)); /* every state starts at 0 */
     return m->u && m->v && m->f && m->mass && m->dof_kind && m->v_prescribed && m->reaction &&
+           m->contact_force &&
                    m->state
                ? 0
                : -1;
@@ -161,6 +165,8 @@ int wff_model_setup(wff_model *m, wff_error *err)
         for (int n = 0; n < m->n_nodes; n++)
             m->dof_kind[D * n + 3] = m->dof_kind[D * n + 4] = WFF_DOF_FIXED;
     m->dt_factor = 0.8;
+    m->travel_fraction = WFF_TRAVEL;
+    m->travel_share = 1; /* (before a step: as tight as the limit goes) */
     m->dt_interval = 20;
     m->snapshot_step[0] = m->snapshot_step[1] = -1;
     m->symmetry_factor = 1;
@@ -408,10 +414,12 @@ int wff_model_clamp_friction(wff_model *m, const char *group, double normal_forc
                         wff_model_user_node(m, uz.conflict) + 1);
     free(m->clamp.node);
     free(m->clamp.normal_force);
+    free(m->clamp.impulse);
     m->clamp.n = 0;
     m->clamp.node = malloc(sizeof(int) * (size_t)m->n_nodes);
     m->clamp.normal_force = malloc(sizeof(double) * (size_t)m->n_nodes);
-    if (!m->clamp.node || !m->clamp.normal_force)
+    m->clamp.impulse = calloc(2 * (size_t)m->n_nodes, sizeof(double));
+    if (!m->clamp.node || !m->clamp.normal_force || !m->clamp.impulse)
         return wff_fail(err, "out of memory");
     int count = for_group_nodes(m, group, err, add_clamp_node, NULL);
     if (count < 0)
@@ -584,6 +592,23 @@ static int apply_travel_limit(wff_model *m, double value, wff_error *err)
     return 0;
 }
 
+static int check_travel_fraction(const wff_model *m, double value, wff_error *err)
+{
+    (void)m;
+    if (!(value > 0 && value <= 2))
+        return wff_fail(err, "travel_fraction %g: must be in (0, 2] (the share of the cell's "
+                        "amplitude length a free amplitude may travel in one step at dtfactor 1; "
+                        "default %g; travel_limit 0 switches the limit off)", value, WFF_TRAVEL);
+    return 0;
+}
+
+static int apply_travel_fraction(wff_model *m, double value, wff_error *err)
+{
+    (void)err;
+    m->travel_fraction = value;
+    return 0;
+}
+
 static int check_adaptive_step(const wff_model *m, double value, wff_error *err)
 {
     (void)m;
@@ -714,6 +739,7 @@ static const wff_setting model_settings[] = {
     {"amplitude_mass_factor", check_amplitude_mass_factor, apply_amplitude_mass_factor},
     {"static_amplitudes", check_static_amplitudes, apply_static_amplitudes},
     {"travel_limit", check_travel_limit, apply_travel_limit},
+    {"travel_fraction", check_travel_fraction, apply_travel_fraction},
     {"adaptive_step", check_adaptive_step, apply_adaptive_step},
     {"contact_search", check_contact_search, apply_contact_search},
     {"orientation", check_orientation, apply_orientation},

@@ -133,7 +133,7 @@ int wff_model_travel_step(const wff_model *m, const double *V, const double *R, 
                           wff_error *err)
 {
     *dt = INFINITY;
-    const double length = wff_zones_amplitude_length(m), reach = WFF_TRAVEL * length;
+    const double length = wff_zones_amplitude_length(m), reach = m->travel_fraction * length;
     if (!(length < INFINITY))
         return 0;
     for (int user = 0; user < m->n_nodes; user++) {
@@ -218,7 +218,12 @@ int wff_model_contact(wff_model *m, const double *U, double *V, double *R, doubl
     m->u = Um; /* contact.c works on the model's arrays: lend it the caller's */
     m->v = Vm;
     m->f = Rm;
+    double *g = m->contact_force;
+    m->contact_force = NULL; /* (the caller keeps its own balance: R holds the forces) */
     int rc = wff_contact_correct(m, dt, dt_mid, err);
+    if (rc == 0) /* its impulses' work: the step before this one is 2 dt_mid − dt */
+        wff_contact_book(m, 2 * dt_mid - dt, dt_mid);
+    m->contact_force = g;
     m->u = u;
     m->v = v;
     m->f = f;
@@ -248,6 +253,42 @@ int wff_model_perforation_at(wff_model *m, const double *U, wff_perforation *out
     return rc;
 }
 
+int wff_model_clamp_correct_booked(wff_model *m, double *V, double *R, double dt,
+                                   double dt_mid, double *dissipated, wff_error *err)
+{
+    *dissipated = 0;
+    if (!(dt > 0) || !(dt_mid > 0) || !isfinite(dt) || !isfinite(dt_mid))
+        return wff_fail(err, "dt = %g s and dt_mid = %g s must be > 0 and finite", dt, dt_mid);
+    if (!m->clamp.n)
+        return 0;
+    double *b = NULL, *Vm = V, *Rm = R;
+    if (m->node_user) { /* the caller's vectors into the model's order and back */
+        const double *in[2] = {V, R};
+        if (!(b = model_copies(m, in, 2, err)))
+            return -1;
+        Vm = b, Rm = b + m->n_dofs;
+    }
+    double *v = m->v, *f = m->f, *g = m->contact_force, before = m->dissipated_friction;
+    m->v = Vm; /* clamp.c works on the model's arrays: lend it the caller's */
+    m->f = Rm;
+    m->contact_force = NULL; /* (the caller keeps its own balance) */
+    wff_clamp_correct_all(m, Vm, dt_mid, 1);
+    for (int c = 0; c < m->clamp.n; c++)
+        for (int k = 0; k < 2; k++)
+            Rm[D * m->clamp.node[c] + k] += m->clamp.impulse[2 * c + k] / dt_mid;
+    wff_clamp_book(m, 2 * dt_mid - dt, dt_mid);
+    m->v = v;
+    m->f = f;
+    m->contact_force = g;
+    if (b) {
+        wff_model_nodes_to_user(m, Vm, V, D);
+        wff_model_nodes_to_user(m, Rm, R, D);
+        free(b);
+    }
+    *dissipated = m->symmetry_factor * (m->dissipated_friction - before);
+    return 0;
+}
+
 double wff_model_clamp_correct(wff_model *m, double *V, double dt_mid)
 {
     double *b = NULL;
@@ -257,7 +298,7 @@ double wff_model_clamp_correct(wff_model *m, double *V, double dt_mid)
         if (!(b = model_copies(m, in, 1, &err)))
             return 0;
     }
-    double dissipated = wff_clamp_correct_all(m, b ? b : V, dt_mid);
+    double dissipated = wff_clamp_correct_all(m, b ? b : V, dt_mid, 0);
     if (b) {
         wff_model_nodes_to_user(m, b, V, D);
         free(b);

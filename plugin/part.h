@@ -50,6 +50,17 @@ typedef struct wff_part_ops {
      * -1 (err set) on a failure the run must stop for. */
     int (*correct)(wff_model *m, double dt, double dt_mid, wff_error *err);
 
+    /* After every part's correction (the step's velocities and forces final):
+     * book the work of the impulses j this part gave in this step into its
+     * dissipation, at the central difference's measure j·(v^{n+½} − ½Δt_before
+     * a^n) (a^n = f/m, every part's impulses in f as j/dt_mid; dt_before the
+     * step just taken, 0 at a start: wff_impulse_work, solver_internal.h): the
+     * trapezoidal work of an impulsive
+     * force, exact in the staggered balance at any sequence of steps
+     * (docs/model.md §14). (The part also adds its impulses to
+     * m->contact_force, where it adds them to f.) */
+    void (*book)(wff_model *m, double dt_before, double dt_mid);
+
     /* Its term of the energy balance: the energy it has dissipated so far,
      * J (model part), a term of D in wff_energies.error. */
     double (*dissipated)(const wff_model *m);
@@ -91,6 +102,8 @@ void wff_parts_refresh(wff_model *m);
 double wff_parts_after_forces(wff_model *m, const double *u, const double *state,
                               double dt_flow);
 int wff_parts_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
+/* After wff_parts_correct: every part's book op. */
+void wff_parts_book(wff_model *m, double dt_before, double dt_mid);
 double wff_parts_dissipated(const wff_model *m);
 void wff_parts_follow(wff_model *m, const char *what, double value);
 /* The part's setting row named key (NULL: none); the parts' setting names,

@@ -65,6 +65,13 @@ int wff_parts_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
     return 0;
 }
 
+void wff_parts_book(wff_model *m, double dt_before, double dt_mid)
+{
+    EACH_PART(p)
+        if ((*p)->book)
+            (*p)->book(m, dt_before, dt_mid);
+}
+
 double wff_parts_dissipated(const wff_model *m)
 {
     double sum = 0;

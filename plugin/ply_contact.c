@@ -372,6 +372,8 @@ static int pair_gradient(wff_model *m, int A, int B, int i, const double n[3], c
 static int correct_pair(wff_model *m, int pair, int i, double h, double dt, double dt_mid,
                         int apply, double *rest, double *moved)
 {
+    const double full = m->dt_factor * m->dt_stable;
+    const double recovery = full > 0 && dt < full ? RECOVERY * dt / full : RECOVERY;
     const struct wff_pack *P = m->pack;
     const int A = pair * P->nodes + i;
     if (!P->live[A])
@@ -418,14 +420,16 @@ static int correct_pair(wff_model *m, int pair, int i, double h, double dt, doub
     *rest = delta;
     if (!apply)
         return 0;
-    /* closer than h now already: only RECOVERY of that per step, the rest of the
-     * correction stops the approach (pushing it all out at once would put energy
-     * in: the push-out parts the pair at up to RECOVERY RECOVERY_SPAN h / dt);
-     * above RECOVERY_SPAN h, only the approach is stopped */
+    /* closer than h now already: only RECOVERY of that per full step (dtfactor ×
+     * the stable step; a step the travel limit shortens pushes out its share of
+     * it, so the push-out's speed does not grow as the step falls), the rest of
+     * the correction stops the approach (pushing it all out at once would put
+     * energy in: the push-out parts the pair at up to RECOVERY RECOVERY_SPAN h /
+     * the full step); above RECOVERY_SPAN h, only the approach is stopped */
     if (now > RECOVERY_SPAN * h)
         delta -= now;
     else if (now > 0)
-        delta -= (1 - RECOVERY) * now;
+        delta -= (1 - recovery) * now;
     if (delta <= ROUND_OFF * h)
         return 0;
     *moved = delta;
@@ -611,40 +615,55 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
             P->penetration = fmax(P->penetration, rest);
         }
     }
-    /* forces and the work of the impulses at the integer-step velocities; a
-     * node the projectile pushed too: its impulse j1 worked at the integer-step
-     * velocity before this correction, which moved that by j / 2m (the work of
-     * j1 + j at the final one is j1·v + j·v) */
+    /* the impulses as forces over the step (their work: the book op, once every
+     * part has corrected) */
+    for (int t = 0; t < P->n_touched; t++) {
+        const int n = P->touched_list[t];
+        for (int c = 0; c < 3; c++)
+            if (P->impulse[3 * n + c] != 0) {
+                m->f[D * n + c] += P->impulse[3 * n + c] / dt_mid;
+                m->contact_force[D * n + c] += P->impulse[3 * n + c] / dt_mid;
+            }
+    }
+    for (int c = 0; pr->active && c < pr->n_contact; c++)
+        P->on_projectile[pr->contact_node[c]] = -1;
+    if (P->projectile_dv != 0) { /* the projectile's share: its momentum */
+        const double dv = pr->velocity - vp_before;
+        pr->force -= pr->mass * dv / dt_mid;
+        pr->impulse_total -= pr->mass * dv;
+    }
+    P->seconds += wff_wall_seconds() - started;
+    return 0;
+}
+
+/* The book op (part.h): this step's impulses' work at the final velocities,
+ * j·(v^{n+½} − ½Δt_before a^n), the projectile's share (the velocity change
+ * the plies gave it) at its own; the impulses cleared for the next step. */
+static void ply_contact_book(wff_model *m, double dt_before, double dt_mid)
+{
+    struct wff_pack *P = m->pack;
+    if (!P || P->n < 2 || !P->impulse)
+        return;
     double work = 0;
     for (int t = 0; t < P->n_touched; t++) {
-        int n = P->touched_list[t];
-        const int pc = P->on_projectile[n];
+        const int n = P->touched_list[t];
         for (int c = 0; c < 3; c++) {
-            int k = D * n + c;
-            double j = P->impulse[3 * n + c];
+            const int k = D * n + c;
+            const double j = P->impulse[3 * n + c];
             if (j == 0)
                 continue;
-            m->f[k] += j / dt_mid;
-            double v_int = m->v[k] - 0.5 * dt_mid * m->f[k] / m->mass[k];
-            work += j * v_int;
-            if (pc >= 0)
-                work += pr->impulse[3 * pc + c] * 0.5 * j / m->mass[k];
+            work += wff_impulse_work(m, k, j, dt_before, dt_mid);
             P->impulse[3 * n + c] = 0;
         }
         P->touched[n] = 0;
     }
-    for (int c = 0; pr->active && c < pr->n_contact; c++)
-        P->on_projectile[pr->contact_node[c]] = -1;
-    if (P->projectile_dv != 0) { /* the projectile's share: its momentum and energy */
-        const double dv = pr->velocity - vp_before;
-        pr->force -= pr->mass * dv / dt_mid;
-        pr->impulse_total -= pr->mass * dv;
-        work += 0.5 * pr->mass * (pr->velocity * pr->velocity - vp_before * vp_before);
-    }
     P->n_touched = 0;
+    const wff_projectile *pr = &m->projectile;
+    if (P->projectile_dv != 0) {
+        work += wff_projectile_impulse_work(m, pr->mass * P->projectile_dv, dt_before, dt_mid);
+        P->projectile_dv = 0;
+    }
     P->dissipated -= work;
-    P->seconds += wff_wall_seconds() - started;
-    return 0;
 }
 
 /* The kinetic energy the ply contact removed, J (model part). */
@@ -656,5 +675,6 @@ static double ply_contact_dissipated(const wff_model *m)
 const wff_part_ops wff_ply_contact_part = {
     .name = "ply_contact",
     .correct = wff_ply_contact_correct,
+    .book = ply_contact_book,
     .dissipated = ply_contact_dissipated,
 };

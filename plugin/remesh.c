@@ -462,16 +462,17 @@ static int replay_bcs(const wff_model *m, wff_model *nm, wff_error *err)
 }
 
 /* Stored + kinetic energy (the balance's kinetic energy: the integer-step one
- * less the stagger (Δt²/8) Σ f²/m at the model's step), J, whole specimen;
- * *stagger: that stagger. The stagger goes as Δt²: a transfer re-plans the
- * step (from the new mesh's stable step), and its change is counted in the
- * transfer with the state's (onto the same mesh the state's is 0, the step's
- * not: the stable step is re-estimated at the state now). */
+ * less the stagger (Δt²/8) Σ f²/m at the model's step, the contact impulses'
+ * share of it counted back), J, whole specimen; *stagger: the stagger less that
+ * share (what the integer-step reading puts back). The stagger goes as Δt²: a
+ * transfer re-plans the step (from the new mesh's stable step), and its change
+ * is counted in the transfer with the state's (onto the same mesh the state's
+ * is 0, the step's not: the stable step is re-estimated at the state now). */
 static double stored_plus_kinetic(const wff_model *m, double *stagger)
 {
     wff_energies e;
     wff_model_energies(m, &e);
-    *stagger = e.kinetic_stagger;
+    *stagger = e.kinetic_stagger - e.impulse_stagger;
     return e.internal + e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude +
            e.kinetic_projectile - *stagger;
 }
@@ -497,11 +498,12 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     memset(new_mesh, 0, sizeof *new_mesh);
     memset(&nm.el, 0, sizeof nm.el);
     nm.u = nm.v = nm.f = nm.mass = nm.v_prescribed = nm.state = nm.reaction = NULL;
+    nm.contact_force = NULL;
     nm.dof_kind = NULL;
     nm.projectile.candidates = nm.projectile.contact_node = NULL;
     nm.projectile.impulse = NULL;
     nm.projectile.n_candidates = 0;
-    nm.clamp.node = NULL, nm.clamp.normal_force = NULL, nm.clamp.n = 0;
+    nm.clamp.node = NULL, nm.clamp.normal_force = NULL, nm.clamp.impulse = NULL, nm.clamp.n = 0;
     nm.bc = NULL, nm.n_bc = 0;
     nm.operator_scratch = NULL; /* operators.c's workspace: the new model allocates its own */
     nm.node_user = nm.node_model = nm.element_user = nm.element_model = NULL;
@@ -573,6 +575,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     }
     nm.internal_energy = tot.internal_energy;
     nm.blowup_steps = 0;
+    double contact_booked = 0; /* J (model part) */
     if (nm.v_half_valid) {
         int worst;
         double dt = wff_elements_stable_step(&nm.el, &nm.em, nm.mesh.xy, nm.u, &worst);
@@ -589,12 +592,20 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
             else
                 nm.reaction[i] = -nm.f[i];
         }
-        if (nm.projectile.active) {
+        nm.dt_mid = 0.5 * nm.dt;
+        if (nm.projectile.active)
             nm.projectile.velocity = m->projectile.velocity +
                                      0.5 * m->dt * m->projectile.force / m->projectile.mass;
-            if (wff_contact_correct(&nm, nm.dt, 0.5 * nm.dt, err))
-                goto fail_prefixed;
-        }
+        /* the parts' corrections of the new half step (the friction clamp's, the
+         * projectile's contact): what they change is the transfer's, not a
+         * dissipation (their kinetic energy is in e_after): the accounts as they
+         * were carried */
+        const double friction = nm.dissipated_friction, parts = wff_parts_dissipated(&nm);
+        if (wff_parts_correct(&nm, nm.dt, 0.5 * nm.dt, err))
+            goto fail_prefixed;
+        wff_parts_book(&nm, 0, 0.5 * nm.dt);
+        nm.dissipated_friction = friction;
+        contact_booked = wff_parts_dissipated(&nm) - parts; /* (0: a pack refuses a transfer) */
     } else if (nm.projectile.active) {
         wff_contact_refresh_candidates(&nm);
     }
@@ -602,7 +613,8 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     double e_before = stored_plus_kinetic(m, &s_before);
     double e_after = stored_plus_kinetic(&nm, &s_after);
     if (nm.v_half_valid) { /* a run that has not started measures its energy from here */
-        nm.transfer_energy += (e_after - e_before) / nm.symmetry_factor;
+        /* (a part's dissipation at the new half step is the transfer's too) */
+        nm.transfer_energy += (e_after - e_before) / nm.symmetry_factor + contact_booked;
         /* the integer-step balance (the detector's) carried over unchanged too */
         nm.stagger_reference += (s_after - s_before) / nm.symmetry_factor;
     }

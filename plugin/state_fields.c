@@ -21,6 +21,7 @@ int wff_state_fields(wff_model *m, int n_candidates, wff_state_field *f)
     FIELD(&m->dt, 1);
     FIELD(&m->dt_stable, 1);
     FIELD(&m->dt_travel, 1);
+    FIELD(&m->travel_share, 1);
     FIELD(&m->travel_steps, 1);
     FIELD(&m->step, 1);
     FIELD(&m->dt_worst_element, 1);
@@ -35,6 +36,7 @@ int wff_state_fields(wff_model *m, int n_candidates, wff_state_field *f)
     FIELD(&m->initial_kinetic, 1);
     FIELD(&m->stagger_reference, 1);
     FIELD(&m->stagger_shift, 1);
+    FIELD(&m->dt_mid, 1);
     FIELD(&m->v_half_valid, 1);
     FIELD(&m->element_steps, 1);
     FIELD(&m->blowup_steps, 1);
@@ -50,6 +52,7 @@ int wff_state_fields(wff_model *m, int n_candidates, wff_state_field *f)
     FIELD(m->u, m->n_dofs);
     FIELD(m->v, m->n_dofs);
     FIELD(m->f, m->n_dofs);
+    FIELD(m->contact_force, m->n_dofs);
     FIELD(m->reaction, m->n_dofs);
     FIELD(m->v_prescribed, m->n_dofs);
     FIELD(m->state, n_points(m) * (size_t)m->n_state); /* every point's every state */

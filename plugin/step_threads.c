@@ -53,6 +53,7 @@ double wff_step_positions(wff_model *m, double dt)
                 w += 0.5 * m->reaction[i] * du;
             m->u[i] += du;
             m->f[i] = 0; /* the force pass that follows adds into it */
+            m->contact_force[i] = 0; /* (and the parts' impulses after it) */
         }
         work[k] = w;
     }
@@ -112,26 +113,28 @@ double wff_step_travel(const wff_model *m, double reach)
     return shortest;
 }
 
-void wff_step_kinetic(const wff_model *m, double half, double k4[4])
+void wff_step_kinetic(const wff_model *m, double half, double k4[5])
 {
-    const double *v = m->v, *f = m->f, *mass = m->mass;
+    const double *v = m->v, *f = m->f, *mass = m->mass, *g = m->contact_force;
     const unsigned char *kind = m->dof_kind;
     const int n = m->n_nodes, parts = wff_part_count(n, NODE_GRAIN);
-    double part_e[MAX_PARTS][4];
+    double part_e[MAX_PARTS][5];
 #pragma omp parallel for schedule(static) num_threads(wff_pass_threads(m, parts)) if (wff_pass_threads(m, parts) > 1)
     for (int k = 0; k < parts; k++) {
         const int end = wff_part_begin(n, parts, k + 1);
-        double inplane = 0, transverse = 0, amplitude = 0, force = 0;
+        double inplane = 0, transverse = 0, amplitude = 0, force = 0, contact = 0;
         for (int node = wff_part_begin(n, parts, k); node < end; node++) {
             const int i = D * node; /* branch-free over the 5 DOFs of a node */
-            double e[D], g[D];
+            double e[D], q[D], c[D];
             for (int j = 0; j < D; j++) {
                 const int free = kind[i + j] == WFF_DOF_FREE;
                 double vn = v[i + j] - half * f[i + j] / mass[i + j];
                 e[j] = free ? mass[i + j] * vn * vn : 0;
-                g[j] = free ? f[i + j] * f[i + j] / mass[i + j] : 0;
+                q[j] = free ? f[i + j] * f[i + j] / mass[i + j] : 0;
+                c[j] = free ? v[i + j] * g[i + j] : 0;
             }
-            force += g[0] + g[1] + g[2] + g[3] + g[4];
+            force += q[0] + q[1] + q[2] + q[3] + q[4];
+            contact += c[0] + c[1] + c[2] + c[3] + c[4];
             inplane += e[0] + e[1];
             transverse += e[2];
             amplitude += e[3] + e[4];
@@ -140,10 +143,11 @@ void wff_step_kinetic(const wff_model *m, double half, double k4[4])
         part_e[k][1] = transverse;
         part_e[k][2] = amplitude;
         part_e[k][3] = force;
+        part_e[k][4] = contact;
     }
-    k4[0] = k4[1] = k4[2] = k4[3] = 0;
+    k4[0] = k4[1] = k4[2] = k4[3] = k4[4] = 0;
     for (int k = 0; k < parts; k++)
-        for (int j = 0; j < 4; j++)
+        for (int j = 0; j < 5; j++)
             k4[j] += part_e[k][j];
 }
 
@@ -177,27 +181,48 @@ int wff_step_candidates(const wff_model *m, double reach, int *candidates)
     return total;
 }
 
-/* The step planned changed between two advances (a set of dtfactor): v^{n+½}
- * re-planned for it, v^{n−½} + ½(Δt_{n−½} + Δt_new) aⁿ (the integer-step
- * velocity the same), and the stagger's move, (Δt_new² − Δt_old²)/8 Σ f²/m,
- * booked as the advance books a step that changes: exact on a linear system
- * again (docs/model.md §14). Before the first step, only the step. */
+/* The balance's kinetic measure at the half-step velocities and the step
+ * planned, ½ Σ_free m v·(v − Δt (f − g)/m) + ½ M v_p² (the contact forces g
+ * out of its stagger; the projectile has no other force), J (model part). A
+ * serial pass: for a re-planned step only. */
+static double kinetic_measure(const wff_model *m)
+{
+    double sum = 0;
+    for (int i = 0; i < m->n_dofs; i++)
+        if (m->dof_kind[i] == WFF_DOF_FREE)
+            sum += 0.5 * m->v[i] * (m->mass[i] * m->v[i] - m->dt * (m->f[i] - m->contact_force[i]));
+    if (m->projectile.active)
+        sum += 0.5 * m->projectile.mass * m->projectile.velocity * m->projectile.velocity;
+    return sum;
+}
+
+/* The step planned changed between two advances (a set of dtfactor, the
+ * adaptive step's cut): v^{n+½} re-planned for it, v^{n−½} + ½(Δt_{n−½} +
+ * Δt_new) aⁿ with the elastic forces (the contact impulses j are jumps of the
+ * velocity and stay as they were, re-expressed as forces j/Δt_mid over the new
+ * Δt_mid), and the measure's move booked as the advance books a step that
+ * changes (stagger_shift): exact on a linear system again (docs/model.md §14;
+ * without contact forces the move is (Δt_new² − Δt_old²)/8 Σ f²/m). Before the
+ * first step, only the step. */
 void wff_step_replan(wff_model *m, double dt_new)
 {
     const double dt_old = m->dt;
-    m->dt = dt_new;
-    if (!m->v_half_valid || !(dt_old > 0) || dt_new == dt_old)
+    if (!m->v_half_valid || !(dt_old > 0) || dt_new == dt_old) {
+        m->dt = dt_new;
         return;
-    const double dv = 0.5 * (dt_new - dt_old);
-    for (int i = 0; i < m->n_dofs; i++)
-        if (m->dof_kind[i] == WFF_DOF_FREE)
-            m->v[i] += dv * m->f[i] / m->mass[i];
-    double sums[4];
-    wff_step_kinetic(m, 0, sums);
-    double force_sq = sums[3];
-    if (m->projectile.active) {
-        m->projectile.velocity += dv * m->projectile.force / m->projectile.mass;
-        force_sq += m->projectile.force * m->projectile.force / m->projectile.mass;
     }
-    m->stagger_shift += (dt_new * dt_new - dt_old * dt_old) / 8 * force_sq;
+    const double before = kinetic_measure(m);
+    const double dv = 0.5 * (dt_new - dt_old), mid_old = m->dt_mid, mid_new = mid_old + dv;
+    const double scale = mid_new > 0 ? mid_old / mid_new : 1;
+    for (int i = 0; i < m->n_dofs; i++)
+        if (m->dof_kind[i] == WFF_DOF_FREE) {
+            const double contact = m->contact_force[i], elastic = m->f[i] - contact;
+            m->v[i] += dv * elastic / m->mass[i];
+            m->contact_force[i] = scale * contact;
+            m->f[i] = elastic + m->contact_force[i];
+        }
+    m->projectile.force *= scale; /* (all contact: its velocity stays) */
+    m->dt_mid = mid_new;
+    m->dt = dt_new;
+    m->stagger_shift += before - kinetic_measure(m);
 }

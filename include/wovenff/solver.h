@@ -58,6 +58,8 @@ typedef struct wff_projectile {
     int *contact_node;    /* nodes corrected in the last step (workspace, n_nodes) */
     int n_contact;        /* how many (the ply contact of a pack reads them: pack.h) */
     double *impulse;      /* their contact impulses, 3 each, N·s (workspace) */
+    double contact_dv;    /* the projectile's velocity change by its own contact in the
+                             last step, m/s (its share, booked by the part's book op) */
     double max_penetration;  /* largest penetration left after a contact correction, m */
     double force;         /* mean contact force on the projectile along −z over the last
                              step, N (model part) */
@@ -71,6 +73,8 @@ typedef struct wff_clamp {
     int n;                /* nodes held between the clamp faces */
     int *node;
     double *normal_force; /* clamping force on each node, N (modelled part) */
+    double *impulse;      /* each node's friction impulse in the last step, x and y, N·s
+                             (workspace, 2 per clamp node) */
     double force_whole;   /* total clamping force as given, whole specimen, N */
     double mu;            /* Coulomb friction, each of two faces */
     int region;           /* physical surface tag the force is shared over by area (-1: a
@@ -110,6 +114,12 @@ typedef struct wff_energies {
                                  kinetic energies above (at the integer step, v^{n+½} −
                                  ½Δt a^n) less this is ½ Σ m v^{n−½}·v^{n+½}, the kinetic
                                  energy of the balance in error (docs/model.md §12) */
+    double impulse_stagger;   /* the contact impulses' part of that stagger, ½Δt Σ v^{n+½}·g
+                                 (g the contact forces): the balance's kinetic measure is
+                                 the kinetic energies less kinetic_stagger plus this, i.e.
+                                 with the elastic forces alone in the stagger (the contact
+                                 forces' work booked by the trapezoidal rule instead:
+                                 docs/model.md §14) */
 } wff_energies;
 
 /* A boundary condition as it was set, by group name, so that a mesh
@@ -150,6 +160,13 @@ struct wff_model {
                                  exactly (setting "t_stop"; 0: none), s */
     int travel_off;           /* setting travel_limit 0: the step is dtfactor × the stable
                                  step only (the amplitudes' travel not limited) */
+    double travel_fraction;   /* setting travel_fraction: the share of its cell's amplitude
+                                 length a free amplitude may travel in one step, × dtfactor
+                                 (WFF_TRAVEL by default; docs/model.md §12) */
+    double travel_share;      /* the amplitudes' kinetic energy's share of the balance's
+                                 reference, held (its largest, decaying by TRAVEL_SHARE_HOLD
+                                 a step; 1 before the first step): the travel limit's
+                                 fraction follows it */
     long travel_steps;        /* steps the travel limit shortened */
     double dt_travel;         /* the travel limit at the last step, s (0: none yet) */
     int adaptive;             /* setting adaptive_step: an instability halves dtfactor and
@@ -189,6 +206,11 @@ struct wff_model {
                                  (Δt_{n+½}² − Δt_{n−½}²)/8 Σ f_n²/m, J (model part): the
                                  staggered balance's term for a step that changes (with it,
                                  exact on a linear system at any sequence of steps) */
+    double *contact_force;    /* per DOF, N: the last step's impulses j of every part that
+                                 gives them (contacts, the friction clamp) as forces
+                                 j/Δt_mid, also in f; the balance keeps them out of its
+                                 stagger and books their work instead (docs/model.md §14) */
+    double dt_mid;            /* the last velocity update's Δt_mid, s */
     int v_half_valid;         /* 1 once v holds a half-step velocity */
     long element_steps;       /* elements × steps done, for cost figures */
     long amplitude_iterations; /* static amplitudes: Newton iterations over all points and
@@ -463,14 +485,15 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 8 /* 2: the projectile's impulse_total added; 3: the points'
+#define WFF_CHECKPOINT_VERSION 9 /* 2: the projectile's impulse_total added; 3: the points'
                                     generic state (n_state and names in the header, every
                                     state saved), failure and eroded energies; 4: the
                                     erosion rule (header) and the eroded flags; 5: the
                                     orientation (header); 6: the amplitudes' travel limit and its
                                     count; 7: the initial kinetic energy the staggered one,
                                     its stagger kept (stagger_reference); 8: the stagger's
-                                    shift with the step (stagger_shift) */
+                                    shift with the step (stagger_shift); 9: the contact
+                                    forces (contact_force) and the last Δt_mid */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 
@@ -539,6 +562,13 @@ int wff_model_contact(wff_model *m, const double *U, double *V, double *R, doubl
  * dt_mid; returns the energy dissipated, J, whole specimen (added to the
  * model's dissipated_friction too). No-op (0) without a friction clamp. */
 double wff_model_clamp_correct(wff_model *m, double *V, double dt_mid);
+/* The same as the built-in step does it: the friction impulses also added to
+ * the caller's forces R as forces over dt_mid, and the energy dissipated at the
+ * balance's measure, the work j·(V − ½Δt_before R/M) with Δt_before = 2 dt_mid −
+ * dt (docs/model.md §14; dt the step to be taken next), J, whole specimen. -1
+ * (err set) on bad steps or out of memory. */
+int wff_model_clamp_correct_booked(wff_model *m, double *V, double *R, double dt,
+                                   double dt_mid, double *dissipated, wff_error *err);
 /* Mesh transfer (plugin/remesh.c): carry the whole state of m onto new_mesh,
  * a new mesh of the same specimen (every new node inside the old mesh, to
  * 1e-7 of its bounding-box diagonal; nearer than that a node outside snaps

@@ -16,7 +16,11 @@
 //   real D = wovenffContact(md, U, V, R, P, dt, dtmid)  // projectile contact on the predicted
 //                                           // state: V corrected, contact forces added to R,
 //                                           // P = [tip z, velocity]; D energy dissipated (J)
-//   real D = wovenffClampCorrect(md, V, dtmid)          // friction clamp on V; D dissipated (J)
+//   real D = wovenffClampCorrect(md, V, dtmid)          // friction clamp on V; D dissipated (J):
+//                                           // the friction force over the slip left
+//   real D = wovenffClampCorrect(md, V, R, dt, dtmid)   // the same as the built-in step: the
+//                                           // friction forces added to R, D at the balance's
+//                                           // measure (docs/model.md §14)
 // No physics here: each is one call into the C core.
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
@@ -185,6 +189,18 @@ double ffClampCorrect(const long &id, KN<double> *const &V, const double &dtmid)
     return wff_model_clamp_correct(m, v, dtmid);
 }
 
+double ffClampCorrectBooked(const long &id, KN<double> *const &V, KN<double> *const &R,
+                            const double &dt, const double &dtmid)
+{
+    const char *fn = "wovenffClampCorrect";
+    wff_model *m = wff_ff_model(id, fn);
+    double *v = dofs(fn, "V", m, V, id), *r = dofs(fn, "R", m, R, id), dissipated = 0;
+    wff_error err;
+    if (wff_model_clamp_correct_booked(m, v, r, dt, dtmid, &dissipated, &err))
+        wff_ff_model_fail(fn, err.message, id);
+    return dissipated;
+}
+
 } // namespace
 
 void wff_ff_register_loop()
@@ -211,4 +227,7 @@ void wff_ff_register_loop()
                                  KN<double> *, double, double>(ffContact));
     Global.Add("wovenffClampCorrect", "(",
                new OneOperator3_<double, long, KN<double> *, double>(ffClampCorrect));
+    Global.Add("wovenffClampCorrect", "(",
+               new OneOperator5_<double, long, KN<double> *, KN<double> *, double, double>(
+                   ffClampCorrectBooked));
 }

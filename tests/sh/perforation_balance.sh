@@ -5,7 +5,7 @@
 # bench/limit_study.sh). The run must perforate, and at every history row
 #  - kinetic_energy = kinetic_inplane + kinetic_transverse + kinetic_amplitude +
 #    kinetic_projectile, internal_energy = the sum of the energy_<mechanism> columns;
-#  - the balance recomputed from the columns, (kinetic - kinetic_stagger + stagger_shift + internal + dissipated +
+#  - the balance recomputed from the columns, (kinetic - kinetic_stagger + impulse_stagger + stagger_shift + internal + dissipated +
 #    failure + eroded - external work - the first row's total) / the impact energy,
 #    equals the energy_error column (to 1e-8) and stays within 1 %.
 # (The momentum balance through perforation is checked in the core, every step:
@@ -24,7 +24,7 @@ grep -q '"perforated": true' "$out/summary.json" || { echo "not perforated at $v
 awk -F, -v v=$v -v mass="$mass" '
 NR == 1 { for (i = 1; i <= NF; i++) { c[$i] = i; if ($i ~ /^energy_/ && $i != "energy_error") mech[++nm] = i }
           need = "kinetic_energy internal_energy dissipated_energy failure_energy eroded_energy external_work " \
-                 "energy_error kinetic_inplane kinetic_transverse kinetic_amplitude kinetic_projectile kinetic_stagger stagger_shift"
+                 "energy_error kinetic_inplane kinetic_transverse kinetic_amplitude kinetic_projectile kinetic_stagger stagger_shift impulse_stagger"
           n = split(need, w, " ")
           for (j = 1; j <= n; j++) if (!(w[j] in c)) { print "history.csv lacks " w[j]; bad = 1 }
           if (nm == 0) { print "history.csv has no energy_<mechanism> column"; bad = 1 }
@@ -33,7 +33,7 @@ NR == 1 { for (i = 1; i <= NF; i++) { c[$i] = i; if ($i ~ /^energy_/ && $i != "e
 {
     k = $c["kinetic_energy"]; ks = $c["kinetic_inplane"] + $c["kinetic_transverse"] + $c["kinetic_amplitude"] + $c["kinetic_projectile"]
     s = 0; for (j = 1; j <= nm; j++) s += $mech[j]
-    tot = k - $c["kinetic_stagger"] + $c["stagger_shift"] + $c["internal_energy"] + $c["dissipated_energy"] + $c["failure_energy"] + $c["eroded_energy"] - $c["external_work"]
+    tot = k - $c["kinetic_stagger"] + $c["impulse_stagger"] + $c["stagger_shift"] + $c["internal_energy"] + $c["dissipated_energy"] + $c["failure_energy"] + $c["eroded_energy"] - $c["external_work"]
     if (NR == 2) tot0 = tot
     err = (tot - tot0) / e0
     d1 = k - ks; if (d1 < 0) d1 = -d1; if (d1 > 1e-9 * e0) { print "row " NR ": kinetic " k " != its parts " ks; bad = 1 }
