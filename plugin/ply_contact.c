@@ -43,6 +43,7 @@
 #include "wall_clock.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -58,17 +59,25 @@
  * facets and the projectile), until the largest change a sweep makes to a
  * constraint's gap (normal or, with friction, tangential) is below
  * SWEEP_TOLERANCE h. */
+#ifndef MAX_SWEEPS
 #define MAX_SWEEPS 30
+#endif
+#ifndef SWEEP_TOLERANCE
 #define SWEEP_TOLERANCE 1e-6
+#endif
 /* The share of an interpenetration already there that a full step removes. */
+#ifndef RECOVERY
 #define RECOVERY 0.2
+#endif
 /* An interpenetration already there that is above RECOVERY_SPAN h did not come
  * from this step's approach but from a jump of the pair's geometry (a tear, an
  * element eroded beside it, a normal that turned): the pair only stops closing
  * further (an inelastic impulse: it can only take energy out). Pushing such a
  * pair apart at RECOVERY of it per step would fling its nodes at km/s (seen: a
  * torn 4-ply pack, 2 mm at 0.2 per 5e-8 s step, 6 km/s). */
+#ifndef RECOVERY_SPAN
 #define RECOVERY_SPAN 0.05
+#endif
 /* A pair whose nodes are now on each other's far side by more than
  * CROSS_LIMIT of the node's shortest reference edge has crossed (a torn ply's
  * node dragged past its partner): left out. (Measured at the positions now, so
@@ -80,7 +89,9 @@
 /* A node of a column in contact within NOSE_MARGIN h of the projectile's
  * surface (predicted), or one the projectile's contact pushed this step, is
  * held on the nose by the column's solve. */
+#ifndef NOSE_MARGIN
 #define NOSE_MARGIN 1.0
+#endif
 /* Fewest DOFs for which the normals take a team (as the step's passes,
  * step_threads.c: a team's start costs ~10 µs) */
 #define PLY_TEAM_MIN_DOFS 16384
@@ -940,7 +951,11 @@ static int add_column(wff_model *m, const struct solve_step *T, const wff_projec
             double nrm[3];
             const double gap = wff_projectile_gap(nose, P->predicted + 3 * node, nrm);
             const int c = P->on_projectile[node];
+#ifdef NO_NOSE
+            if (0) {
+#else
             if (c >= 0 || gap < NOSE_MARGIN * T->h) {
+#endif
                 S->kind[count] = NOSE;
                 S->slot[count] = node;
                 S->a[count] = node, S->b[count] = -1;
@@ -1063,6 +1078,24 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
         if (worst <= SWEEP_TOLERANCE * h)
             break;
     }
+#ifdef PLY_DEBUG
+    for (int k = 0; k < S->n_columns; k++) {
+        if (S->columns[k] != PLY_DEBUG || m->step % 10 || m->step < 150 || m->step > 320)
+            continue;
+        fprintf(stderr, "step %ld col %d sweeps %d:", m->step, PLY_DEBUG, P->sweeps);
+        for (int c = S->column_start[k]; c < S->column_start[k + 1]; c++) {
+            const double *F = S->friction + 3 * c, *nr = S->normal + 3 * c;
+            const int nd = S->a[c];
+            const double x = m->mesh.xy[2 * nd] + m->u[D * nd], y = m->mesh.xy[2 * nd + 1] + m->u[D * nd + 1];
+            const double r = hypot(x, y), er[2] = {x / r, y / r};
+            const double lam = S->lambda[c] - S->lo[c];
+            const double fm = m->f[D * nd] * er[0] + m->f[D * nd + 1] * er[1]; /* (elastic force, radial, before the contact's f) */
+            fprintf(stderr, " [%s%d lam %.3g (%.3g) nr %.3f Fr %.3g membrane_r*dt %.3g]", S->kind[c] ? "N" : "P",
+                    S->a[c] / nn, lam, S->lo[c], nr[0] * er[0] + nr[1] * er[1], F[0] * er[0] + F[1] * er[1], fm * dt_mid);
+        }
+        fprintf(stderr, "\n");
+    }
+#endif
     /* what is left: the pairs of the columns solved at the velocities now,
      * along their normals; the others as the first look found them */
     double solved = 0, untouched = 0;
