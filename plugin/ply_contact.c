@@ -920,6 +920,78 @@ static double column_friction(wff_model *m, const struct solve_step *T, int star
     return moved;
 }
 
+/* Node n's predicted position after the solve, x + Δt v (from the first
+ * look's, moved by Δt (v − v_first)). */
+static inline void final_position(const wff_model *m, double dt, int n, double x[3])
+{
+    const struct wff_pack *P = m->pack;
+    const double *x0 = P->predicted + 3 * n, *v = m->v + D * n, *v0 = P->solve->v_first + 3 * n;
+    for (int k = 0; k < 3; k++)
+        x[k] = x0[k] + dt * (v[k] - v0[k]);
+}
+
+/* Pair c's distance (m) at the predicted positions after the solve, along its
+ * normal there (its facets' normals recomputed): what the next step's first
+ * look will find, but for the next step's change of velocity. */
+static double final_distance(const wff_model *m, double dt, int c)
+{
+    const struct wff_pack *P = m->pack;
+    const struct wff_ply_solve *S = P->solve;
+    const unsigned char *eroded = m->el.eroded;
+    const int nn = P->nodes, i = S->slot[c] % nn;
+    double N[3] = {0, 0, 0};
+    for (int side = 0; side < 2; side++) {
+        const int q = (side ? S->b[c] : S->a[c]) / nn;
+        for (int a = P->node_facet_start[i]; a < P->node_facet_start[i + 1]; a++) {
+            const int f = P->node_facets[a];
+            if (eroded && eroded[facet_element(P, q, f)])
+                continue;
+            const int *corner = P->facet + 3 * f;
+            double x0[3], x1[3], x2[3];
+            final_position(m, dt, q * nn + corner[0], x0);
+            final_position(m, dt, q * nn + corner[1], x1);
+            final_position(m, dt, q * nn + corner[2], x2);
+            const double e1[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
+            const double e2[3] = {x2[0] - x0[0], x2[1] - x0[1], x2[2] - x0[2]};
+            N[0] += e1[1] * e2[2] - e1[2] * e2[1];
+            N[1] += e1[2] * e2[0] - e1[0] * e2[2];
+            N[2] += e1[0] * e2[1] - e1[1] * e2[0];
+        }
+    }
+    const double len = sqrt(N[0] * N[0] + N[1] * N[1] + N[2] * N[2]);
+    double xa[3], xb[3];
+    final_position(m, dt, S->a[c], xa);
+    final_position(m, dt, S->b[c], xb);
+    if (!(len > 0))
+        return INFINITY;
+    return ((xb[0] - xa[0]) * N[0] + (xb[1] - xa[1]) * N[1] + (xb[2] - xa[2]) * N[2]) / len;
+}
+
+/* Pair c's interpenetration at the positions now (m, > 0: closer than h), its
+ * gap at the first look taken back by the step, linearly along its whole
+ * gradient: −(g − Δt G·v), v the velocities at the first look (a pair's
+ * normal turns with its facets: measured along the first look's normal alone,
+ * a pair whose facets turn under it would read a depth it does not have, and
+ * hold it). */
+static double depth_now(const wff_model *m, const struct solve_step *T, int c)
+{
+    const struct wff_pack *P = m->pack;
+    const struct wff_ply_solve *S = P->solve;
+    const int nn = P->nodes, i = S->slot[c] % nn, start = S->ring_start[i];
+    const int ring = S->ring_start[i + 1] - start;
+    const double *G = gradient_of(P, S->slot[c]);
+    double rate = 0;
+    for (int side = 0; side < 2; side++) {
+        const int base = (side ? S->b[c] : S->a[c]) / nn * nn;
+        const double *Gs = G + 3 * ring * side;
+        for (int k = 0; k < ring; k++) {
+            const double *v = S->v_first + 3 * (base + S->ring_node[start + k]);
+            rate += Gs[3 * k] * v[0] + Gs[3 * k + 1] * v[1] + Gs[3 * k + 2] * v[2];
+        }
+    }
+    return -(S->g[c] - T->dt * rate);
+}
+
 /* The pair's target gap at the step's end (m, <= 0): 0 (contact distance h)
  * unless closer than h now; then RECOVERY of that removed per full step
  * (recovery: this step's share), above RECOVERY_SPAN h only the closing
@@ -991,7 +1063,7 @@ static int add_column(wff_model *m, const struct solve_step *T, const wff_projec
         memcpy(S->normal + 3 * count, L.n, sizeof L.n);
         S->lo[count] = 0;
         S->g[count] = L.g;
-        S->target[count] = pair_target(L.now, T->h, recovery);
+        S->target[count] = pair_target(depth_now(m, T, count), T->h, recovery);
         S->lambda[count] = 0;
         S->friction[3 * count] = S->friction[3 * count + 1] = S->friction[3 * count + 2] = 0;
         S->diag[count] = self_coupling(m, count);
@@ -1096,8 +1168,9 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
         fprintf(stderr, "\n");
     }
 #endif
-    /* what is left: the pairs of the columns solved at the velocities now,
-     * along their normals; the others as the first look found them */
+    /* what is left: the pairs of the columns solved at the predicted
+     * positions after the solve, along their normals there; the others as the
+     * first look found them */
     double solved = 0, untouched = 0;
     for (int k = 0; k < S->n_columns; k++)
         S->in_column[S->columns[k]] = 1;
@@ -1107,15 +1180,16 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
     for (int c = 0; c < count; c++) {
         if (S->kind[c] != PAIR)
             continue;
-        const int A = S->a[c], B = S->b[c];
-        const double *nrm = S->normal + 3 * c, *xa = P->predicted + 3 * A, *xb = P->predicted + 3 * B;
-        const double *va = m->v + D * A, *vb = m->v + D * B, *fa = S->v_first + 3 * A,
-                     *fb = S->v_first + 3 * B;
-        double dist = 0;
-        for (int k = 0; k < 3; k++)
-            dist += (xb[k] - xa[k] + dt * ((vb[k] - fb[k]) - (va[k] - fa[k]))) * nrm[k];
-        solved = fmax(solved, h - dist);
+        solved = fmax(solved, h - final_distance(m, dt, c));
         P->contacts += S->lambda[c] > 0;
+#ifdef PEN_DEBUG
+        if (h - final_distance(m, dt, c) > PEN_DEBUG * h)
+            fprintf(stderr, "step %ld pair %d node %d (%.4g %.4g mm): depth %.3g h, first-look g %.3g h, target %.3g h, "
+                    "lambda %.3g, gap now %.3g h, n (%.3f %.3f %.3f), sweeps %d\n", m->step, S->slot[c] / nn,
+                    S->slot[c] % nn, 1e3 * m->mesh.xy[2 * (S->slot[c] % nn)], 1e3 * m->mesh.xy[2 * (S->slot[c] % nn) + 1],
+                    1 - final_distance(m, dt, c) / h, S->g[c] / h, S->target[c] / h, S->lambda[c],
+                    gap_now(m, &T, c) / h, S->normal[3 * c], S->normal[3 * c + 1], S->normal[3 * c + 2], P->sweeps);
+#endif
     }
     for (int k = 0; k < S->n_columns; k++)
         S->in_column[S->columns[k]] = 0;

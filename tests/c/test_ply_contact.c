@@ -346,19 +346,31 @@ static void eight_plies(check_state *st, int clamped)
     for (int g = 0; g < 4 && rc == 0 && clamped; g++)
         for (int c = WFF_UX; c <= WFF_UZ && rc == 0; c++)
             rc = wff_model_fix_group(&m, edges[g], c, &err) < 0;
+    /* (a nose the mesh resolves: radius 8 mm on elements of ~6 mm; with 4 mm,
+     * within one ring of elements, the nose's normal at the strike face's node
+     * 1.2 mm off the axis is ~20 deg off its facets' and squeezes the strike face
+     * out from under the stack: docs/limits.md "Packs") */
     if (rc == 0)
-        rc = wff_model_set_projectile(&m, 0.004, 0.004, 150, 0.2, &err);
+        rc = wff_model_set_projectile(&m, 0.008, 0.004, 150, 0.2, &err);
     CHECK(st, rc == 0, "8 plies: %s", err.message);
     if (rc) {
         wff_model_free(&m);
         return;
     }
     const double impact = 0.5 * 0.004 * 150 * 150;
-    double worst = 0, worst_pen = 0;
+    double worst = 0, worst_pen = 0, lowest = 0;
     for (int k = 1; k <= 10; k++) {
-        if (wff_model_advance(&m, k * 0.01e-3, 10000000, &err)) {
-            CHECK(st, 0, "advance: %s", err.message);
-            break;
+        /* step by step: the contacts' dissipation (the projectile's and the
+         * plies', one sum) is never negative */
+        while (m.time < k * 0.01e-3) {
+            if (wff_model_advance(&m, k * 0.01e-3, 1, &err)) {
+                CHECK(st, 0, "advance: %s", err.message);
+                k = 10;
+                break;
+            }
+            wff_energies now;
+            wff_model_energies(&m, &now);
+            lowest = fmin(lowest, now.dissipated_friction + now.dissipated_ply_contact);
         }
         track_worst(&m, impact, &worst, &worst_pen);
     }
@@ -371,16 +383,21 @@ static void eight_plies(check_state *st, int clamped)
     wff_model_pack_value(&m, "ply_contacts", &contacts, &err);
     double impulse = m.projectile.impulse_total;
     printf("  8 plies, %s edges, %ld steps: energy error %.3g %% of the impact energy, ply "
-           "contact dissipated %.4g J, back face %.4f mm, %g contacts, penetration %.3g m, "
-           "slip %.3g mm (element %.3g mm); projectile impulse %.9g N s, fabric momentum "
-           "%.9g N s\n", clamped ? "clamped" : "free", m.step, 100 * worst,
-           e.dissipated_ply_contact, 1e3 * back, contacts, worst_pen, 1e3 * slip, 1e3 * m.el.size[0],
-           impulse, p[2]);
+           "contact dissipated %.4g J (the contacts' lowest %.3g J), back face %.4f mm, %g "
+           "contacts, penetration %.3g m, slip %.3g mm (element %.3g mm); projectile impulse "
+           "%.9g N s, fabric momentum %.9g N s\n", clamped ? "clamped" : "free", m.step, 100 * worst,
+           e.dissipated_ply_contact, lowest, 1e3 * back, contacts, worst_pen, 1e3 * slip,
+           1e3 * m.el.size[0], impulse, p[2]);
     CHECK(st, worst <= 0.01, "energy balance %.3g %% of the impact energy", 100 * worst);
     CHECK(st, e.dissipated_ply_contact > 0 && back > 0 && contacts > 0,
           "the pack works: dissipated %g, back face %g, contacts %g", e.dissipated_ply_contact,
           back, contacts);
-    CHECK(st, worst_pen <= 0.2 * t, "penetration %g m (bound 20 %% of t)", worst_pen);
+    /* (the column solve: the stack's pairs in one solve; the sweeps over pairs
+     * before it left 2.1e-5 m = 10 % of t clamped, where a ply bends over the
+     * held edge) */
+    CHECK(st, worst_pen <= 0.01 * t, "penetration %g m (bound 1 %% of t)", worst_pen);
+    CHECK(st, lowest >= -1e-9 * impact, "the contacts' dissipation fell to %g J: energy put in",
+          lowest);
     CHECK(st, slip <= 0.1 * m.el.size[0], "ply slip %g m against the element size %g m: the "
           "node-to-node pairing needs it small", slip, m.el.size[0]);
     if (!clamped)
@@ -645,6 +662,67 @@ static void through_hole(check_state *st)
     wff_model_free(&m);
 }
 
+/* 8. A chain: eight free plies stacked touching (gap h), ply 0 thrown at v0 at
+ * the seven at rest. The collision is one step's: every pair of the stack's
+ * column takes its impulse at once, which a Gauss-Seidel sweep over the pairs
+ * passes one pair a sweep (a chain of 8 is a 1-D Laplacian to it: 20 sweeps
+ * left the back pairs closing). After it: every ply at v0 / 8 (inelastic,
+ * momentum kept) to round-off, the energy lost = 7/8 of the thrown ply's =
+ * dissipated, no pair closer than h beyond round-off at any frame. */
+static void chain(check_state *st)
+{
+    wff_model m;
+    wff_error err;
+    const int plies = 8;
+    const double t = 0.5e-3, v0 = 10;
+    if (square(st, &m, 6, 0.02, KEVLAR))
+        return;
+    if (wff_model_set_plies(&m, plies, t, &err) || wff_model_set_option(&m, "ply_thickness", t, &err) ||
+        wff_model_set_option(&m, "ply_mu", 0.3, &err)) {
+        CHECK(st, 0, "set-up: %s", err.message);
+        wff_model_free(&m);
+        return;
+    }
+    const int per = m.n_nodes / plies;
+    for (int n = 0; n < per; n++) /* ply 0 at v0 towards the stack */
+        m.v[D * n + WFF_UZ] = v0;
+    double p0[3];
+    momentum(&m, p0);
+    wff_energies e0, e;
+    wff_model_energies(&m, &e0);
+    double worst_pen = 0;
+    for (int k = 1; k <= 10; k++) {
+        if (wff_model_advance(&m, k * 1e-6, 1000000, &err)) {
+            CHECK(st, 0, "chain: advance: %s", err.message);
+            wff_model_free(&m);
+            return;
+        }
+        double pen;
+        wff_model_pack_value(&m, "ply_penetration", &pen, &err);
+        worst_pen = fmax(worst_pen, pen);
+    }
+    double p1[3], vmin = INFINITY, vmax = -INFINITY;
+    momentum(&m, p1);
+    for (int n = 0; n < m.n_nodes; n++) {
+        vmin = fmin(vmin, m.v[D * n + WFF_UZ]);
+        vmax = fmax(vmax, m.v[D * n + WFF_UZ]);
+    }
+    wff_model_energies(&m, &e);
+    const double kin = e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude;
+    const double lost = e0.kinetic_transverse - kin, share = (1 - 1.0 / plies) * e0.kinetic_transverse;
+    printf("  a chain of %d plies, ply 0 thrown at %g m/s: v_z %.12f .. %.12f m/s (v0 / %d = %g), "
+           "dissipated %.9g J (lost %.9g, 7/8 of the thrown %.9g), worst penetration %.3g m (h %g m)\n",
+           plies, v0, vmin, vmax, plies, v0 / plies, e.dissipated_ply_contact, lost, share, worst_pen, t);
+    CHECK(st, fabs(p1[2] - p0[2]) <= 1e-12 * fabs(p0[2]), "chain: momentum %.15g, was %.15g", p1[2], p0[2]);
+    CHECK(st, fabs(vmin - v0 / plies) <= 1e-9 * v0 && fabs(vmax - v0 / plies) <= 1e-9 * v0,
+          "chain, inelastic: v_z %.12g .. %.12g, not v0 / %d", vmin, vmax, plies);
+    CHECK(st, fabs(e.dissipated_ply_contact - lost) <= 1e-9 * lost && fabs(lost - share) <= 1e-9 * share,
+          "chain: dissipated %.12g J, lost %.12g J, 7/8 of the thrown ply's %.12g J",
+          e.dissipated_ply_contact, lost, share);
+    CHECK(st, worst_pen <= 1e-9 * t, "chain: penetration %g m (h %g m)", worst_pen, t);
+    wff_model_free(&m);
+}
+
 int main(void)
 {
     check_state st = {0, 0};
@@ -659,6 +737,7 @@ int main(void)
     deep_pair(&st);
     perforated_pack(&st);
     through_hole(&st);
+    chain(&st);
     test_tmp_remove(tmpdir);
     return check_summary(&st, "test_ply_contact");
 }
