@@ -3,47 +3,68 @@
  * the mid-planes of plies p and p + 1 keep h = min(t, gap) apart. The plies
  * are copies of one mesh, coincident in plane at the start, so the contact is
  * node to node: node i of ply p against node i of ply p + 1 (a symmetric rule,
- * no facet search), along n, the mean of the two plies' nodal normals (area-
- * weighted facet normals at the predicted positions, continuous as the pack
- * deflects). Each step, after the projectile's correction, the pairs whose
- * predicted distance x_B − x_A (x = X + u + Δt v) along n is below h get an
- * inelastic normal impulse j_n ∇g, j_n = δ / (Δt Σ|∇_k g|²/m_k), along the
- * gradient of the pair's constraint g = (x_B − x_A)·N/|N| − h: +n on the upper
- * node, −n on the lower, and s·∂N/∂x_k / |N| on the nodes of their facets (s the
- * pair's in-plane offset; N turns with those nodes; the gradient sums to 0:
- * momentum conserved exactly; on A and B alone, along n, the impulse worked
- * against the normal's turn and put energy in: docs/model.md §23), then Coulomb friction μ against the tangential relative velocity,
- * |j_t| <= μ j_n (stick if the cone allows). A pair already closer than h now
- * has only RECOVERY of that removed per step (pushing it all out at once would
- * put energy in), and one deeper than RECOVERY_SPAN h is only stopped from
- * closing. Through a hole: a node whose facets have all eroded has no pair;
- * node i of the ply below it pairs with node i of the first ply above it that
- * has a facet left (plies p − 1 and p + 1 through ply p's hole, the same
- * contact distance h: the eroded ply is not there). Left out: a pair with a
- * fragment (a dead node with no live ply above it; the normals are of the
- * facets left), one slid apart in plane by more
- * than SLIP_LIMIT of the node's shortest edge, one that has crossed (a torn
- * ply's nodes dragged away from their partners). The pairs corrected are
- * swept again (symmetric Gauss-Seidel) until the largest correction a sweep
- * makes is below SWEEP_TOLERANCE h (a pack pushed as a chain). A component
- * held by a boundary condition takes no impulse: its support's reaction does;
- * a node the projectile pushed this step moves with it along z
- * (the projectile's mass added, its velocity and impulse updated). The impulses
- * enter f as forces j / Δt_mid; their work at the integer-step velocities,
- * negated, is the ply contact dissipation (a term of the energy balance). No
- * effect on the stable step. Limits: the pairs are fixed, so the relative
- * in-plane slip of neighbouring plies must stay small against the element
- * size (the inter-ply friction keeps it so near the impact; a ply that slides
- * by more meets its neighbour's node i still, not the node now below it);
- * plies pair with their neighbours only, or with the next live one through a
- * hole (enough while plies cannot pass each other, which the contact keeps).
- * The normals pass runs one ply a thread; the sweeps are serial. */
+ * no facet search). A pair's constraint is
+ *     g = (x_B − x_A)·N/|N| − h >= 0,   N = N_A + N_B
+ * (the raw sums of the facets' normals at node i of the two plies, at the
+ * predicted positions x = X + u + Δt v); its gradient G is −n on A, +n on B and
+ * s·∂N/∂x_k / |N| on the nodes of their facets (s the pair's in-plane offset:
+ * N turns with those nodes), and sums to 0 (momentum kept exactly). Every
+ * impulse is along a constraint's gradient (one on A and B alone, along n,
+ * worked against the normal's turn and put energy in: docs/model.md §23).
+ *
+ * The solve (each step, after the projectile's contact). The columns: every
+ * specimen node i at which a pair is closer than h at the first look; a
+ * column's constraints are all its pairs (ply by ply, through holes) and the
+ * nose contacts of its nodes (a node the projectile's contact pushed this
+ * step, or within NOSE_MARGIN h of the nose: the strike face held between the
+ * nose and the stack; gradient: the nose's outward normal on the node, −n_z on
+ * the projectile, which moves along z), each linearised at the first look:
+ *     g(v) = g_first + Δt G·(v − v_first).
+ * The impulses λ >= lo (0; a nose contact may take back the projectile
+ * contact's normal impulse, not more) solve the linear complementarity problem
+ *     W λ − y >= 0,  λ >= lo,  (λ − lo)·(W λ − y) = 0,   W = G M⁻¹ Gᵀ,
+ *     y = (target − g(v))/Δt,
+ * a column at a time (its W banded: half-bandwidth 2 in its order; solved by
+ * pivoting on the constraints at their bound, an LDLᵀ of the band per pivot),
+ * the columns swept in turn (block Gauss-Seidel: they are coupled only through
+ * the facets' terms and the projectile) until a sweep moves no gap by more
+ * than SWEEP_TOLERANCE h. The target is 0 (the distance h), or for a pair
+ * already closer than h now (its depth d = −(g_first − Δt G·v_first): along the
+ * whole gradient, not n alone, so that a normal that turns under a pair is not
+ * read as a depth) −(1 − r) d, r = RECOVERY per full step (dtfactor × the
+ * stable step; a shorter step its share), and −d above RECOVERY_SPAN h (a
+ * pair that got there by a jump of its geometry, not this step's approach, is
+ * only stopped from closing). With the column's pairs in one solve no depth is
+ * left to accumulate (a sweep over pairs passes an impulse one pair a sweep:
+ * a chain of plies is a 1-D Laplacian to it, and 20 sweeps left the pairs under
+ * the nose closing, pushed out afterwards: energy in). Coulomb friction on
+ * each constraint against its tangential relative velocity (a pair's B − A,
+ * μ = ply_mu; a nose's node less the projectile, μ the projectile's, with the
+ * projectile contact's friction), its accumulated impulse F held in the cone
+ * |F| <= μ λ (stick if the cone allows), after each column's normal solve.
+ *
+ * Through a hole: a node whose facets have all eroded has no pair; node i of
+ * the ply below it pairs with node i of the first ply above it that has a
+ * facet left (plies p − 1 and p + 1 through ply p's hole, the same contact
+ * distance h: the eroded ply is not there). Left out: a pair with a fragment (a
+ * dead node with no live ply above it; the normals are of the facets left),
+ * one slid apart in plane by more than SLIP_LIMIT of the node's shortest edge,
+ * one that has crossed (a torn ply's nodes dragged away from their partners). A
+ * component held by a boundary condition takes no impulse: its support's
+ * reaction does. The impulses enter f as forces j / Δt_mid; their work at the
+ * trapezoidal rule's measure (the book op), negated, is the ply contact
+ * dissipation (a term of the energy balance). No effect on the stable step.
+ * Limits: the pairs are fixed, so the relative in-plane slip of neighbouring
+ * plies must stay small against the element size (a ply that slides by more
+ * meets its neighbour's node i still, not the node now below it); plies pair
+ * with their neighbours only, or with the next live one through a hole
+ * (enough while plies cannot pass each other, which the contact keeps). The
+ * normals pass runs one ply a thread; the solve is serial. */
 #include "ply_contact.h"
 #include "contact.h"
 #include "wall_clock.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -59,25 +80,17 @@
  * facets and the projectile), until the largest change a sweep makes to a
  * constraint's gap (normal or, with friction, tangential) is below
  * SWEEP_TOLERANCE h. */
-#ifndef MAX_SWEEPS
 #define MAX_SWEEPS 30
-#endif
-#ifndef SWEEP_TOLERANCE
 #define SWEEP_TOLERANCE 1e-6
-#endif
 /* The share of an interpenetration already there that a full step removes. */
-#ifndef RECOVERY
 #define RECOVERY 0.2
-#endif
 /* An interpenetration already there that is above RECOVERY_SPAN h did not come
  * from this step's approach but from a jump of the pair's geometry (a tear, an
  * element eroded beside it, a normal that turned): the pair only stops closing
  * further (an inelastic impulse: it can only take energy out). Pushing such a
  * pair apart at RECOVERY of it per step would fling its nodes at km/s (seen: a
  * torn 4-ply pack, 2 mm at 0.2 per 5e-8 s step, 6 km/s). */
-#ifndef RECOVERY_SPAN
 #define RECOVERY_SPAN 0.05
-#endif
 /* A pair whose nodes are now on each other's far side by more than
  * CROSS_LIMIT of the node's shortest reference edge has crossed (a torn ply's
  * node dragged past its partner): left out. (Measured at the positions now, so
@@ -89,9 +102,7 @@
 /* A node of a column in contact within NOSE_MARGIN h of the projectile's
  * surface (predicted), or one the projectile's contact pushed this step, is
  * held on the nose by the column's solve. */
-#ifndef NOSE_MARGIN
 #define NOSE_MARGIN 1.0
-#endif
 /* Fewest DOFs for which the normals take a team (as the step's passes,
  * step_threads.c: a team's start costs ~10 µs) */
 #define PLY_TEAM_MIN_DOFS 16384
@@ -1023,11 +1034,7 @@ static int add_column(wff_model *m, const struct solve_step *T, const wff_projec
             double nrm[3];
             const double gap = wff_projectile_gap(nose, P->predicted + 3 * node, nrm);
             const int c = P->on_projectile[node];
-#ifdef NO_NOSE
-            if (0) {
-#else
             if (c >= 0 || gap < NOSE_MARGIN * T->h) {
-#endif
                 S->kind[count] = NOSE;
                 S->slot[count] = node;
                 S->a[count] = node, S->b[count] = -1;
@@ -1150,24 +1157,6 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
         if (worst <= SWEEP_TOLERANCE * h)
             break;
     }
-#ifdef PLY_DEBUG
-    for (int k = 0; k < S->n_columns; k++) {
-        if (S->columns[k] != PLY_DEBUG || m->step % 10 || m->step < 150 || m->step > 320)
-            continue;
-        fprintf(stderr, "step %ld col %d sweeps %d:", m->step, PLY_DEBUG, P->sweeps);
-        for (int c = S->column_start[k]; c < S->column_start[k + 1]; c++) {
-            const double *F = S->friction + 3 * c, *nr = S->normal + 3 * c;
-            const int nd = S->a[c];
-            const double x = m->mesh.xy[2 * nd] + m->u[D * nd], y = m->mesh.xy[2 * nd + 1] + m->u[D * nd + 1];
-            const double r = hypot(x, y), er[2] = {x / r, y / r};
-            const double lam = S->lambda[c] - S->lo[c];
-            const double fm = m->f[D * nd] * er[0] + m->f[D * nd + 1] * er[1]; /* (elastic force, radial, before the contact's f) */
-            fprintf(stderr, " [%s%d lam %.3g (%.3g) nr %.3f Fr %.3g membrane_r*dt %.3g]", S->kind[c] ? "N" : "P",
-                    S->a[c] / nn, lam, S->lo[c], nr[0] * er[0] + nr[1] * er[1], F[0] * er[0] + F[1] * er[1], fm * dt_mid);
-        }
-        fprintf(stderr, "\n");
-    }
-#endif
     /* what is left: the pairs of the columns solved at the predicted
      * positions after the solve, along their normals there; the others as the
      * first look found them */
@@ -1182,14 +1171,6 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
             continue;
         solved = fmax(solved, h - final_distance(m, dt, c));
         P->contacts += S->lambda[c] > 0;
-#ifdef PEN_DEBUG
-        if (h - final_distance(m, dt, c) > PEN_DEBUG * h)
-            fprintf(stderr, "step %ld pair %d node %d (%.4g %.4g mm): depth %.3g h, first-look g %.3g h, target %.3g h, "
-                    "lambda %.3g, gap now %.3g h, n (%.3f %.3f %.3f), sweeps %d\n", m->step, S->slot[c] / nn,
-                    S->slot[c] % nn, 1e3 * m->mesh.xy[2 * (S->slot[c] % nn)], 1e3 * m->mesh.xy[2 * (S->slot[c] % nn) + 1],
-                    1 - final_distance(m, dt, c) / h, S->g[c] / h, S->target[c] / h, S->lambda[c],
-                    gap_now(m, &T, c) / h, S->normal[3 * c], S->normal[3 * c + 1], S->normal[3 * c + 2], P->sweeps);
-#endif
     }
     for (int k = 0; k < S->n_columns; k++)
         S->in_column[S->columns[k]] = 0;

@@ -11,8 +11,9 @@
 # dtfactor_used the model's; cut short (-tend 0.3 ms): undecided, perforated
 # null, the projectile's speed and position, never "not perforated"; a slower shot
 # (14 m/s): stopped, the run ended there. The 8-ply pack at 60 m/s of issue 27
-# (every ply torn, the projectile moving on at ~29 m/s: the old scene said "not
-# perforated, residual 0" at 3 ms): perforated, every ply holed, no back-face
+# (every ply torn, the projectile moving on, at ~8 m/s since the column solve of the
+# ply contact, 24-29 m/s before it: the old scene said "not perforated, residual 0"
+# at 3 ms): perforated, every ply holed, no back-face
 # deformation (null, a reason), every ply_apex within what the clamp allows (the
 # held part's yarns at their rupture strain: R sqrt(lambda^2 - 1), lambda =
 # (1 + rupture) x the crimp's L0/p0); a 2-ply pack stopped: its back-face
@@ -118,7 +119,11 @@ else
     [ "$(text "$dir" verdict)" = perforated ] && [ "$(num "$dir" perforated)" = true ] \
         || { echo "pack8: verdict '$(text "$dir" verdict)', perforated '$(num "$dir" perforated)'"; fail=1; }
     grep -q "not perforated" "$dir.log" && { echo "pack8: 'not perforated' printed"; fail=1; }
-    check pack8 "r > 20 && r < 60" "residual velocity" r="$(num "$dir" residual_velocity)"
+    # (the residual of the model, not a bound of the verdict's: 24.0 m/s, ply 0 torn first
+    # at a 23.6 mm apex, while the ply contact glued a node on the nose to the projectile
+    # along z and put energy in; 8.1 m/s since the nose's contacts joined the plies'
+    # column solve: the plies tear together at 28.8-29.0 mm, docs/limits.md "Packs")
+    check pack8 "r > 4 && r < 16" "residual velocity" r="$(num "$dir" residual_velocity)"
     [ "$(list "$dir" ply_holed | tr -d ' ')" = "1,1,1,1,1,1,1,1" ] || { echo "pack8: ply_holed '$(list "$dir" ply_holed)'"; fail=1; }
     [ "$(num "$dir" back_face_deformation)" = null ] && [ -n "$(text "$dir" back_face_deformation_note)" ] \
         || { echo "pack8: back_face_deformation '$(num "$dir" back_face_deformation)' without a stopped shot"; fail=1; }
