@@ -853,14 +853,125 @@ static double solve_column(wff_model *m, const struct solve_step *T, int start, 
     return moved;
 }
 
-/* Coulomb friction of a column's constraints against their tangential
- * relative velocity, |F| <= μ λ: a pair's (B − A, μ ply_mu, F on B and −F on
- * A), a nose's (the node's less the projectile's, μ the projectile's, its
- * normal impulse and F the projectile contact's and the solve's together, F on
- * the node and −F_z on the projectile); each one's accumulated friction
- * impulse F moved to the one that stops it, held within the cone (stick if
- * the cone allows). The largest tangential move a change makes (m) returned. */
-static double column_friction(wff_model *m, const struct solve_step *T, int start, int K)
+/* The pairs' Coulomb friction of a column, solved together: each pair's
+ * accumulated friction impulse F_k (on B, −F_k on A, in its tangent plane)
+ * moved by x_k so that its tangential relative velocity vt_k (B − A) stops,
+ *     (w_A + w_B) x_k − w_B x_{k+1} − w_A x_{k−1} = −vt_k
+ * (per component, w the inverse masses of the free components; x_{k±1} where
+ * the pair above or below shares the node: a chain of plies sticking is a
+ * 1-D Laplacian, which one friction update per pair and sweep passes one pair
+ * a sweep), the pairs whose F then leaves the cone |F| <= μ λ slipping at its
+ * edge along it and the others solved again. The largest tangential move a
+ * change makes (m) returned. */
+static double pair_friction(wff_model *m, const struct solve_step *T, int start, int K)
+{
+    struct wff_pack *P = m->pack;
+    struct wff_ply_solve *S = P->solve;
+    if (!(P->mu > 0))
+        return 0;
+    int pair[COLUMN_MAX], n = 0;
+    for (int c = start; c < start + K; c++)
+        if (S->kind[c] == PAIR)
+            pair[n++] = c;
+    if (n == 0)
+        return 0;
+    double vt[COLUMN_MAX][3], F[COLUMN_MAX][3], wa[COLUMN_MAX][3], wb[COLUMN_MAX][3];
+    double cone[COLUMN_MAX];
+    unsigned char link[COLUMN_MAX], stick[COLUMN_MAX];
+    for (int k = 0; k < n; k++) {
+        const int c = pair[k], A = S->a[c], B = S->b[c];
+        const double *nrm = S->normal + 3 * c;
+        double rel[3], along = 0;
+        for (int e = 0; e < 3; e++) {
+            rel[e] = m->v[D * B + e] - m->v[D * A + e];
+            along += rel[e] * nrm[e];
+            wa[k][e] = inverse_mass_of(m, A, e), wb[k][e] = inverse_mass_of(m, B, e);
+            F[k][e] = S->friction[3 * c + e];
+        }
+        for (int e = 0; e < 3; e++)
+            vt[k][e] = rel[e] - along * nrm[e];
+        cone[k] = P->mu * fmax(S->lambda[c], 0);
+        link[k] = k > 0 && S->b[pair[k - 1]] == A; /* (its A is the B of the pair below) */
+        stick[k] = cone[k] > 0;
+    }
+    double next[COLUMN_MAX][3];
+    for (int round = 0; round <= n; round++) {
+        /* each component: a tridiagonal system, the slipping pairs' rows x = their
+         * cone's F less F (Thomas: the sticking rows dominate their diagonal) */
+        for (int e = 0; e < 3; e++) {
+            double sub[COLUMN_MAX], dia[COLUMN_MAX], sup[COLUMN_MAX], rhs[COLUMN_MAX];
+            for (int k = 0; k < n; k++) {
+                const double w = wa[k][e] + wb[k][e];
+                if (!stick[k] || !(w > 0)) {
+                    sub[k] = sup[k] = 0, dia[k] = 1;
+                    rhs[k] = stick[k] ? 0 : next[k][e] - F[k][e];
+                    continue;
+                }
+                dia[k] = w;
+                sub[k] = link[k] ? -wa[k][e] : 0;
+                sup[k] = k + 1 < n && link[k + 1] ? -wb[k][e] : 0;
+                rhs[k] = -vt[k][e];
+            }
+            for (int k = 1; k < n; k++) {
+                const double f = sub[k] / dia[k - 1];
+                dia[k] -= f * sup[k - 1];
+                rhs[k] -= f * rhs[k - 1];
+            }
+            for (int k = n - 1; k >= 0; k--) {
+                rhs[k] = (rhs[k] - (k + 1 < n ? sup[k] * rhs[k + 1] : 0)) / dia[k];
+                if (stick[k])
+                    next[k][e] = F[k][e] + rhs[k];
+            }
+        }
+        int changed = 0;
+        for (int k = 0; k < n; k++) {
+            if (!stick[k])
+                continue;
+            const double *nrm = S->normal + 3 * pair[k];
+            const double along = next[k][0] * nrm[0] + next[k][1] * nrm[1] + next[k][2] * nrm[2];
+            for (int e = 0; e < 3; e++)
+                next[k][e] -= along * nrm[e]; /* (in its tangent plane) */
+            const double size = sqrt(next[k][0] * next[k][0] + next[k][1] * next[k][1] +
+                                     next[k][2] * next[k][2]);
+            if (size > cone[k]) { /* slips: at the cone's edge, along it */
+                for (int e = 0; e < 3; e++)
+                    next[k][e] *= cone[k] / size;
+                stick[k] = 0;
+                changed = 1;
+            }
+        }
+        for (int k = 0; k < n; k++)
+            if (cone[k] <= 0)
+                next[k][0] = next[k][1] = next[k][2] = 0; /* (no normal impulse: no friction) */
+        if (!changed)
+            break;
+    }
+    double moved = 0;
+    for (int k = 0; k < n; k++) {
+        const int c = pair[k];
+        const double jb[3] = {next[k][0] - F[k][0], next[k][1] - F[k][1], next[k][2] - F[k][2]};
+        const double change = sqrt(jb[0] * jb[0] + jb[1] * jb[1] + jb[2] * jb[2]);
+        if (!(change > 0))
+            continue;
+        const double ja[3] = {-jb[0], -jb[1], -jb[2]};
+        give(m, S->b[c], jb, T->dt_mid);
+        give(m, S->a[c], ja, T->dt_mid);
+        for (int e = 0; e < 3; e++)
+            S->friction[3 * c + e] = next[k][e];
+        const double u[3] = {jb[0] / change, jb[1] / change, jb[2] / change};
+        moved = fmax(moved, change * (inverse_mass(m, S->a[c], u) + inverse_mass(m, S->b[c], u)) * T->dt);
+    }
+    return moved;
+}
+
+/* The nose contacts' Coulomb friction of a column against the node's
+ * tangential velocity less the projectile's, |F| <= μ λ (μ the projectile's,
+ * its normal impulse and F the projectile contact's and the solve's
+ * together; F on the node, −F_z on the projectile): each one's accumulated
+ * friction impulse F moved to the one that stops it, held within the cone
+ * (stick if the cone allows). The largest tangential move a change makes (m)
+ * returned. */
+static double nose_friction(wff_model *m, const struct solve_step *T, int start, int K)
 {
     struct wff_pack *P = m->pack;
     struct wff_ply_solve *S = P->solve;
@@ -869,8 +980,8 @@ static double column_friction(wff_model *m, const struct solve_step *T, int star
     for (int c = start; c < start + K; c++) {
         const int nose = S->kind[c] == NOSE;
         const double mu = nose ? pr->mu : P->mu;
-        if (!(mu > 0))
-            continue;
+        if (!nose || !(mu > 0))
+            continue; /* (a column's pairs: pair_friction, together) */
         const int A = S->a[c], B = S->b[c]; /* (a nose: B -1) */
         const double *nrm = S->normal + 3 * c;
         double *F = S->friction + 3 * c, rel[3], along = 0, vt[3], speed = 0, trial[3];
@@ -1151,7 +1262,8 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
             const int col = sweep % 2 ? S->n_columns - 1 - k : k;
             const int start = S->column_start[col], K = S->column_start[col + 1] - start;
             worst = fmax(worst, solve_column(m, &T, start, K));
-            worst = fmax(worst, column_friction(m, &T, start, K));
+            worst = fmax(worst, pair_friction(m, &T, start, K));
+            worst = fmax(worst, nose_friction(m, &T, start, K));
         }
         P->sweeps = sweep + 1;
         if (worst <= SWEEP_TOLERANCE * h)
