@@ -79,8 +79,9 @@ JobCompType=jobcomp/none
 AccountingStorageType=accounting_storage/none
 ReturnToService=2
 SchedulerParameters=sched_interval=1
-MinJobAge=600
+MinJobAge=4
 KillWait=2
+# (sbatch --wait checks a job at 2 s, then x4 up to 32 s while below MinJobAge/2: 4 keeps it at 2 s)
 NodeName=$host CPUs=$cpus State=UNKNOWN
 PartitionName=box Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 EOF
