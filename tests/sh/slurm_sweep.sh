@@ -141,7 +141,7 @@ rc=$?
 echo "job array: task $task cancelled; $(grep '^failed run' "$tmp/array.log")"
 [ -n "$task" ] || { echo "the job array's task 1 never ran"; tail -5 "$tmp/array.log"; fail=1; }
 log="$tmp/array/runs/01_velocity_low/run.log"
-[ $rc -eq 0 ] && grep -q "^failed run velocity_low: killed: job array task $task ended without an exit status.*(log: $log)" "$tmp/array.log" \
+[ $rc -eq 0 ] && grep -q "^failed run velocity_low: killed: job array task $task ended without an exit status.* (Slurm: \*\*\* JOB [0-9]* ON .* CANCELLED AT .*) (log: $log)" "$tmp/array.log" \
     || { echo "the cancelled task is not reported killed with its log (exit $rc)"; tail -12 "$tmp/array.log"; fail=1; }
 grep -q '^error: killed: job array task' "$log" && grep -q "CANCELLED" "$log" \
     || { echo "$log: no 'error: killed' line or no Slurm words"; tail -5 "$log"; fail=1; }
