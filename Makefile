@@ -38,6 +38,10 @@ DEPFLAGS := -MMD -MP
 
 DEB_PACKAGES := freefem++ libfreefem++-dev gmsh libgmsh-dev libgsl-dev gnuplot-nox ghostscript \
                 gcc g++ make
+# What only tests need: a one-box Slurm for tests/sh/slurm_sweep.sh (the sweeps' -runner
+# srun|slurm). make deps installs them too, but one that cannot be installed is a warning,
+# never a failed build or `make run` (the test then skips its Slurm part, saying why).
+DEB_TEST_PACKAGES := slurm-wlm munge
 
 CORE_SRC := $(sort $(wildcard plugin/*.c plugin/cells/*.c))
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
@@ -127,7 +131,16 @@ deps:
 	  echo "installing:$$missing"; \
 	  SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO=sudo; \
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
-	else echo "all Debian packages present"; fi
+	else echo "all Debian packages present"; fi; \
+	missing=""; for p in $(DEB_TEST_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing (for the tests):$$missing"; \
+	  SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO=sudo; \
+	  { $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; } \
+	    || echo "warning: could not install$$missing: tests/sh/slurm_sweep.sh will skip its Slurm part"; \
+	fi
 
 # A scene with a run lock refuses a folder holding an earlier run's results;
 # `make run` into the scene's default folder starts afresh (-overwrite 1)

@@ -6,6 +6,7 @@
 # Usage (repository root, after make):
 #   sh bench/pack_study.sh [-plies "1 2 4 8"] [-mesh coarse] [-jobs 2] [-out results/pack_study]
 #                          [-args "more ballistic_limit options, e.g. -runs 10 -layup 0"] [-reuse 1]
+#                          [-runner local|srun|slurm] [-ranks R]
 # Each N: tools/ff.sh freefem_scripts/ballistic_limit.edp -mesh M -plies N -jobs J
 #         -overwrite 1 -out OUT/pN $args (the sweep's defaults otherwise: -vmin 10
 #         -vmax 100 -runs 16 -tend 10e-3). V50: the fit's (the bracket's when the fit
@@ -16,15 +17,19 @@
 # fit/bracket V50), OUT/study.png (two panels: V50 and BFD against areal density;
 # V50/U*^(1/3) against A_D A_p/m_p), each sweep's files in OUT/pN.
 # -reuse 1: a ply count whose OUT/pN/limit.json exists is not run again (its table row
-# is read from it: a study in parts).
+# is read from it: a study in parts); a sweep cut short is taken up again (ballistic_limit
+# -resume 1: its finished runs kept) instead of cleared.
+# -runner, -ranks: each sweep's (docs/ballistic_limit.md "Runners"): inside an allocation,
+#   sbatch -n 16 --wrap "sh bench/pack_study.sh -runner srun -jobs 16"
 # Cost (2 cores, -jobs 2): ~2 min for 1 ply, about N times that for N plies.
 set -u
-plies="1 2 4 8" mesh=coarse jobs=2 out=results/pack_study args="" reuse=0
+plies="1 2 4 8" mesh=coarse jobs=2 out=results/pack_study args="" reuse=0 runner=local ranks=1
 while [ $# -gt 0 ]; do
     [ $# -ge 2 ] || { echo "error: pack_study: option $1 needs a value"; exit 2; }
     case "$1" in
         -plies) plies=$2 ;; -mesh) mesh=$2 ;; -jobs) jobs=$2 ;; -out) out=$2 ;; -args) args=$2 ;; -reuse) reuse=$2 ;;
-        *) echo "error: pack_study: unknown option '$1' (-plies -mesh -jobs -out -args -reuse)"; exit 2 ;;
+        -runner) runner=$2 ;; -ranks) ranks=$2 ;;
+        *) echo "error: pack_study: unknown option '$1' (-plies -mesh -jobs -out -args -reuse -runner -ranks)"; exit 2 ;;
     esac
     shift 2
 done
@@ -47,9 +52,11 @@ for n in $plies; do
     if [ "$reuse" = 1 ] && [ -s "$d/limit.json" ]; then   # (-reuse 1: a sweep already done is read again)
         rc=0 t1=$t0
     else
+        fresh="-overwrite 1"   # (-reuse 1: a sweep cut short resumed, its finished runs kept)
+        [ "$reuse" = 1 ] && [ -s "$d/runs.txt" ] && fresh="-resume 1"
         # shellcheck disable=SC2086
-        sh tools/ff.sh freefem_scripts/ballistic_limit.edp -mesh "$mesh" -plies "$n" -jobs "$jobs" -overwrite 1 \
-            -out "$d" $args > "$out/p$n.log" 2>&1
+        sh tools/ff.sh freefem_scripts/ballistic_limit.edp -mesh "$mesh" -plies "$n" -jobs "$jobs" $fresh \
+            -runner "$runner" -ranks "$ranks" -out "$d" $args > "$out/p$n.log" 2>&1
         rc=$? t1=$(date +%s)
         echo "$((t1 - t0))" > "$out/p$n.wall"
     fi

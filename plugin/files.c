@@ -540,6 +540,42 @@ void wff_lock_release(const char *dir)
     }
 }
 
+static int is_executable_file(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode) && access(path, X_OK) == 0;
+}
+
+int wff_find_program(const char *name, char *path, size_t size)
+{
+    if (size > 0)
+        path[0] = '\0';
+    if (!name[0] || size == 0)
+        return 0;
+    if (strchr(name, '/')) {
+        if (!is_executable_file(name) || strlen(name) >= size)
+            return 0;
+        memcpy(path, name, strlen(name) + 1);
+        return 1;
+    }
+    const char *dirs = getenv("PATH");
+    if (!dirs)
+        dirs = "/usr/local/bin:/usr/bin:/bin";
+    for (const char *p = dirs;; ) {
+        const char *end = strchr(p, ':');
+        size_t len = end ? (size_t)(end - p) : strlen(p);
+        int n = len == 0 ? snprintf(path, size, "%s", name)
+                         : snprintf(path, size, "%.*s/%s", (int)len, p, name);
+        if (n > 0 && (size_t)n < size && is_executable_file(path))
+            return 1;
+        if (!end)
+            break;
+        p = end + 1;
+    }
+    path[0] = '\0';
+    return 0;
+}
+
 int wff_run_program(char *const argv[], int *status, wff_error *err)
 {
     long pid;

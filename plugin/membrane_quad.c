@@ -8,9 +8,10 @@
  * map (no stored gradients gathered), then each Gauss point q of the block's
  * quads goes through the cell's evaluate_point_block (structure of arrays,
  * vectorised across the lanes) and its forces −w P F_preᵀ ∇N / J_pre are
- * summed per lane and node, scattered once per quad at the end.
- * Threaded like the triangle pass: static schedule, per-thread force buffers
- * (el->thread_f) added in thread order, so a thread count repeats bit for bit.
+ * summed per lane and node, written into the quad's slots at the end (the
+ * nodes sum their slots in element order after the pass, the energies per
+ * block, the blocks in order: the same bits for any number of threads).
+ * Threaded like the triangle pass: static schedule over the blocks.
  *
  * It knows the element geometry (wff_elements) and the cell's ops table only:
  * nothing of the integrator, contact, I/O or the binding. The plain per-point
@@ -80,7 +81,7 @@ static void note_bad_point(quad_sums *s, int e, int q, int status)
  * the end. Lanes past n repeat the last quad (a valid state, results dropped). */
 static inline __attribute__((always_inline)) void
 quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_table *t,
-             const double *X, const double *u, double *state, double dt, double *f, int e0,
+             const double *X, const double *u, double *state, double dt, int e0,
              int n, quad_sums *sums, const int ns)
 {
     const wff_material *mat = em->mat;
@@ -209,14 +210,14 @@ quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_
     const unsigned char *eroded = el->eroded ? el->eroded + el->n_tris : NULL;
     for (int j = 0; j < n; j++) {
         int e = e0 + j;
-        if (eroded && eroded[e]) /* no force, no energy; its states kept */
+        double *slot = el->slot + D * (3 * (size_t)el->n_tris + 4 * (size_t)e);
+        if (eroded && eroded[e]) { /* no force, no energy; its states kept */
+            memset(slot, 0, sizeof(double) * D * 4);
             continue;
-        const int *node = quad + 4 * e;
-        for (int b = 0; b < 4; b++) {
-            double *fb = f + D * node[b];
-            for (int c = 0; c < D; c++)
-                fb[c] += acc[b][c][j];
         }
+        for (int b = 0; b < 4; b++)
+            for (int c = 0; c < D; c++)
+                slot[D * b + c] = acc[b][c][j];
         for (int q = 0; q < WFF_QUAD_POINTS; q++) {
             if (status[q][j] != WFF_POINT_OK) {
                 note_bad_point(sums, e, q, status[q][j]); /* its state is kept */
@@ -236,18 +237,18 @@ quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_
  * the material's n_state. */
 static __attribute__((noinline)) void
 quad_block_one(const wff_elements *el, const wff_element_material *em, const quad_table *t,
-               const double *X, const double *u, double *state, double dt, double *f, int e0,
+               const double *X, const double *u, double *state, double dt, int e0,
                int n, quad_sums *sums)
 {
-    quad_block_n(el, em, t, X, u, state, dt, f, e0, n, sums, 1);
+    quad_block_n(el, em, t, X, u, state, dt, e0, n, sums, 1);
 }
 
 static __attribute__((noinline)) void
 quad_block_any(const wff_elements *el, const wff_element_material *em, const quad_table *t,
-               const double *X, const double *u, double *state, double dt, double *f, int e0,
+               const double *X, const double *u, double *state, double dt, int e0,
                int n, quad_sums *sums)
 {
-    quad_block_n(el, em, t, X, u, state, dt, f, e0, n, sums, em->mat->n_state);
+    quad_block_n(el, em, t, X, u, state, dt, e0, n, sums, em->mat->n_state);
 }
 
 /* Whether the cell takes these parameters: one block of a valid state (the
@@ -269,7 +270,7 @@ static int cell_takes_points(const wff_element_material *em, double dt)
 int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
                                            const wff_element_material *em, const double *X,
                                            const double *u, double *state, double dt,
-                                           double *f, double *energy, double *dissipated,
+                                           double *energy, double *dissipated,
                                            double *failure, wff_force_totals *totals)
 {
     if (el->n_quads == 0 || !wff_cell_has_point_block(em->mat) || em->reference_path ||
@@ -278,6 +279,8 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
     quad_table gauss;
     quad_table_init(&gauss);
     const int n_blocks = (el->n_quads + WFF_BLOCK - 1) / WFF_BLOCK;
+    /* the quads' blocks' sums follow the triangles' */
+    double *block_sums = el->block_sums + 3 * (size_t)((el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK);
     /* small meshes are not worth a thread team (membrane.h, wff_elements_team) */
     int threads = wff_elements_team(el);
     quad_sums part[WFF_MAX_THREADS];
@@ -291,34 +294,34 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
 #else
         int t = 0;
 #endif
-        double *ft = t == 0 ? f : el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
-        /* (an extra thread's buffer is zero here: every reduction clears what it reads) */
-        quad_sums sums = {0, 0, 0, -1, -1, 0};
+        quad_sums bad = {0, 0, 0, -1, -1, 0};
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
             int e0 = blk * WFF_BLOCK;
             int n = el->n_quads - e0 < WFF_BLOCK ? el->n_quads - e0 : WFF_BLOCK;
+            quad_sums sums = {0, 0, 0, bad.bad_element, bad.bad_point, bad.bad_status};
             if (em->mat->n_state == 1) /* (King without failure: the state loops fold away) */
-                quad_block_one(el, em, &gauss, X, u, state, dt, ft, e0, n, &sums);
+                quad_block_one(el, em, &gauss, X, u, state, dt, e0, n, &sums);
             else
-                quad_block_any(el, em, &gauss, X, u, state, dt, ft, e0, n, &sums);
+                quad_block_any(el, em, &gauss, X, u, state, dt, e0, n, &sums);
+            double *b = block_sums + 3 * (size_t)blk;
+            b[0] = sums.energy, b[1] = sums.dissipated, b[2] = sums.failure;
+            bad.bad_element = sums.bad_element;
+            bad.bad_point = sums.bad_point;
+            bad.bad_status = sums.bad_status;
         }
-        part[t] = sums;
-        /* (past the loop's barrier) the other threads' buffers into f, a slice of
-         * the DOFs per thread, buffers in thread order */
-        wff_thread_buffers_reduce(el, f, team);
+        part[t] = bad;
+    }
+    for (int blk = 0; blk < n_blocks; blk++) { /* in block order: the same sums for any team */
+        const double *b = block_sums + 3 * (size_t)blk;
+        *energy += b[0];
+        *dissipated += b[1];
+        *failure += b[2];
     }
     quad_sums all = {0, 0, 0, -1, -1, 0};
-    for (int t = 0; t < team; t++) { /* in thread order: the same sums every run */
-        all.energy += part[t].energy;
-        all.dissipated += part[t].dissipated;
-        all.failure += part[t].failure;
+    for (int t = 0; t < team; t++)
         if (part[t].bad_element >= 0)
             note_bad_point(&all, part[t].bad_element, part[t].bad_point, part[t].bad_status);
-    }
-    *energy += all.energy;
-    *dissipated += all.dissipated;
-    *failure += all.failure;
     if (all.bad_element >= 0 && totals->bad_element < 0) {
         totals->bad_element = el->n_tris + all.bad_element;
         totals->bad_point = all.bad_point;
@@ -331,18 +334,19 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
  * point (evaluate, or the static amplitudes' Newton, at each Gauss point). */
 void WFF_KERNEL_NAME(wff_quad_forces)(const wff_elements *el, const wff_element_material *em,
                                       const double *X, const double *u, double *state,
-                                      double dt, double *f, double *energy, double *dissipated,
+                                      double dt, double *energy, double *dissipated,
                                       double *failure, wff_force_totals *totals)
 {
     const wff_material *mat = em->mat;
     const int amplitudes = wff_cell_amplitudes(mat->cell);
     const int ns = mat->n_state;
     const int quads_blocked = WFF_KERNEL_NAME(wff_quad_block_forces)(
-                                  el, em, X, u, state, dt, f, energy, dissipated, failure,
+                                  el, em, X, u, state, dt, energy, dissipated, failure,
                                   totals) == 0;
     for (int e = 0; !quads_blocked && e < el->n_quads; e++) {
-        const int *node = el->quad + 4 * e;
         int id = el->n_tris + e;
+        double *slot = el->slot + D * (3 * (size_t)el->n_tris + 4 * (size_t)e);
+        memset(slot, 0, sizeof(double) * D * 4); /* (its points add into it) */
         if (wff_element_eroded(el, id))
             continue;
         for (int q = 0; q < WFF_QUAD_POINTS; q++) {
@@ -376,7 +380,7 @@ void WFF_KERNEL_NAME(wff_quad_forces)(const wff_elements *el, const wff_element_
             double w = el->quad_weight[4 * e + q];
             preload_pull_add(em, r.stress, 1.0, Pm);
             for (int b = 0; b < 4; b++) {
-                double *fb = f + D * node[b];
+                double *fb = slot + D * b;
                 for (int i = 0; i < 3; i++)
                     fb[i] -= w * (Pm[2 * i] * grad[2 * b] + Pm[2 * i + 1] * grad[2 * b + 1]);
                 for (int k = 0; k < point_amplitudes; k++)

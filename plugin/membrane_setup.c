@@ -1,7 +1,8 @@
 /* Membrane elements: the set-up, not on the per-step path (compiled once,
  * not a kernel): each element's reference geometry (shape-function gradients,
- * areas or Gauss weights, sizes), the force buffers of the threads, the
- * static amplitudes' per-point storage. See include/wovenff/membrane.h. */
+ * areas or Gauss weights, sizes), the force pass's element-vertex slots and
+ * each node's list of them in element order, the static amplitudes' per-point
+ * storage. See include/wovenff/membrane.h. */
 #include "wovenff/membrane.h"
 #include "membrane_geometry.h"
 
@@ -17,6 +18,57 @@
 static double dist(const double *X, int a, int b)
 {
     return hypot(X[2 * a] - X[2 * b], X[2 * a + 1] - X[2 * b + 1]);
+}
+
+/* The force pass's element-vertex slots (zero: an element the pass skips, e.g.
+ * eroded, keeps zeros there), each referenced node's slots in ascending element
+ * order (triangles, then quads), the per-block energy sums. 0, or -1 out of
+ * memory. */
+static int slots_init(wff_elements *el, int n_nodes)
+{
+    const int n_tris = el->n_tris, n_quads = el->n_quads;
+    const size_t n_slots = 3 * (size_t)n_tris + 4 * (size_t)n_quads;
+    const int n_blocks = (n_tris + WFF_BLOCK - 1) / WFF_BLOCK + (n_quads + WFF_BLOCK - 1) / WFF_BLOCK;
+    el->slot = calloc(D * (n_slots ? n_slots : 1), sizeof(double));
+    el->block_sums = calloc(3 * (size_t)(n_blocks ? n_blocks : 1), sizeof(double));
+    int *count = calloc((size_t)n_nodes + 1, sizeof(int));
+    el->node_slot = malloc(sizeof(int) * (n_slots ? n_slots : 1));
+    if (!el->slot || !el->block_sums || !count || !el->node_slot) {
+        free(count);
+        return -1;
+    }
+    for (size_t s = 0; s < n_slots; s++)
+        count[s < 3 * (size_t)n_tris ? el->tri[s] : el->quad[s - 3 * (size_t)n_tris]]++;
+    int used = 0;
+    for (int n = 0; n < n_nodes; n++)
+        used += count[n] > 0;
+    el->n_gather = used;
+    el->node_list = malloc(sizeof(int) * (size_t)(used ? used : 1));
+    el->node_slot_start = malloc(sizeof(int) * ((size_t)used + 1));
+    int *cursor = malloc(sizeof(int) * ((size_t)n_nodes + 1));
+    if (!el->node_list || !el->node_slot_start || !cursor) {
+        free(count);
+        free(cursor);
+        return -1;
+    }
+    int k = 0, start = 0;
+    for (int n = 0; n < n_nodes; n++) {
+        cursor[n] = start;
+        if (count[n] == 0)
+            continue;
+        el->node_list[k] = n;
+        el->node_slot_start[k++] = start;
+        start += count[n];
+    }
+    el->node_slot_start[used] = start;
+    /* slots in ascending order: the triangles' (3e + b), then the quads' */
+    for (size_t s = 0; s < n_slots; s++) {
+        const int n = s < 3 * (size_t)n_tris ? el->tri[s] : el->quad[s - 3 * (size_t)n_tris];
+        el->node_slot[cursor[n]++] = (int)s;
+    }
+    free(count);
+    free(cursor);
+    return 0;
 }
 
 int wff_elements_init(wff_elements *el, const double *X, int n_tris, const int *tri,
@@ -75,13 +127,10 @@ int wff_elements_init(wff_elements *el, const double *X, int n_tris, const int *
         el->max_threads = WFF_MAX_THREADS;
     el->n_threads = 1; /* threads are asked for (wff_elements_set_threads): on a shared
                           machine a busy second core makes a team slower than one */
-    if (el->max_threads > 1) {
-        /* zero, and kept zero between passes: the reduction clears what it reads */
-        el->thread_f = calloc((size_t)(el->max_threads - 1) * (size_t)el->n_dofs, sizeof(double));
-        if (!el->thread_f) {
-            wff_elements_free(el);
-            return wff_fail(err, "out of memory for %d threads' force buffers", el->max_threads);
-        }
+    if (slots_init(el, max_node + 1)) {
+        wff_elements_free(el);
+        return wff_fail(err, "out of memory for the force slots of %d triangles and %d quads",
+                        n_tris, n_quads);
     }
     for (int e = 0; e < n_quads; e++) {
         const int *n = quad + 4 * e;
@@ -113,13 +162,19 @@ void wff_elements_free(wff_elements *el)
     free(el->quad_grad);
     free(el->quad_weight);
     free(el->size);
-    free(el->thread_f);
+    free(el->slot);
+    free(el->block_sums);
+    free(el->node_slot);
+    free(el->node_slot_start);
+    free(el->node_list);
     free(el->point_dA);
     free(el->eroded);
     el->point_dA = NULL;
     el->eroded = NULL;
     el->tri_grad = el->tri_area = el->quad_grad = el->quad_weight = el->size = NULL;
-    el->thread_f = NULL;
+    el->slot = el->block_sums = NULL;
+    el->node_slot = el->node_slot_start = el->node_list = NULL;
+    el->n_gather = 0;
 }
 
 int wff_elements_set_threads(wff_elements *el, int n_threads, wff_error *err)

@@ -3,9 +3,12 @@
  * evaluate_tri_block where it takes them (dynamic or static amplitudes), else
  * one triangle at a time by evaluate_shared or evaluate at its three nodal
  * points; every path gathers a triangle's F by tri_deformation
- * (membrane_geometry.h). Threads: a team over the blocks, each thread its
- * own force buffer, reduced in thread order. See include/wovenff/membrane.h
- * for the formulas. */
+ * (membrane_geometry.h). Each triangle writes its force on each of its nodes
+ * into its own slots (el->slot; a skipped one, eroded or failed, zeros); the
+ * nodes sum them in element order after the pass (wff_elements_gather), and
+ * the energies are summed per block, the blocks in order: the same bits for
+ * any number of threads. Threads: a team over the blocks. See
+ * include/wovenff/membrane.h for the formulas. */
 #include "wovenff/membrane.h"
 #include "wovenff/balance.h"
 #include "membrane_quad.h"
@@ -51,30 +54,36 @@ static void note_unbalanced_sums(tri_sums *s, int e, int q, const double residua
     }
 }
 
-/* Scatter a triangle's mean stress (cell frame) and nodal residuals. */
-static inline __attribute__((always_inline)) void tri_scatter(const wff_elements *el, const wff_element_material *em, int e,
-                        const double P[6], const double *R, int amplitudes, double *f)
+/* Triangle e's slots: its force on each of its three nodes, −A P_mesh ∇N_b
+ * and the amplitude forces A/3 R_b / J_pre (0 without amplitudes). */
+static inline __attribute__((always_inline)) void tri_slots(const wff_elements *el, const wff_element_material *em, int e,
+                        const double P[6], const double *R, int amplitudes)
 {
-    const int *node = el->tri + 3 * e;
     const double *grad = el->tri_grad + 6 * e;
     double Pm[6] = {0, 0, 0, 0, 0, 0};
     preload_pull_add(em, P, 1.0, Pm);
     double area = el->tri_area[e], w = area / 3 / em->J_pre;
     for (int b = 0; b < 3; b++) {
-        double *fb = f + D * node[b];
+        double *fb = el->slot + D * (3 * (size_t)e + b);
         for (int i = 0; i < 3; i++)
-            fb[i] -= area * (Pm[2 * i] * grad[2 * b] + Pm[2 * i + 1] * grad[2 * b + 1]);
-        for (int k = 0; k < amplitudes; k++)
-            fb[3 + k] += w * R[2 * b + k];
+            fb[i] = -(area * (Pm[2 * i] * grad[2 * b] + Pm[2 * i + 1] * grad[2 * b + 1]));
+        for (int k = 0; k < 2; k++)
+            fb[3 + k] = k < amplitudes ? w * R[2 * b + k] : 0;
     }
+}
+
+/* Triangle e gives no force (eroded, or its point failed): zero slots. */
+static inline void tri_slots_zero(const wff_elements *el, int e)
+{
+    memset(el->slot + D * 3 * (size_t)e, 0, sizeof(double) * D * 3);
 }
 
 /* One triangle by the general path: the cell's evaluate_shared if it has one
  * (and the reference path is not asked for), else evaluate() at each point. */
 static void tri_forces(const wff_elements *el, const wff_element_material *em, const double *X,
-                       const double *u, double *state, double dt, double *f, int e,
-                       tri_sums *sums)
+                       const double *u, double *state, double dt, int e, tri_sums *sums)
 {
+    tri_slots_zero(el, e); /* (until it gives its force) */
     static const double third[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
     const wff_material *mat = em->mat;
     const int ns = mat->n_state;
@@ -128,7 +137,7 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
             Fail += r.failure_dissipated / 3;
         }
     }
-    tri_scatter(el, em, e, P, R, wff_cell_amplitudes(mat->cell), f);
+    tri_slots(el, em, e, P, R, wff_cell_amplitudes(mat->cell));
     sums->energy += el->tri_area[e] * W;
     sums->dissipated += el->tri_area[e] * Dis;
     sums->failure += el->tri_area[e] * Fail;
@@ -139,7 +148,7 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
  * n repeat the last element (a valid state whose results are dropped). */
 static inline __attribute__((always_inline)) int
 tri_block_forces_n(const wff_elements *el, const wff_element_material *em, const double *X,
-                   const double *u, double *state, double dt, double *f, int e0, int n,
+                   const double *u, double *state, double dt, int e0, int n,
                    tri_sums *sums, const int ns)
 {
     const wff_material *mat = em->mat;
@@ -195,25 +204,25 @@ tri_block_forces_n(const wff_elements *el, const wff_element_material *em, const
     const unsigned char *eroded = el->eroded;
     for (int j = 0; j < n; j++) {
         int e = e0 + j;
-        if (eroded && eroded[e]) /* no force, its states kept (a lane like any other above) */
+        if (eroded && eroded[e]) { /* no force, its states kept (a lane like any other above) */
+            tri_slots_zero(el, e);
             continue;
+        }
         if (!ok[j]) {
+            tri_slots_zero(el, e);
             note_bad_sums(sums, e, 0, !finite[j] || !blk.degenerate[j] ? WFF_POINT_NONFINITE
                                                                      : WFF_POINT_DEGENERATE);
             continue;
         }
-        const int *node = el->tri + 3 * e;
         const double *g = el->tri_grad + 6 * e;
         for (int b = 0; b < 3; b++) {
-            double *fb = f + D * node[b];
+            double *fb = el->slot + D * (3 * (size_t)e + b);
             double gx = g[2 * b], gy = g[2 * b + 1];
-            fb[0] += fx[0][j] * gx + fx[1][j] * gy;
-            fb[1] += fx[2][j] * gx + fx[3][j] * gy;
-            fb[2] += fx[4][j] * gx + fx[5][j] * gy;
-            if (amplitudes) {
-                fb[3] += wa[j] * blk.residual[b][0][j];
-                fb[4] += wa[j] * blk.residual[b][1][j];
-            }
+            fb[0] = fx[0][j] * gx + fx[1][j] * gy;
+            fb[1] = fx[2][j] * gx + fx[3][j] * gy;
+            fb[2] = fx[4][j] * gx + fx[5][j] * gy;
+            fb[3] = amplitudes ? wa[j] * blk.residual[b][0][j] : 0;
+            fb[4] = amplitudes ? wa[j] * blk.residual[b][1][j] : 0;
             for (int i = 0; i < ns; i++)
                 state[ns * (3 * e + b) + i] = blk.state[b][i][j];
         }
@@ -229,34 +238,35 @@ tri_block_forces_n(const wff_elements *el, const wff_element_material *em, const
  * vector loads as γᶠ's did), the material's otherwise. */
 static __attribute__((noinline)) int
 tri_block_forces_one(const wff_elements *el, const wff_element_material *em, const double *X,
-                     const double *u, double *state, double dt, double *f, int e0, int n,
+                     const double *u, double *state, double dt, int e0, int n,
                      tri_sums *sums)
 {
-    return tri_block_forces_n(el, em, X, u, state, dt, f, e0, n, sums, 1);
+    return tri_block_forces_n(el, em, X, u, state, dt, e0, n, sums, 1);
 }
 
 static __attribute__((noinline)) int
 tri_block_forces_any(const wff_elements *el, const wff_element_material *em, const double *X,
-                     const double *u, double *state, double dt, double *f, int e0, int n,
+                     const double *u, double *state, double dt, int e0, int n,
                      tri_sums *sums)
 {
-    return tri_block_forces_n(el, em, X, u, state, dt, f, e0, n, sums, em->mat->n_state);
+    return tri_block_forces_n(el, em, X, u, state, dt, e0, n, sums, em->mat->n_state);
 }
 
 static int tri_block_forces(const wff_elements *el, const wff_element_material *em,
                             const double *X, const double *u, double *state, double dt,
-                            double *f, int e0, int n, tri_sums *sums)
+                            int e0, int n, tri_sums *sums)
 {
     return em->mat->n_state == 1
-               ? tri_block_forces_one(el, em, X, u, state, dt, f, e0, n, sums)
-               : tri_block_forces_any(el, em, X, u, state, dt, f, e0, n, sums);
+               ? tri_block_forces_one(el, em, X, u, state, dt, e0, n, sums)
+               : tri_block_forces_any(el, em, X, u, state, dt, e0, n, sums);
 }
 
 /* One triangle with quasi-static amplitudes at its three points. */
 static void tri_forces_static(const wff_elements *el, const wff_element_material *em,
                               const double *X, const double *u, double *state, double dt,
-                              double *f, int e, tri_sums *sums)
+                              int e, tri_sums *sums)
 {
+    tri_slots_zero(el, e); /* (until it gives its force) */
     const wff_material *mat = em->mat;
     const int ns = mat->n_state;
     double F[6], Fe[6], P[6] = {0, 0, 0, 0, 0, 0}, R[6] = {0, 0, 0, 0, 0, 0}, W = 0, Dis = 0;
@@ -286,7 +296,7 @@ static void tri_forces_static(const wff_elements *el, const wff_element_material
         Dis += r.dissipated / 3;
         Fail += r.failure_dissipated / 3;
     }
-    tri_scatter(el, em, e, P, R, 0, f); /* no amplitude forces: balanced at the points */
+    tri_slots(el, em, e, P, R, 0); /* no amplitude forces: balanced at the points */
     sums->energy += el->tri_area[e] * W;
     sums->dissipated += el->tri_area[e] * Dis;
     sums->failure += el->tri_area[e] * Fail;
@@ -300,7 +310,7 @@ static void tri_forces_static(const wff_elements *el, const wff_element_material
  * these parameters (nothing done). Lanes past n repeat the last element. */
 static inline __attribute__((always_inline)) int
 tri_block_static_forces_n(const wff_elements *el, const wff_element_material *em,
-                          const double *X, const double *u, double *state, double dt, double *f,
+                          const double *X, const double *u, double *state, double dt,
                           int e0, int n, tri_sums *sums, const int ns)
 {
     const wff_material *mat = em->mat;
@@ -351,6 +361,7 @@ tri_block_static_forces_n(const wff_elements *el, const wff_element_material *em
     const unsigned char *eroded = el->eroded;
     for (int j = 0; j < n; j++) {
         int e = e0 + j;
+        tri_slots_zero(el, e); /* (until it gives its force) */
         if (eroded && eroded[e]) /* no force; its states and amplitudes kept */
             continue;
         if (!finite[j]) {
@@ -384,7 +395,7 @@ tri_block_static_forces_n(const wff_elements *el, const wff_element_material *em
         for (int q = 0; q < WFF_TRI_POINTS; q++)
             for (int i = 0; i < ns; i++)
                 state[ns * (3 * e + q) + i] = blk.state[q][i][j];
-        tri_scatter(el, em, e, P, zero, 0, f); /* no amplitude forces: balanced at the points */
+        tri_slots(el, em, e, P, zero, 0); /* no amplitude forces: balanced at the points */
         sums->energy += el->tri_area[e] * blk.energy[j];
         sums->dissipated += el->tri_area[e] * blk.dissipated[j];
         sums->failure += el->tri_area[e] * blk.failure_dissipated[j];
@@ -396,90 +407,95 @@ tri_block_static_forces_n(const wff_elements *el, const wff_element_material *em
  * fold away) or the material's n_state. */
 static __attribute__((noinline)) int
 tri_block_static_one(const wff_elements *el, const wff_element_material *em, const double *X,
-                     const double *u, double *state, double dt, double *f, int e0, int n,
+                     const double *u, double *state, double dt, int e0, int n,
                      tri_sums *sums)
 {
-    return tri_block_static_forces_n(el, em, X, u, state, dt, f, e0, n, sums, 1);
+    return tri_block_static_forces_n(el, em, X, u, state, dt, e0, n, sums, 1);
 }
 
 static __attribute__((noinline)) int
 tri_block_static_any(const wff_elements *el, const wff_element_material *em, const double *X,
-                     const double *u, double *state, double dt, double *f, int e0, int n,
+                     const double *u, double *state, double dt, int e0, int n,
                      tri_sums *sums)
 {
-    return tri_block_static_forces_n(el, em, X, u, state, dt, f, e0, n, sums,
+    return tri_block_static_forces_n(el, em, X, u, state, dt, e0, n, sums,
                                      em->mat->n_state);
 }
 
 static int tri_block_static_forces(const wff_elements *el, const wff_element_material *em,
                                    const double *X, const double *u, double *state,
-                                   double dt, double *f, int e0, int n, tri_sums *sums)
+                                   double dt, int e0, int n, tri_sums *sums)
 {
     return em->mat->n_state == 1
-               ? tri_block_static_one(el, em, X, u, state, dt, f, e0, n, sums)
-               : tri_block_static_any(el, em, X, u, state, dt, f, e0, n, sums);
+               ? tri_block_static_one(el, em, X, u, state, dt, e0, n, sums)
+               : tri_block_static_any(el, em, X, u, state, dt, e0, n, sums);
 }
 
 void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_material *em,
                                      const double *X, const double *u, double *state,
-                                     double dt, double *f, double *energy, double *dissipated,
+                                     double dt, double *energy, double *dissipated,
                                      double *failure, wff_force_totals *totals)
 {
     const wff_material *mat = em->mat;
     /* small meshes are not worth a thread team (membrane.h, WFF_TEAM_MIN_TRIS) */
     int threads = wff_elements_team(el);
-    double part_energy[WFF_MAX_THREADS] = {0}, part_dissipated[WFF_MAX_THREADS] = {0};
-    double part_failure[WFF_MAX_THREADS] = {0};
     wff_force_totals part_bad[WFF_MAX_THREADS];
-    for (int t = 0; t < threads; t++)
+    for (int t = 0; t < threads; t++) {
         part_bad[t].bad_element = -1;
+        part_bad[t].amplitude_iterations = 0;
+    }
     const int use_block = wff_cell_has_tri_block(mat) && !em->reference_path;
     const int n_blocks = (el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK;
-    int team = 1; /* OpenMP may start fewer threads than asked (thread limit, dynamic):
-                     only the buffers of threads that ran are summed */
+    int team = 1; /* OpenMP may start fewer threads than asked (thread limit, dynamic) */
 #pragma omp parallel num_threads(threads) if (threads > 1)
     {
         int t = omp_thread();
 #pragma omp single nowait /* (read after the element loop's barrier: no barrier of its own) */
         team = omp_team();
-        double *ft = t == 0 ? f : el->thread_f + (size_t)(t - 1) * (size_t)el->n_dofs;
-        /* (an extra thread's buffer is zero here: the last reduction cleared it) */
-        tri_sums sums = {0, 0, 0, {0, 0, 0, -1, -1, 0, 0, 0, 0}};
+        wff_force_totals bad = {0, 0, 0, -1, -1, 0, 0, 0, 0};
         int blocked = use_block; /* a cell declines by its parameters: ask once per thread */
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
             int e0 = blk * WFF_BLOCK;
             int n = el->n_tris - e0 < WFF_BLOCK ? el->n_tris - e0 : WFF_BLOCK;
+            /* the block's own sums (its elements in order; the blocks added in
+             * order after the pass) */
+            tri_sums sums = {0, 0, 0, bad};
             if (em->static_amplitudes) {
                 if (blocked &&
-                    tri_block_static_forces(el, em, X, u, state, dt, ft, e0, n, &sums) != 0)
+                    tri_block_static_forces(el, em, X, u, state, dt, e0, n, &sums) != 0)
                     blocked = 0;
                 if (!blocked)
-                    for (int e = e0; e < e0 + n; e++)
+                    for (int e = e0; e < e0 + n; e++) {
                         if (!wff_element_eroded(el, e))
-                            tri_forces_static(el, em, X, u, state, dt, ft, e, &sums);
+                            tri_forces_static(el, em, X, u, state, dt, e, &sums);
+                        else
+                            tri_slots_zero(el, e);
+                    }
             } else {
-                if (blocked && tri_block_forces(el, em, X, u, state, dt, ft, e0, n, &sums) != 0)
+                if (blocked && tri_block_forces(el, em, X, u, state, dt, e0, n, &sums) != 0)
                     blocked = 0;
                 if (!blocked)
-                    for (int e = e0; e < e0 + n; e++)
+                    for (int e = e0; e < e0 + n; e++) {
                         if (!wff_element_eroded(el, e))
-                            tri_forces(el, em, X, u, state, dt, ft, e, &sums);
+                            tri_forces(el, em, X, u, state, dt, e, &sums);
+                        else
+                            tri_slots_zero(el, e);
+                    }
             }
+            double *b = el->block_sums + 3 * (size_t)blk;
+            b[0] = sums.energy, b[1] = sums.dissipated, b[2] = sums.failure;
+            bad = sums.bad;
         }
-        part_energy[t] = sums.energy;
-        part_dissipated[t] = sums.dissipated;
-        part_failure[t] = sums.failure;
-        part_bad[t] = sums.bad;
-        /* (the element loop's barrier is behind us) the other threads' buffers into f, each
-         * thread a slice of the DOFs, buffers added in thread order and cleared as read
-         * (no pass of its own zeroes them) */
-        wff_thread_buffers_reduce(el, f, team);
+        part_bad[t] = bad;
     }
-    for (int t = 0; t < team; t++) { /* in thread order: the same sums every run */
-        *energy += part_energy[t];
-        *dissipated += part_dissipated[t];
-        *failure += part_failure[t];
+    for (int blk = 0; blk < n_blocks; blk++) { /* in block order: the same sums for any team */
+        const double *b = el->block_sums + 3 * (size_t)blk;
+        *energy += b[0];
+        *dissipated += b[1];
+        *failure += b[2];
+    }
+    for (int t = 0; t < team; t++) {
         totals->amplitude_iterations += part_bad[t].amplitude_iterations;
         if (part_bad[t].bad_element >= 0 &&
             (totals->bad_element < 0 || part_bad[t].bad_element < totals->bad_element)) {

@@ -100,6 +100,13 @@ int wff_wait_program(long pid, int *status, wff_error *err);
  * gives status 127). */
 int wff_run_logged(char *const argv[], const char *log, int *status, wff_error *err);
 
+/* The program `name` as execvp would find it: name itself if it holds a '/'
+ * and is an executable file, else the first executable regular file
+ * DIR/name of the PATH environment variable's folders (an empty entry: the
+ * working folder). Its path into path (size bytes with the NUL); 1 found, 0
+ * not (path ""). */
+int wff_find_program(const char *name, char *path, size_t size);
+
 /* A value as one field of a job list or an argument line (wff_run_jobs,
  * wovenffRun): a backslash, a tab, a newline, a carriage return and any other
  * control character escaped (\\ \t \n \r \xHH), so no value splits into

@@ -55,11 +55,26 @@ typedef struct wff_elements {
     double *size;         /* characteristic length per element (tris, then quads), m */
     int n_dofs;           /* 5 × nodes referenced */
     int n_threads;        /* threads for the triangle force pass (OpenMP), 1 by default */
-    int max_threads;      /* threads the buffers were sized for */
+    int max_threads;      /* most threads a pass takes (OpenMP's, or the processors) */
     int team_min_tris;    /* least work (triangles + 3 x quads) for which the passes take
                              a thread team (WFF_TEAM_MIN_TRIS at init; a test of the
                              threaded path on a small mesh sets 0); wff_elements_team */
-    double *thread_f;     /* (max_threads − 1) × n_dofs force buffers, one per extra thread */
+    double *slot;         /* the force pass's element-vertex slots: element e's force on its
+                             k-th node's 5 DOFs at D (3e + k) (triangles) and D (3 n_tris +
+                             4 (e − n_tris) + k) (quads), N: each element writes its own,
+                             and each node sums its slots in ascending element order
+                             (node_slot), so a node's force has the same bits whatever
+                             the threads or ranks that computed its elements (the
+                             OpenRadioss PARITH/ON order; docs/architecture.md) */
+    int *node_slot_start; /* per node of node_list, n_gather + 1: its slots' range in
+                             node_slot */
+    int *node_slot;       /* the slots (element-vertex incidences) of each node, in
+                             ascending element order (triangles, then quads) */
+    int *node_list;       /* the nodes the elements reference, ascending, n_gather */
+    int n_gather;
+    double *block_sums;   /* the force pass's stored, shear and failure energies per block
+                             of WFF_BLOCK elements (triangles' blocks, then quads'), added
+                             in block order after it (the same bits for any threads) */
     double *point_dA;     /* static amplitudes: 2 per quadrature point (6 per triangle,
                              then 8 per quad), or NULL while amplitudes are dynamic */
     unsigned char *eroded; /* per element (tris, then quads): 1 once eroded (no force, no

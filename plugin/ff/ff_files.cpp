@@ -39,6 +39,8 @@
 //   int wovenffRunJobs(list, jobs, status) // the jobs of list (a line: label, log, program,
 //                                       // arguments, tab-separated, each a wovenffArg), jobs at
 //                                       // once, a progress line as each ends; exit codes; count
+//   string wovenffProgram(name)         // the program's path as execvp finds it on PATH ("": none)
+//   string wovenffEnv(name)             // the environment variable's value ("": unset)
 //   string wovenffArg(text)             // text as one such field: \\ \t \n \r \xHH escaped
 //   string wovenffVisible(text)         // text with its control characters shown (\t ...)
 // Knows nothing of scenes or models beyond the checkpoint call.
@@ -403,6 +405,19 @@ string *ffArg(Stack stack, string *const &text) { return ret(stack, escaped(*tex
 
 string *ffVisible(Stack stack, string *const &text) { return ret(stack, escaped(*text, 0)); }
 
+string *ffProgram(Stack stack, string *const &name)
+{
+    char path[4096];
+    wff_find_program(name->c_str(), path, sizeof path);
+    return ret(stack, path);
+}
+
+string *ffEnv(Stack stack, string *const &name)
+{
+    const char *v = std::getenv(name->c_str());
+    return ret(stack, v ? v : "");
+}
+
 string *ffPathProblem(Stack stack, string *const &path, string *const &what)
 {
     wff_error err;
@@ -514,6 +529,8 @@ void wff_ff_register_files()
                new OneOperator2s_<string *, string *, string *>(ffPathProblem));
     Global.Add("wovenffGnuplot", "(", new OneOperator2_<long, string *, string *>(ffGnuplot));
     Global.Add("wovenffRun", "(", new OneOperator2_<long, string *, string *>(ffRun));
+    Global.Add("wovenffProgram", "(", new OneOperator1s_<string *, string *>(ffProgram));
+    Global.Add("wovenffEnv", "(", new OneOperator1s_<string *, string *>(ffEnv));
     Global.Add("wovenffArg", "(", new OneOperator1s_<string *, string *>(ffArg));
     Global.Add("wovenffVisible", "(", new OneOperator1s_<string *, string *>(ffVisible));
     Global.Add("wovenffRunJobs", "(",
