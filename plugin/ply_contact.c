@@ -894,7 +894,11 @@ static double pair_friction(wff_model *m, const struct solve_step *T, int start,
         link[k] = k > 0 && S->b[pair[k - 1]] == A; /* (its A is the B of the pair below) */
         stick[k] = cone[k] > 0;
     }
+    /* (a pair without a normal impulse has no friction: its F goes to 0, a known
+     * change its sticking neighbours' rows take as given) */
     double next[COLUMN_MAX][3];
+    for (int k = 0; k < n; k++)
+        next[k][0] = next[k][1] = next[k][2] = 0;
     for (int round = 0; round <= n; round++) {
         /* each component: a tridiagonal system, the slipping pairs' rows x = their
          * cone's F less F (Thomas: the sticking rows dominate their diagonal) */
