@@ -16,6 +16,7 @@
 # and its eroded elements (the summary's ply_eroded); 8 plies at dtfactor 0.8 to 1.2 ms
 # never show a negative contact dissipation, ply or both contacts (and the summary's
 # "invariants" is "ok"), their ply penetration below 1 % of h, the balance within 1e-5;
+# so do 20 plies to 1 ms;
 # 8 frictionless plies without the travel limit run to 0.4 ms (a crimp amplitude ran
 # away at 0.30 ms before); every bad input exits 2 naming the option with nothing written.
 set -u
@@ -167,7 +168,7 @@ else
     pen=$(num max_ply_penetration "$dir") h=$(num ply_thickness "$dir") err=$(num max_energy_error "$dir")
     echo "-plies 8 (dtfactor 0.8) to 1.2 ms: ply contact dissipated $(num ply_contact_dissipated "$dir") J, lowest $low J, the two contacts' lowest $both J, ply penetration $pen m, largest energy error $err"
     awk -v l="$low" -v b="$both" 'BEGIN { exit !(l != "" && l >= 0 && b != "" && b >= 0) }' \
-        || { echo "-plies 8: the contacts' dissipation fell to $low J (ply), $b J (both): energy put in"; fail=1; }
+        || { echo "-plies 8: the contacts' dissipation fell to $low J (ply), $both J (both): energy put in"; fail=1; }
     grep -q '^  "invariants": "ok",' "$dir/summary.json" \
         || { echo "-plies 8: summary invariants not ok: $(grep '"invariants"' "$dir/summary.json")"; fail=1; }
     [ "$(num dtfactor_used "$dir")" = 0.8 ] || { echo "-plies 8: dtfactor_used $(num dtfactor_used "$dir"), not the scene's 0.8"; fail=1; }
@@ -175,6 +176,35 @@ else
         || { echo "-plies 8: ply penetration $pen m not below 1 % of h $h m"; fail=1; }
     awk -v e="$err" 'BEGIN { exit !(e != "" && e < 1e-5 && e > -1e-5) }' \
         || { echo "-plies 8: energy error $err not within 1e-5"; fail=1; }
+fi
+# 20 plies to 1 ms, the same checks: the contacts' dissipation never below 0 in a
+# history row (before the column solve the contacts' sum was below 0 from 0.77 ms,
+# -0.93 J at 1 ms; 40 plies, where the column's friction read a pair without a
+# normal impulse from uninitialised memory, -0.15 J: docs/model.md §23), the
+# summary's "invariants" ok, the ply penetration below 1 % of h, the balance 1e-5.
+# (The 8-ply pack with failure on at 60 m/s, to its perforation: tests/sh/verdict.sh.)
+dir="$out-twenty"
+rm -rf "$dir"
+run -tend 1e-3 -plies 20 -out "$dir" > "$dir.log" 2>&1
+rc=$?
+if [ $rc -ne 0 ]; then
+    echo "-plies 20: exit $rc"; tail -3 "$dir.log"; fail=1
+else
+    head -1 "$dir/history.csv" | tr ',' '\n' > "$dir.cols"
+    col=$(grep -nx ply_contact_dissipated "$dir.cols" | cut -d: -f1)
+    fr=$(grep -nx dissipated_friction "$dir.cols" | cut -d: -f1)
+    low=$(awk -F, -v c="$col" 'NR > 1 && (NR == 2 || $c < m) { m = $c } END { print m }' "$dir/history.csv")
+    both=$(awk -F, -v c="$col" -v f="$fr" 'NR > 1 && (NR == 2 || $c + $f < m) { m = $c + $f } END { print m }' "$dir/history.csv")
+    pen=$(num max_ply_penetration "$dir") h=$(num ply_thickness "$dir") err=$(num max_energy_error "$dir")
+    echo "-plies 20 to 1 ms: $(num steps "$dir") steps, ply contact dissipated $(num ply_contact_dissipated "$dir") J, lowest $low J, the two contacts' lowest $both J, ply penetration $pen m, largest energy error $err"
+    awk -v l="$low" -v b="$both" 'BEGIN { exit !(l != "" && l >= 0 && b != "" && b >= 0) }' \
+        || { echo "-plies 20: the contacts' dissipation fell to $low J (ply), $both J (both): energy put in"; fail=1; }
+    grep -q '^  "invariants": "ok",' "$dir/summary.json" \
+        || { echo "-plies 20: summary invariants not ok: $(grep '"invariants"' "$dir/summary.json")"; fail=1; }
+    awk -v p="$pen" -v h="$h" 'BEGIN { exit !(p != "" && p >= 0 && p < 0.01 * h) }' \
+        || { echo "-plies 20: ply penetration $pen m not below 1 % of h $h m"; fail=1; }
+    awk -v e="$err" 'BEGIN { exit !(e != "" && e < 1e-5 && e > -1e-5) }' \
+        || { echo "-plies 20: energy error $err not within 1e-5"; fail=1; }
 fi
 # frictionless plies without the travel limit (8 plies, 0.4 ms): before the nose's
 # contacts joined the column solve, a crimp amplitude at ply 0's apex, between the
