@@ -23,10 +23,14 @@ struct wff_pack {
     double stored[WFF_PLIES_MAX];
     double removed[WFF_PLIES_MAX]; /* eroded in the pass under way (erosion.c) */
     /* ply contact (ply_contact.c) */
-    double dissipated;        /* kinetic energy the ply contact removed, J (model part) */
+    double dissipated;        /* kinetic energy the ply contact's pairs removed, J (model
+                                 part; the nose contacts its solve holds are the projectile
+                                 contact's, in m->dissipated_friction) */
     double penetration;       /* largest interpenetration left after the last correction, m */
     int contacts;             /* node pairs corrected in the last step */
-    double *impulse;          /* per DOF (3 per node), this step's contact impulses, N·s */
+    double *impulse;          /* per DOF (3 per node), this step's pairs' impulses, N·s */
+    double *nose_impulse;     /* per DOF (3 per node), this step's impulses of the nose
+                                 contacts the solve holds, N·s */
     unsigned char *touched;   /* per node: an impulse this step */
     int *touched_list, n_touched;
     int *on_projectile;       /* per node: its index in the projectile's contacts this step,

@@ -53,7 +53,9 @@
  * component held by a boundary condition takes no impulse: its support's
  * reaction does. The impulses enter f as forces j / Δt_mid; their work at the
  * trapezoidal rule's measure (the book op), negated, is the ply contact
- * dissipation (a term of the energy balance). No effect on the stable step.
+ * dissipation, the pairs' (a term of the energy balance), and the nose
+ * contacts' the projectile contact's (dissipated_friction: they are that
+ * contact, solved again). No effect on the stable step.
  * Limits: the pairs are fixed, so the relative in-plane slip of neighbouring
  * plies must stay small against the element size (a ply that slides by more
  * meets its neighbour's node i still, not the node now below it); plies pair
@@ -160,6 +162,7 @@ static void solve_free(struct wff_ply_solve *S)
 void wff_ply_contact_free(struct wff_pack *P)
 {
     free(P->impulse);
+    free(P->nose_impulse);
     free(P->touched);
     free(P->touched_list);
     free(P->on_projectile);
@@ -179,7 +182,7 @@ void wff_ply_contact_free(struct wff_pack *P)
     solve_free(P->solve);
     P->solve = NULL;
     P->facet = P->touched_list = NULL;
-    P->impulse = P->predicted = NULL;
+    P->impulse = P->nose_impulse = P->predicted = NULL;
     P->touched = NULL;
 }
 
@@ -290,6 +293,7 @@ static int ensure_workspace(wff_model *m, wff_error *err)
         return 0;
     size_t slots = (size_t)(P->n - 1) * (size_t)P->nodes;
     P->impulse = calloc(3 * (size_t)m->n_nodes, sizeof(double));
+    P->nose_impulse = calloc(3 * (size_t)m->n_nodes, sizeof(double));
     P->touched = calloc((size_t)m->n_nodes, 1);
     P->touched_list = malloc(sizeof(int) * (size_t)m->n_nodes);
     P->on_projectile = malloc(sizeof(int) * (size_t)m->n_nodes);
@@ -302,7 +306,7 @@ static int ensure_workspace(wff_model *m, wff_error *err)
     if (P->on_projectile)
         for (int n = 0; n < m->n_nodes; n++)
             P->on_projectile[n] = -1;
-    if (!P->impulse || !P->touched || !P->touched_list || !P->on_projectile || !P->normal ||
+    if (!P->impulse || !P->nose_impulse || !P->touched || !P->touched_list || !P->on_projectile || !P->normal ||
         !P->live || !P->reach || !P->predicted || !P->facet || !P->rest) {
         wff_ply_contact_free(P);
         return wff_fail(err, "ply contact: out of memory for %zu node pairs", slots);
@@ -439,8 +443,10 @@ static double inverse_mass(const wff_model *m, int n, const double d[3])
 }
 
 /* Add impulse j (3) to node n: its free components' velocities, the held
- * ones' reactions; the node's share kept for the forces and work. */
-static void give(wff_model *m, int n, const double j[3], double dt_mid)
+ * ones' reactions; the node's share kept for the forces and work in `account`
+ * (P->impulse, a pair's; P->nose_impulse, a nose contact's: its work is the
+ * projectile contact's). */
+static void give(wff_model *m, int n, const double j[3], double dt_mid, double *account)
 {
     struct wff_pack *P = m->pack;
     if (j[0] == 0 && j[1] == 0 && j[2] == 0)
@@ -451,7 +457,7 @@ static void give(wff_model *m, int n, const double j[3], double dt_mid)
             continue;
         }
         m->v[D * n + c] += j[c] / m->mass[D * n];
-        P->impulse[3 * n + c] += j[c];
+        account[3 * n + c] += j[c];
     }
     if (!P->touched[n]) {
         P->touched[n] = 1;
@@ -697,7 +703,7 @@ static void apply_normal(wff_model *m, const struct solve_step *T, int c, double
     if (S->kind[c] == NOSE) {
         const double *nrm = S->normal + 3 * c;
         const double j[3] = {x * nrm[0], x * nrm[1], x * nrm[2]};
-        give(m, S->a[c], j, T->dt_mid);
+        give(m, S->a[c], j, T->dt_mid, P->nose_impulse);
         const double dv = -x * nrm[2] / m->projectile.mass;
         m->projectile.velocity += dv;
         P->projectile_dv += dv;
@@ -711,7 +717,7 @@ static void apply_normal(wff_model *m, const struct solve_step *T, int c, double
         const double *Gs = G + 3 * ring * side;
         for (int k = 0; k < ring; k++) {
             const double j[3] = {x * Gs[3 * k], x * Gs[3 * k + 1], x * Gs[3 * k + 2]};
-            give(m, base + S->ring_node[start + k], j, T->dt_mid);
+            give(m, base + S->ring_node[start + k], j, T->dt_mid, P->impulse);
         }
     }
 }
@@ -958,8 +964,8 @@ static double pair_friction(wff_model *m, const struct solve_step *T, int start,
         if (!(change > 0))
             continue;
         const double ja[3] = {-jb[0], -jb[1], -jb[2]};
-        give(m, S->b[c], jb, T->dt_mid);
-        give(m, S->a[c], ja, T->dt_mid);
+        give(m, S->b[c], jb, T->dt_mid, P->impulse);
+        give(m, S->a[c], ja, T->dt_mid, P->impulse);
         for (int e = 0; e < 3; e++)
             S->friction[3 * c + e] = next[k][e];
         const double u[3] = {jb[0] / change, jb[1] / change, jb[2] / change};
@@ -1028,14 +1034,14 @@ static double nose_friction(wff_model *m, const struct solve_step *T, int start,
         const double u[3] = {jb[0] / change, jb[1] / change, jb[2] / change};
         double w = inverse_mass(m, A, u);
         if (nose) {
-            give(m, A, jb, T->dt_mid);
+            give(m, A, jb, T->dt_mid, P->nose_impulse);
             const double dv = -jb[2] / pr->mass;
             pr->velocity += dv;
             P->projectile_dv += dv;
             w += u[2] * u[2] / pr->mass;
         } else {
-            give(m, B, jb, T->dt_mid);
-            give(m, A, ja, T->dt_mid);
+            give(m, B, jb, T->dt_mid, P->impulse);
+            give(m, A, ja, T->dt_mid, P->impulse);
             w += inverse_mass(m, B, u);
         }
         for (int k = 0; k < 3; k++)
@@ -1295,11 +1301,13 @@ int wff_ply_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *e
      * part has corrected) */
     for (int t = 0; t < P->n_touched; t++) {
         const int n = P->touched_list[t];
-        for (int c = 0; c < 3; c++)
-            if (P->impulse[3 * n + c] != 0) {
-                m->f[D * n + c] += P->impulse[3 * n + c] / dt_mid;
-                m->contact_force[D * n + c] += P->impulse[3 * n + c] / dt_mid;
+        for (int c = 0; c < 3; c++) {
+            const double j = P->impulse[3 * n + c] + P->nose_impulse[3 * n + c];
+            if (j != 0) {
+                m->f[D * n + c] += j / dt_mid;
+                m->contact_force[D * n + c] += j / dt_mid;
             }
+        }
     }
     for (int c = 0; pr->active && c < pr->n_contact; c++)
         P->on_projectile[pr->contact_node[c]] = -1;
@@ -1336,33 +1344,40 @@ double wff_ply_penetration_bound(const wff_model *m)
 }
 
 /* The book op (part.h): this step's impulses' work at the final velocities,
- * j·(v^{n+½} − ½Δt_before a^n), the projectile's share (the velocity change
- * the plies gave it) at its own; the impulses cleared for the next step. */
+ * j·(v^{n+½} − ½Δt_before a^n): the pairs' (their normal impulses and
+ * friction) into the ply contact's dissipation; the nose contacts' the solve
+ * held (normal and friction, the projectile's share at its own velocity) into
+ * the projectile contact's, dissipated_friction (they are the projectile's
+ * contact, solved again with the pairs: a nose contact may take back some of
+ * the impulse the projectile's own correction gave, and only the two together
+ * are that contact's work). The impulses cleared for the next step. */
 static void ply_contact_book(wff_model *m, double dt_before, double dt_mid)
 {
     struct wff_pack *P = m->pack;
     if (!P || P->n < 2 || !P->impulse)
         return;
-    double work = 0;
+    double pairs = 0, nose = 0;
     for (int t = 0; t < P->n_touched; t++) {
         const int n = P->touched_list[t];
         for (int c = 0; c < 3; c++) {
             const int k = D * n + c;
-            const double j = P->impulse[3 * n + c];
-            if (j == 0)
-                continue;
-            work += wff_impulse_work(m, k, j, dt_before, dt_mid);
-            P->impulse[3 * n + c] = 0;
+            const double j = P->impulse[3 * n + c], jn = P->nose_impulse[3 * n + c];
+            if (j != 0)
+                pairs += wff_impulse_work(m, k, j, dt_before, dt_mid);
+            if (jn != 0)
+                nose += wff_impulse_work(m, k, jn, dt_before, dt_mid);
+            P->impulse[3 * n + c] = P->nose_impulse[3 * n + c] = 0;
         }
         P->touched[n] = 0;
     }
     P->n_touched = 0;
     const wff_projectile *pr = &m->projectile;
     if (P->projectile_dv != 0) {
-        work += wff_projectile_impulse_work(m, pr->mass * P->projectile_dv, dt_before, dt_mid);
+        nose += wff_projectile_impulse_work(m, pr->mass * P->projectile_dv, dt_before, dt_mid);
         P->projectile_dv = 0;
     }
-    P->dissipated -= work;
+    P->dissipated -= pairs;
+    m->dissipated_friction -= nose;
 }
 
 /* The kinetic energy the ply contact removed, J (model part). */
