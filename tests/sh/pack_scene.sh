@@ -14,7 +14,7 @@
 # draws: its -e settings logged by a gnuplot stand-in on PATH, the axis range printed);
 # damage.csv has a block per ply and damage.png a panel per ply, each titled with its ply
 # and its eroded elements (the summary's ply_eroded); 8 plies at dtfactor 0.8 to 1.2 ms
-# never show a negative contact dissipation, ply or both contacts (and the summary's
+# never show a negative contact dissipation, the ply contact's or the projectile's (and the summary's
 # "invariants" is "ok"), their ply penetration below 1 % of h, the balance within 1e-5;
 # so do 20 plies to 1 ms;
 # 8 frictionless plies without the travel limit run to 0.4 ms (a crimp amplitude ran
@@ -145,9 +145,9 @@ else
 fi
 # 8 plies at the scene's default step (dtfactor 0.8: a pack has no rule of its
 # own since issue 26) to 1.2 ms: contact and friction only take energy out,
-# so neither the ply contact's dissipation nor the two contacts' together (the
-# projectile's, dissipated_friction, and the plies') is ever below 0 in a history
-# row (the impulse along the pair's normal alone, not the constraint's gradient,
+# so neither the ply contact's dissipation nor the projectile contact's
+# (dissipated_friction, with the nose contacts the ply contact's solve holds) is
+# ever below 0 in a history row (the impulse along the pair's normal alone, not the constraint's gradient,
 # put energy in: -0.10 J by 0.5 ms here, -31 J by 1.5 ms; then the push-out of
 # pairs the sweeps over pairs left closer than h: the sum below 0 from 0.88 ms,
 # -78 mJ at 1.63 ms; docs/model.md §23), the summary's "invariants" says ok, the
@@ -164,11 +164,11 @@ else
     col=$(grep -nx ply_contact_dissipated "$dir.cols" | cut -d: -f1)
     fr=$(grep -nx dissipated_friction "$dir.cols" | cut -d: -f1)
     low=$(awk -F, -v c="$col" 'NR > 1 && (NR == 2 || $c < m) { m = $c } END { print m }' "$dir/history.csv")
-    both=$(awk -F, -v c="$col" -v f="$fr" 'NR > 1 && (NR == 2 || $c + $f < m) { m = $c + $f } END { print m }' "$dir/history.csv")
+    proj=$(awk -F, -v f="$fr" 'NR > 1 && (NR == 2 || $f < m) { m = $f } END { print m }' "$dir/history.csv")
     pen=$(num max_ply_penetration "$dir") h=$(num ply_thickness "$dir") err=$(num max_energy_error "$dir")
-    echo "-plies 8 (dtfactor 0.8) to 1.2 ms: ply contact dissipated $(num ply_contact_dissipated "$dir") J, lowest $low J, the two contacts' lowest $both J, ply penetration $pen m, largest energy error $err"
-    awk -v l="$low" -v b="$both" 'BEGIN { exit !(l != "" && l >= 0 && b != "" && b >= 0) }' \
-        || { echo "-plies 8: the contacts' dissipation fell to $low J (ply), $both J (both): energy put in"; fail=1; }
+    echo "-plies 8 (dtfactor 0.8) to 1.2 ms: ply contact dissipated $(num ply_contact_dissipated "$dir") J, lowest $low J, the projectile contact's (dissipated_friction) lowest $proj J, ply penetration $pen m, largest energy error $err"
+    awk -v l="$low" -v b="$proj" 'BEGIN { exit !(l != "" && l >= 0 && b != "" && b >= 0) }' \
+        || { echo "-plies 8: the contacts' dissipation fell to $low J (ply), $proj J (projectile): energy put in"; fail=1; }
     grep -q '^  "invariants": "ok",' "$dir/summary.json" \
         || { echo "-plies 8: summary invariants not ok: $(grep '"invariants"' "$dir/summary.json")"; fail=1; }
     [ "$(num dtfactor_used "$dir")" = 0.8 ] || { echo "-plies 8: dtfactor_used $(num dtfactor_used "$dir"), not the scene's 0.8"; fail=1; }
@@ -177,7 +177,7 @@ else
     awk -v e="$err" 'BEGIN { exit !(e != "" && e < 1e-5 && e > -1e-5) }' \
         || { echo "-plies 8: energy error $err not within 1e-5"; fail=1; }
 fi
-# 20 plies to 1 ms, the same checks: the contacts' dissipation never below 0 in a
+# 20 plies to 1 ms, the same checks: either contact's dissipation never below 0 in a
 # history row (before the column solve the contacts' sum was below 0 from 0.77 ms,
 # -0.93 J at 1 ms; 40 plies, where the column's friction read a pair without a
 # normal impulse from uninitialised memory, -0.15 J: docs/model.md §23), the
@@ -194,11 +194,11 @@ else
     col=$(grep -nx ply_contact_dissipated "$dir.cols" | cut -d: -f1)
     fr=$(grep -nx dissipated_friction "$dir.cols" | cut -d: -f1)
     low=$(awk -F, -v c="$col" 'NR > 1 && (NR == 2 || $c < m) { m = $c } END { print m }' "$dir/history.csv")
-    both=$(awk -F, -v c="$col" -v f="$fr" 'NR > 1 && (NR == 2 || $c + $f < m) { m = $c + $f } END { print m }' "$dir/history.csv")
+    proj=$(awk -F, -v f="$fr" 'NR > 1 && (NR == 2 || $f < m) { m = $f } END { print m }' "$dir/history.csv")
     pen=$(num max_ply_penetration "$dir") h=$(num ply_thickness "$dir") err=$(num max_energy_error "$dir")
-    echo "-plies 20 to 1 ms: $(num steps "$dir") steps, ply contact dissipated $(num ply_contact_dissipated "$dir") J, lowest $low J, the two contacts' lowest $both J, ply penetration $pen m, largest energy error $err"
-    awk -v l="$low" -v b="$both" 'BEGIN { exit !(l != "" && l >= 0 && b != "" && b >= 0) }' \
-        || { echo "-plies 20: the contacts' dissipation fell to $low J (ply), $both J (both): energy put in"; fail=1; }
+    echo "-plies 20 to 1 ms: $(num steps "$dir") steps, ply contact dissipated $(num ply_contact_dissipated "$dir") J, lowest $low J, the projectile contact's (dissipated_friction) lowest $proj J, ply penetration $pen m, largest energy error $err"
+    awk -v l="$low" -v b="$proj" 'BEGIN { exit !(l != "" && l >= 0 && b != "" && b >= 0) }' \
+        || { echo "-plies 20: the contacts' dissipation fell to $low J (ply), $proj J (projectile): energy put in"; fail=1; }
     grep -q '^  "invariants": "ok",' "$dir/summary.json" \
         || { echo "-plies 20: summary invariants not ok: $(grep '"invariants"' "$dir/summary.json")"; fail=1; }
     awk -v p="$pen" -v h="$h" 'BEGIN { exit !(p != "" && p >= 0 && p < 0.01 * h) }' \
