@@ -460,12 +460,13 @@ int wff_zones_pack(wff_model *m, wff_error *err)
     return 0;
 }
 
-void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, double *failure)
+void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, double *failure,
+                          double *slip)
 {
     const struct wff_zones *Z = m->zones;
     int plies = m->pack ? wff_pack_plies(m) : 1;
     for (int p = 0; p < plies; p++)
-        stored[p] = shear[p] = failure[p] = 0;
+        stored[p] = shear[p] = failure[p] = slip[p] = 0;
     if (!Z)
         return;
     for (int k = 0; k < Z->n; k++) {
@@ -476,6 +477,7 @@ void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, dou
         stored[p] += z->pass.internal_energy;
         shear[p] += z->pass.dissipated;
         failure[p] += z->pass.failure_dissipated;
+        slip[p] += z->pass.slip_dissipated;
     }
 }
 
@@ -579,6 +581,7 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
     }
     zones_eroded_copy(m);
     totals->internal_energy = totals->dissipated = totals->failure_dissipated = 0;
+    totals->slip_dissipated = 0;
     totals->bad_element = -1;
     totals->bad_point = 0;
     totals->bad_status = WFF_POINT_OK;
@@ -612,6 +615,7 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
         totals->internal_energy += t.internal_energy;
         totals->dissipated += t.dissipated;
         totals->failure_dissipated += t.failure_dissipated;
+        totals->slip_dissipated += t.slip_dissipated;
         totals->amplitude_iterations += t.amplitude_iterations;
         if (t.bad_element >= 0 && totals->bad_element < 0) {
             totals->bad_element = z->element[t.bad_element];

@@ -321,7 +321,8 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
         CHECK(st, rc == WFF_POINT_OK, "state %d evaluates", s);
         if (rc)
             continue;
-        int held = out.dissipated == 0 && out.failure_dissipated == 0;
+        int held = out.dissipated == 0 && out.failure_dissipated == 0 &&
+                   out.slip_dissipated == 0;
         for (int i = 0; i < mat.n_state; i++)
             held = held && out.state[i] == gf[i];
         CHECK(st, held, "%s: dt = 0 holds every state (and dissipates nothing)", c->material);
@@ -412,7 +413,7 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
             memcpy(gf_fast, gf, sizeof gf);
             double dt = s % 2 ? 2e-7 : 0;
             double P_ref[6] = {0}, W_ref = 0, D_ref = 0, X_ref = 0, P_fast[6] = {0}, R_fast[6];
-            double W_fast = 0, D_fast = 0, X_fast = 0, R_ref[6];
+            double W_fast = 0, D_fast = 0, X_fast = 0, R_ref[6], S_ref = 0, S_fast = 0;
             for (int q = 0; q < 3; q++) {
                 double point_state[WFF_STATE_MAX] = {0};
                 memcpy(point_state, gf + ns * q, sizeof(double) * (size_t)ns);
@@ -424,11 +425,12 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
                 W_ref += w[q] * out.energy;
                 D_ref += w[q] * out.dissipated;
                 X_ref += w[q] * out.failure_dissipated;
+                S_ref += w[q] * out.slip_dissipated;
                 memcpy(gf + ns * q, out.state, sizeof(double) * (size_t)ns);
             }
             int bad = -1;
             rc = cell->evaluate_shared(mat.params, F, 3, dA, w, gf_fast, dt, P_fast, R_fast,
-                                       &W_fast, &D_fast, &X_fast, &bad);
+                                       &W_fast, &D_fast, &X_fast, &S_fast, &bad);
             CHECK(st, rc == WFF_POINT_OK, "fast path state %d: status %d at point %d", s, rc, bad);
             double e = 0, sP = fmax(max_abs(P_ref, 6), 1e-6 * stress_scale);
             for (int i = 0; i < 6; i++)
@@ -440,6 +442,7 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
             e = fmax(e, fabs(W_fast - W_ref) / fmax(fabs(W_ref), 1e-300));
             e = fmax(e, fabs(D_fast - D_ref) / fmax(fabs(W_ref), 1e-300));
             e = fmax(e, fabs(X_fast - X_ref) / fmax(fabs(W_ref), 1e-300));
+            e = fmax(e, fabs(S_fast - S_ref) / fmax(fabs(W_ref), 1e-300));
             for (int q = 0; q < 3; q++)
                 e = fmax(e, state_error(&mat, gf_fast + ns * q, gf + ns * q));
             worst_fast = fmax(worst_fast, e);
@@ -476,7 +479,7 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
             if (!handled)
                 continue;
             for (int j = 0; j < WFF_BLOCK; j++) {
-                double F[6], P[6] = {0}, W = 0, Dis = 0, Fail = 0, e = 0;
+                double F[6], P[6] = {0}, W = 0, Dis = 0, Fail = 0, Slip = 0, e = 0;
                 for (int i = 0; i < 6; i++)
                     F[i] = blk.F[i][j];
                 CHECK(st, !blk.degenerate[j], "block lane %d flagged degenerate", j);
@@ -488,6 +491,7 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
                     W += out.energy / 3;
                     Dis += out.dissipated / 3;
                     Fail += out.failure_dissipated / 3;
+                    Slip += out.slip_dissipated / 3;
                     for (int i = 0; i < WFF_STATE_MAX; i++)
                         lane[i] = blk.state[q][i][j];
                     for (int k = 0; k < cell->n_amplitudes; k++)
@@ -501,6 +505,7 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
                 e = fmax(e, fabs(blk.energy[j] - W) / fmax(fabs(W), 1e-300));
                 e = fmax(e, fabs(blk.dissipated[j] - Dis) / fmax(fabs(W), 1e-300));
                 e = fmax(e, fabs(blk.failure_dissipated[j] - Fail) / fmax(fabs(W), 1e-300));
+                e = fmax(e, fabs(blk.slip_dissipated[j] - Slip) / fmax(fabs(W), 1e-300));
                 worst_block = fmax(worst_block, e);
             }
         }
@@ -585,6 +590,8 @@ void cell_suite_check(check_state *st, const cell_case *c, const wff_material *m
                 e = fmax(e, fabs(blk.energy[j] - out.energy) / fmax(fabs(out.energy), 1e-300));
                 e = fmax(e, fabs(blk.dissipated[j] - out.dissipated) / fmax(fabs(out.energy), 1e-300));
                 e = fmax(e, fabs(blk.failure_dissipated[j] - out.failure_dissipated) /
+                                fmax(fabs(out.energy), 1e-300));
+                e = fmax(e, fabs(blk.slip_dissipated[j] - out.slip_dissipated) /
                                 fmax(fabs(out.energy), 1e-300));
                 worst_points = fmax(worst_points, e);
             }
