@@ -61,7 +61,7 @@
  * and Coulomb friction caps the tension: |T_k| ≤ T_slip = n_c μ_yy ⟨F_I⟩, the
  * friction of n_c crossovers each pressed by the crossover force F_I; a step
  * that would exceed it slips (the return map, king_family_slip), dissipating
- * the stored energy it releases (≈ T_slip × 2 L_k⁰ Δs_k). States s_1, s_2 after
+ * the friction's work T_slip × 2 L_k⁰ |Δs_k|. States s_1, s_2 after
  * the others (n_state 8 with slip). The blocked kernels decline slip.
  *
  * The model is written once: king_family_at (one yarn family at a point),
@@ -226,7 +226,7 @@ WFF_INLINE wff_yarn_damage king_family_fail(const king_params *k, int f, king_fa
 /* What yarn slip does to one family in one update (king_family_slip). */
 typedef struct king_slip {
     double slip;     /* s_k after the update, - */
-    double released; /* stored energy the slip released, J per cell (>= 0): its dissipation */
+    double released; /* the friction's work, T_slip × the slip, J per cell (>= 0) */
 } king_slip;
 
 /* docs/model.md §24, yarn slip at the crossovers on family f: the slip strain
@@ -241,8 +241,13 @@ typedef struct king_slip {
  * by the return map of rate-independent friction (the yarn's own elasticity is
  * the stick's): where |c_k x_k| > T_slip (s_k held) the truss slips to
  *   x_k ← sign(x_k) T_slip / c_k,   s_k ← s_k + (x_k,trial − x_k)/L_k⁰
- * releasing c_k (x_k,trial² − x_k²) = 2 L_k⁰ Δs_k (T_trial + T_slip)/2 ≥ 0 (two
- * trusses per cell): T_slip × the slip to first order in the step. dt = 0 holds
+ * dissipating the friction's work, the slip tension times the yarn slid through
+ * the crossovers, 2 T_slip L_k⁰ |Δs_k| ≥ 0 (two trusses per cell). That is what
+ * the explicit step's work measure needs: in steady slip the force is T_slip and
+ * the stored energy does not change, so the kinetic energy lost is T_slip times
+ * the slip. (The stored energy the update releases at this geometry,
+ * c_k (x_trial² − x_k²), is larger by c_k (L_k⁰ Δs_k)²: booked instead, it put the
+ * balance of a slipping run 20 % of the slip's dissipation off.) dt = 0 holds
  * s_k (then T_k and the energy are the exact derivatives' pair). Sets y->stretch,
  * y->tension (undamaged: king_family_fail applies 1 − d_k) and y->energy_yarn. */
 WFF_INLINE king_slip king_family_slip(const king_params *k, int f, king_family *y, double slip,
@@ -259,7 +264,7 @@ WFF_INLINE king_slip king_family_slip(const king_params *k, int f, king_family *
         if (fabs(trial) > slip_tension) {
             const double held = copysign(slip_tension, trial) / carrying; /* x_k at T_slip */
             out.slip = slip + (stretch - held) / rest0;
-            out.released = carrying * (carried * carried - held * held);
+            out.released = 2 * slip_tension * fabs(stretch - held);
             stretch = carried = held;
         }
     }
@@ -296,7 +301,7 @@ typedef struct king_point {
                                                   (with failure) */
     double failure_released;   /* Σ_k Δd_k W_k⁺, J per cell */
     double slip[FAMILIES];     /* s_k after the step (with slip) */
-    double slip_released;      /* Σ_k the slip's released energy, J per cell (with slip) */
+    double slip_released;      /* Σ_k the slip's dissipation, J per cell (with slip) */
 } king_point;
 
 /* The slip tension T_slip = n_c μ_yy ⟨F_I⟩ (docs/model.md §24), N: no friction
@@ -540,9 +545,12 @@ static void king_energy_split(const void *params, const double F[6], const doubl
  * ρ_A/6 per unit area. With yarn slip (slip_capacity = n_c μ_yy > 0; the blocked
  * lane passes the constant 0, §24) the state is not known here: the tension of a
  * point a force pass has updated is at most T_slip, of one it has not the
- * unslipped T_k, so the geometric terms take the larger; and a slipping yarn's
- * tension follows T_slip(ΔA), which couples both amplitudes to the compaction
- * stiffness by 2 n_c μ_yy sinβ_k ∂F_I/∂I: added to each row (both columns). */
+ * unslipped T_k, so the geometric terms take the larger. While a yarn slips its
+ * tension follows T_slip(ΔA) instead of its stretch: its axial term k_k sin²β_k
+ * goes and ∂R_k/∂ΔA_m gains +2 n_c μ_yy sinβ_k ∂F_I/∂I, which lowers the
+ * stiffness (below zero when 2 n_c μ_yy sinβ_k > 1: a growth the step does not
+ * govern), so the stick's bound holds for it too (tests/c/test_stable_bound.c
+ * runs slipping states through the integrator). */
 WFF_INLINE void king_wave_speeds_at(const king_params *k, double areal_density,
                                     const double F[6], const double dA[2],
                                     double locking_exponent, double flow_exponent,
@@ -571,12 +579,10 @@ WFF_INLINE void king_wave_speeds_at(const king_params *k, double areal_density,
          * tight within one step, and a step sized for slack yarns is ~20x too long */
         double lock_stiff = y->lock.stiffness; /* ∂F_L/∂d */
         double tension = fabs(y->tension); /* |T_k| */
-        double slip_coupling = 0;
         if (slip_capacity > 0) {
             const double slip_tension =
                 slip_capacity * (pt.compaction.force > 0 ? pt.compaction.force : 0.0);
             tension = slip_tension > tension ? slip_tension : tension;
-            slip_coupling = 4 * slip_capacity * fabs(y->sin_b) * compaction_stiffness;
         }
         double axial = k->yarn_stiffness[f] + tension / L + k->bending_stiffness[f] / (L * L);
         /* stiffness per unit width when family f is stretched: two trusses per
@@ -590,8 +596,6 @@ WFF_INLINE void king_wave_speeds_at(const king_params *k, double areal_density,
                         4 * fabs(y->moment) / (L * L) + compaction_stiffness +
                         2 * (lock_stiff + y->lock.force / y->spar_length) * (1 + k->lever);
         double a_f = a_diag + compaction_stiffness;
-        if (slip_capacity > 0)
-            a_f += slip_coupling;
         amplitude = a_f > amplitude ? a_f : amplitude;
     }
     double speed = sqrt(membrane / areal_density);
