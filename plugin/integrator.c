@@ -290,7 +290,8 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
      * (their work is booked at the trapezoidal rule's measure, part.h's book) */
     double total = kinetic - k[4] + k[5] + m->stagger_shift + m->internal_energy +
                    m->dissipated_shear + m->dissipated_friction + m->dissipated_failure +
-                   m->dissipated_slip + m->eroded_energy - m->external_work - m->transfer_energy + parts;
+                   m->dissipated_slip + m->eroded_energy - m->external_work -
+                   m->transfer_energy + parts;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
      * boundaries) the work done on it or the energy it now holds */
     double stored = m->internal_energy - (m->initial_total - m->initial_kinetic);

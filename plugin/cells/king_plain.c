@@ -48,7 +48,8 @@
  * (yarn_failure.h). Bending, compaction, locking and shear are not damaged.
  * States: γᶠ, then d_1, d_2 with failure, then ε_1, ε_2 of the last update
  * with the rate law or the crack band, then the element length h with the
- * band (set by the element code, never changed here; n_state 1, 3, 5 or 6). The blocked kernels decline a
+ * band (set by the element code, never changed here; n_state 1, 3, 5 or 6; 8 with yarn
+ * slip, below). The blocked kernels decline a
  * material with failure on; the wave speeds stay the undamaged bounds.
  *
  * Yarn slip at the crossovers (docs/model.md §24, optional: material key
@@ -247,7 +248,7 @@ typedef struct king_slip {
  * the stored energy does not change, so the kinetic energy lost is T_slip times
  * the slip. (The stored energy the update releases at this geometry,
  * c_k (x_trial² − x_k²), is larger by c_k (L_k⁰ Δs_k)²: booked instead, it put the
- * balance of a slipping run 20 % of the slip's dissipation off.) dt = 0 holds
+ * balance of a slipping run off by a fifth of the slip's dissipation.) dt = 0 holds
  * s_k (then T_k and the energy are the exact derivatives' pair). Sets y->stretch,
  * y->tension (undamaged: king_family_fail applies 1 − d_k) and y->energy_yarn. */
 WFF_INLINE king_slip king_family_slip(const king_params *k, int f, king_family *y, double slip,
@@ -477,8 +478,8 @@ static inline void king_state_out(const king_params *k, const double *state,
     }
 }
 
-/* docs/model.md §1–7, §20: one material point. P = (1/(4 p1⁰ p2⁰)) Σ_k Q_k ⊗ G_k,
- * R_k, W = W_cell/(4 p1⁰ p2⁰); dt > 0 advances γᶠ and the damages. */
+/* docs/model.md §1–7, §20, §24: one material point. P = (1/(4 p1⁰ p2⁰)) Σ_k Q_k ⊗ G_k,
+ * R_k, W = W_cell/(4 p1⁰ p2⁰); dt > 0 advances γᶠ, the damages and the slips. */
 static int king_evaluate(const void *params, const double F[6], const double dA[2],
                          const double *state, double dt, wff_point_result *out)
 {
@@ -610,8 +611,7 @@ static void king_wave_speeds(const void *params, double areal_density, const dou
 {
     const king_params *k = params;
     king_wave_speeds_at(k, areal_density, F, dA, k->locking_exponent, k->flow_exponent,
-                        k->slip_capacity,
-                        membrane_speed, amplitude_omega);
+                        k->slip_capacity, membrane_speed, amplitude_omega);
 }
 
 /* The blocked kernels run king_point_at with c = 2 and n = 1 as constants
