@@ -270,8 +270,7 @@ static int cell_takes_points(const wff_element_material *em, double dt)
 int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
                                            const wff_element_material *em, const double *X,
                                            const double *u, double *state, double dt,
-                                           double *energy, double *dissipated,
-                                           double *failure, wff_force_totals *totals)
+                                           wff_force_totals *totals)
 {
     if (el->n_quads == 0 || !wff_cell_has_point_block(em->mat) || em->reference_path ||
         em->static_amplitudes || !cell_takes_points(em, dt))
@@ -312,11 +311,11 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
         }
         part[t] = bad;
     }
-    for (int blk = 0; blk < n_blocks; blk++) { /* in block order: the same sums for any team */
+    const double inv_J = 1 / em->J_pre;
+    for (int blk = 0; blk < n_blocks; blk++) { /* each block's sums, order-free across blocks */
         const double *b = block_sums + 3 * (size_t)blk;
-        *energy += b[0];
-        *dissipated += b[1];
-        *failure += b[2];
+        for (int k = 0; k < 3; k++)
+            wff_fixed_add(&totals->sums[k], b[k] * inv_J);
     }
     quad_sums all = {0, 0, 0, -1, -1, 0};
     for (int t = 0; t < team; t++)
@@ -334,15 +333,13 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
  * point (evaluate, or the static amplitudes' Newton, at each Gauss point). */
 void WFF_KERNEL_NAME(wff_quad_forces)(const wff_elements *el, const wff_element_material *em,
                                       const double *X, const double *u, double *state,
-                                      double dt, double *energy, double *dissipated,
-                                      double *failure, wff_force_totals *totals)
+                                      double dt, wff_force_totals *totals)
 {
     const wff_material *mat = em->mat;
     const int amplitudes = wff_cell_amplitudes(mat->cell);
     const int ns = mat->n_state;
     const int quads_blocked = WFF_KERNEL_NAME(wff_quad_block_forces)(
-                                  el, em, X, u, state, dt, energy, dissipated, failure,
-                                  totals) == 0;
+                                  el, em, X, u, state, dt, totals) == 0;
     for (int e = 0; !quads_blocked && e < el->n_quads; e++) {
         int id = el->n_tris + e;
         double *slot = el->slot + D * (3 * (size_t)el->n_tris + 4 * (size_t)e);
@@ -386,9 +383,9 @@ void WFF_KERNEL_NAME(wff_quad_forces)(const wff_elements *el, const wff_element_
                 for (int k = 0; k < point_amplitudes; k++)
                     fb[3 + k] += w * N[b] * r.residual[k] / em->J_pre;
             }
-            *energy += w * r.energy;
-            *dissipated += w * r.dissipated;
-            *failure += w * r.failure_dissipated;
+            wff_fixed_add(&totals->sums[0], w * r.energy / em->J_pre);
+            wff_fixed_add(&totals->sums[1], w * r.dissipated / em->J_pre);
+            wff_fixed_add(&totals->sums[2], w * r.failure_dissipated / em->J_pre);
         }
     }
 }

@@ -579,6 +579,8 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
     }
     zones_eroded_copy(m);
     totals->internal_energy = totals->dissipated = totals->failure_dissipated = 0;
+    for (int s = 0; s < 3; s++)
+        totals->sums[s] = wff_fixed_zero();
     totals->bad_element = -1;
     totals->bad_point = 0;
     totals->bad_status = WFF_POINT_OK;
@@ -609,9 +611,8 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
         if (z->n_elements == 0)
             continue;
         const wff_force_totals t = z->pass;
-        totals->internal_energy += t.internal_energy;
-        totals->dissipated += t.dissipated;
-        totals->failure_dissipated += t.failure_dissipated;
+        for (int s = 0; s < 3; s++) /* (order-free: the zones' sums are one sum) */
+            wff_fixed_merge(&totals->sums[s], &t.sums[s]);
         totals->amplitude_iterations += t.amplitude_iterations;
         if (t.bad_element >= 0 && totals->bad_element < 0) {
             totals->bad_element = z->element[t.bad_element];
@@ -621,6 +622,9 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
             totals->bad_iterations = t.bad_iterations;
         }
     }
+    totals->internal_energy = wff_fixed_value(&totals->sums[0]);
+    totals->dissipated = wff_fixed_value(&totals->sums[1]);
+    totals->failure_dissipated = wff_fixed_value(&totals->sums[2]);
 }
 
 void wff_zones_masses(wff_model *m)

@@ -30,6 +30,7 @@
 #define WOVENFF_MEMBRANE_H
 
 #include "wovenff/cell.h"
+#include "wovenff/fixed_sum.h"
 
 #include <stddef.h>
 
@@ -195,6 +196,9 @@ typedef struct wff_force_totals {
     int bad_iterations;      /* WFF_POINT_UNBALANCED: the Newton iterations spent */
     long amplitude_iterations; /* static amplitudes: Newton iterations (tangents) over all
                                   points of the pass */
+    wff_fixed sums[3];       /* the three energies above as order-free sums of the blocks'
+                                (fixed_sum.h): the doubles are their values; a model over
+                                ranks adds the ranks' before taking them */
 } wff_force_totals;
 
 /* The threads a pass over el's elements (or the model's DOFs) uses: n_threads,

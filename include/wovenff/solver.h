@@ -26,6 +26,7 @@
 #ifndef WOVENFF_SOLVER_H
 #define WOVENFF_SOLVER_H
 
+#include "wovenff/comm.h"
 #include "wovenff/membrane.h"
 #include "wovenff/mesh.h"
 
@@ -136,6 +137,7 @@ typedef struct wff_bc_record {
 typedef struct wff_model wff_model;
 #ifndef WFF_MODEL_OPAQUE
 struct wff_model {
+    wff_comm comm;            /* the ranks the model runs over (comm.h; one by default) */
     wff_mesh mesh;
     wff_material mat;
     wff_elements el;
