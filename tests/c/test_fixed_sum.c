@@ -1,7 +1,7 @@
 /* Order-free sums (include/wovenff/fixed_sum.h): the sum of the same terms in
  * any order and any split into parts merged has the same bits; it is within
- * its quantum per term of the exact sum; non-finite and out-of-range terms
- * mark it. */
+ * its quantum per term of the exact sum; non-finite and out-of-range (past
+ * 2^95) terms mark it. */
 #include "check.h"
 #include "rng.h"
 #include "wovenff/fixed_sum.h"
@@ -45,7 +45,7 @@ int main(void)
         wff_fixed merged = wff_fixed_zero();
         for (int p = 6; p >= 0; p--)
             wff_fixed_merge(&merged, &part[p]);
-        CHECK(&st, memcmp(&merged.v, &forward.v, sizeof merged.v) == 0 && !merged.bad,
+        CHECK(&st, memcmp(&merged.v, &forward.v, sizeof merged.v) == 0 && merged.coarse == forward.coarse && !merged.bad,
               "trial %d: the shuffled, split sum differs", trial);
     }
     /* a double sum in another order does differ (the check checks something) */
@@ -78,11 +78,17 @@ int main(void)
     wff_fixed_add(&s, -INFINITY);
     CHECK(&st, s.bad, "an infinite term leaves the sum good");
     s = wff_fixed_zero();
-    wff_fixed_add(&s, 3e9);
-    CHECK(&st, s.bad, "a term past 2^31 leaves the sum good");
+    wff_fixed_add(&s, 1e29);
+    CHECK(&st, s.bad, "a term past 2^95 leaves the sum good");
     s = wff_fixed_zero();
-    wff_fixed_add(&s, 1e9);
-    CHECK(&st, !s.bad && wff_fixed_value(&s) == 1e9, "1e9 within the range: %g",
+    wff_fixed_add(&s, 1e25);
+    wff_fixed_add(&s, 1e-20);
+    CHECK(&st, !s.bad && wff_fixed_value(&s) == 1e25 + 1e-20, "1e25 within the range: %g",
           wff_fixed_value(&s));
+    /* a large term's digits below 2^-32 are kept */
+    s = wff_fixed_zero();
+    wff_fixed_add(&s, 1 + 0x1p-40);
+    wff_fixed_add(&s, -1);
+    CHECK(&st, wff_fixed_value(&s) == 0x1p-40, "1 + 2^-40 - 1 = %g", wff_fixed_value(&s));
     return check_summary(&st, "test_fixed_sum");
 }
