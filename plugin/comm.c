@@ -166,7 +166,83 @@ void wff_comm_barrier(const wff_comm *c)
         MPI_Barrier(comm_of(c));
 }
 
+void wff_comm_allgather(const wff_comm *c, void *all, const long *counts, const long *offsets)
+{
+    if (c->size <= 1)
+        return;
+    int *rc = malloc(sizeof(int) * 2 * (size_t)c->size), *ro = rc + c->size;
+    for (int r = 0; r < c->size; r++) {
+        rc[r] = (int)counts[r];
+        ro[r] = (int)offsets[r];
+    }
+    MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_BYTE, all, rc, ro, MPI_BYTE, comm_of(c));
+    free(rc);
+}
+
+int wff_comm_world_rank(void)
+{
+    int ready = 0, finalized = 0, rank = 0;
+    MPI_Initialized(&ready);
+    MPI_Finalized(&finalized);
+    if (ready && !finalized)
+        MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    return rank;
+}
+
+int wff_comm_world_size(void)
+{
+    int ready = 0, finalized = 0, size = 1;
+    MPI_Initialized(&ready);
+    MPI_Finalized(&finalized);
+    if (ready && !finalized)
+        MPI_Comm_size(MPI_COMM_WORLD, &size);
+    return size;
+}
+
+double wff_comm_world_agreed(double value)
+{
+    if (wff_comm_world_size() > 1)
+        MPI_Bcast(&value, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    return value;
+}
+
+int wff_comm_default(wff_comm *c, wff_error *err)
+{
+    *c = wff_comm_self();
+    if (wff_comm_world_size() <= 1)
+        return 0;
+    MPI_Comm world = MPI_COMM_WORLD;
+    return wff_comm_from_mpi(c, &world, err);
+}
+
 #else /* one rank */
+
+void wff_comm_allgather(const wff_comm *c, void *all, const long *counts, const long *offsets)
+{
+    (void)c, (void)all, (void)counts, (void)offsets;
+}
+
+int wff_comm_world_rank(void)
+{
+    return 0;
+}
+
+int wff_comm_world_size(void)
+{
+    return 1;
+}
+
+double wff_comm_world_agreed(double value)
+{
+    return value;
+}
+
+int wff_comm_default(wff_comm *c, wff_error *err)
+{
+    (void)err;
+    *c = wff_comm_self();
+    return 0;
+}
 
 int wff_comm_has_mpi(void)
 {

@@ -8,6 +8,7 @@
  * fields, of checkpoints or of FreeFEM. */
 #include "part.h"
 #include "zones.h"
+#include "distribute.h"
 #include "wovenff/renumber.h"
 
 #include <math.h>
@@ -177,7 +178,7 @@ static int compute_forces_zeroed(wff_model *m, double dt_flow, wff_error *err)
  * on the prescribed DOFs (the first half was added with the position update). */
 static void update_velocities(wff_model *m, double dt_mid, double dt_done)
 {
-    m->external_work += wff_model_sum(m, wff_step_velocities(m, dt_mid, dt_done)); /* (step_threads.c) */
+    m->external_work += wff_step_velocities(m, dt_mid, dt_done); /* (step_threads.c) */
 }
 
 static int update_time_step(wff_model *m, wff_error *err)
@@ -240,27 +241,25 @@ static void travel_limit(wff_model *m)
 static void kinetic_now(const wff_model *m, double k[6])
 {
     const double half = m->v_half_valid ? 0.5 * m->dt : 0;
-    wff_fixed parts[5]; /* Σ m v² in-plane, transverse, amplitude, (Δt²/8) Σ f²/m,
-                           ½Δt Σ v^{n+½}·g (threaded: step_threads.c; order-free over
-                           the ranks) */
-    double sums[5];
-    wff_step_kinetic(m, half, parts);
-    wff_model_sums(m, parts, sums, 5);
+    double sums[5]; /* Σ m v² in-plane, transverse, amplitude, Σ f²/m, Σ v^{n+½}·g
+                       (threaded: step_threads.c; over ranks every rank's pass is whole,
+                       plugin/distribute.c) */
+    wff_step_kinetic(m, half, sums);
     const double inplane = sums[0], transverse = sums[1], amplitude = sums[2];
     k[0] = 0.5 * inplane;
     k[1] = 0.5 * transverse;
     k[2] = 0.5 * amplitude;
     k[3] = 0;
-    k[4] = sums[3]; /* (Δt²/8 Σ f²/m, half = Δt/2) */
-    /* the contact forces' share of it, ½Δt Σ v^{n+½}·g (the projectile's force
-     * on it is −force, all contact) */
-    k[5] = sums[4];
+    double force_sq = sums[3];
     if (m->projectile.active) {
         double vp = m->projectile.velocity + half * m->projectile.force / m->projectile.mass;
         k[3] = 0.5 * m->projectile.mass * vp * vp;
-        k[4] += 0.5 * half * half * m->projectile.force * m->projectile.force / m->projectile.mass;
-        k[5] -= half * m->projectile.velocity * m->projectile.force;
+        force_sq += m->projectile.force * m->projectile.force / m->projectile.mass;
     }
+    k[4] = 0.5 * half * half * force_sq; /* (Δt²/8 Σ f²/m, half = Δt/2) */
+    /* the contact forces' share of it, ½Δt Σ v^{n+½}·g (the projectile's force
+     * on it is −force, all contact) */
+    k[5] = half * (sums[4] - (m->projectile.active ? m->projectile.velocity * m->projectile.force : 0));
 }
 
 void wff_model_energies(const wff_model *m, wff_energies *out)
@@ -386,7 +385,19 @@ static int cut_step(wff_model *m)
     return 1;
 }
 
+static int advance(wff_model *m, double t_end, long max_steps, wff_error *err);
+
+/* Over ranks, every rank's points' states whole again when the advance
+ * returns (each advanced its own elements': fields, values and checkpoints
+ * read them all; plugin/distribute.c). */
 int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err)
+{
+    int rc = advance(m, t_end, max_steps, err);
+    wff_dist_states_whole(m);
+    return rc;
+}
+
+static int advance(wff_model *m, double t_end, long max_steps, wff_error *err)
 {
     const double stop = m->t_stop > 0 ? m->t_stop : INFINITY;
     int lands = 0; /* the step planned ends at stop */
@@ -431,7 +442,7 @@ int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err
         /* u^{n+1} = u^n + Δt v^{n+½} */
         double dt = m->dt;
         /* external work by the trapezoidal rule: ½(R^n + R^{n+1})·Δu */
-        m->external_work += wff_model_sum(m, wff_step_positions(m, dt)); /* and f = 0 (step_threads.c) */
+        m->external_work += wff_step_positions(m, dt); /* and f = 0 (step_threads.c) */
         if (m->projectile.active)
             m->projectile.tip += dt * m->projectile.velocity;
         m->time = lands ? stop : m->time + dt;

@@ -17,9 +17,10 @@
  * nodes (each node one thread's). */
 static void elements_gather(const wff_elements *el, double *f)
 {
-    const int n = el->n_gather, threads = wff_elements_team(el);
+    const int threads = wff_elements_team(el);
+    /* (over ranks: this rank's own nodes, plugin/distribute.c) */
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-    for (int k = 0; k < n; k++) {
+    for (int k = el->gather_begin; k < el->gather_end; k++) {
         const int *slot = el->node_slot + el->node_slot_start[k];
         const int count = el->node_slot_start[k + 1] - el->node_slot_start[k];
         double sum[D] = {0, 0, 0, 0, 0};

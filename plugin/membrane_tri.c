@@ -457,8 +457,11 @@ void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_m
         int blocked = use_block; /* a cell declines by its parameters: ask once per thread */
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
+            if (el->block_run && !el->block_run[blk])
+                continue; /* (over ranks: another rank's block, plugin/distribute.c) */
             int e0 = blk * WFF_BLOCK;
             int n = el->n_tris - e0 < WFF_BLOCK ? el->n_tris - e0 : WFF_BLOCK;
+            const int iterations_before = bad.amplitude_iterations;
             /* the block's own sums (its elements in order; the blocks added in
              * order after the pass) */
             tri_sums sums = {0, 0, 0, bad};
@@ -487,11 +490,15 @@ void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_m
             double *b = el->block_sums + 3 * (size_t)blk;
             b[0] = sums.energy, b[1] = sums.dissipated, b[2] = sums.failure;
             bad = sums.bad;
+            if (el->block_count && !el->block_count[blk]) /* (a block another rank counts) */
+                bad.amplitude_iterations = iterations_before;
         }
         part_bad[t] = bad;
     }
     const double inv_J = 1 / em->J_pre;
     for (int blk = 0; blk < n_blocks; blk++) { /* each block's sums, order-free across blocks */
+        if (el->block_count && !el->block_count[blk])
+            continue; /* (another rank's to add) */
         const double *b = el->block_sums + 3 * (size_t)blk;
         for (int k = 0; k < 3; k++)
             wff_fixed_add(&totals->sums[k], b[k] * inv_J);

@@ -494,6 +494,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
                         "without zones", wff_model_zone_count(m));
     }
     wff_model nm = *m; /* every scalar: settings, preload, accumulators, projectile */
+    nm.dist = NULL;    /* (the new mesh's split over the ranks is made anew) */
     nm.mesh = *new_mesh;
     memset(new_mesh, 0, sizeof *new_mesh);
     memset(&nm.el, 0, sizeof nm.el);

@@ -7,28 +7,10 @@
 #define WFF_SOLVER_INTERNAL_H
 
 #include "wovenff/solver.h"
-#include "wovenff/comm.h"
-#include "wovenff/fixed_sum.h"
 
 #include <math.h>
 
 #define D WFF_DOFS_PER_NODE
-
-/* Order-free sums over the model's ranks (comm.h): each rank's part added,
- * then the value (the same bits at any rank count). */
-static inline void wff_model_sums(const wff_model *m, wff_fixed *parts, double *out, int n)
-{
-    wff_comm_sum_fixed(&m->comm, parts, n);
-    for (int k = 0; k < n; k++)
-        out[k] = wff_fixed_value(&parts[k]);
-}
-
-static inline double wff_model_sum(const wff_model *m, wff_fixed part)
-{
-    double out;
-    wff_model_sums(m, &part, &out, 1);
-    return out;
-}
 
 /* integrator.c: the element force pass at u into f (zeroed first), the
  * points' state (m->n_state each) advanced by dt_flow in state (0: held); accumulate 1: the model's stored
@@ -42,13 +24,12 @@ int wff_force_pass(wff_model *m, const double *u, double *f, double *state, doub
  * thread count. u += dt v and m->f = 0, returning the first half of the
  * prescribed DOFs' external work; f[0..n) = 0; the velocity update with the boundary
  * conditions (returns the prescribed DOFs' second-half work); Σ m v² (in-plane, transverse, amplitude) of the
- * free DOFs at v − half f/m, (half²/2) Σ f²/m and half Σ v·g over them (sums[3], sums[4]: in J,
- * order-free, fixed_sum.h); the nodes within `reach` of the projectile's
+ * free DOFs at v − half f/m and Σ f²/m over them (sums[3]); the nodes within `reach` of the projectile's
  * axis in plane into candidates (returns how many, in node order). */
-wff_fixed wff_step_positions(wff_model *m, double dt);
+double wff_step_positions(wff_model *m, double dt);
 void wff_step_zero(const wff_model *m, double *f, int n);
-wff_fixed wff_step_velocities(wff_model *m, double dt_mid, double dt_done);
-void wff_step_kinetic(const wff_model *m, double half, wff_fixed sums[5]);
+double wff_step_velocities(wff_model *m, double dt_mid, double dt_done);
+void wff_step_kinetic(const wff_model *m, double half, double sums[5]);
 void wff_step_replan(wff_model *m, double dt_new);
 /* The travel limit (docs/model.md §12): a step moves no free amplitude more
  * than a fraction (× dtfactor) of its cell's amplitude length: WFF_TRAVEL (the

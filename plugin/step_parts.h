@@ -7,7 +7,6 @@
 #define WFF_STEP_PARTS_H
 
 #include "solver_internal.h"
-#include "wovenff/fixed_sum.h"
 
 /* Most parts a pass is split into (their partial sums live on the stack). */
 #define MAX_PARTS 64
@@ -41,15 +40,6 @@ static inline int wff_pass_threads(const wff_model *m, int parts)
 }
 
 /* Sum of the parts' partials in part order. */
-/* Order-free part sums merged (fixed_sum.h). */
-static inline wff_fixed wff_fixed_parts(const wff_fixed *partial, int parts)
-{
-    wff_fixed s = wff_fixed_zero();
-    for (int k = 0; k < parts; k++)
-        wff_fixed_merge(&s, &partial[k]);
-    return s;
-}
-
 static inline double wff_sum_parts(const double *partial, int parts)
 {
     double s = 0;

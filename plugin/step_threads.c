@@ -39,25 +39,25 @@ static inline double update_dof(wff_model *m, int i, double dt_mid, double dt_do
     return work;
 }
 
-wff_fixed wff_step_positions(wff_model *m, double dt)
+double wff_step_positions(wff_model *m, double dt)
 {
     const int n = m->n_dofs, parts = wff_part_count(n, DOF_GRAIN);
-    wff_fixed work[MAX_PARTS];
+    double work[MAX_PARTS];
 #pragma omp parallel for schedule(static) num_threads(wff_pass_threads(m, parts)) if (wff_pass_threads(m, parts) > 1)
     for (int k = 0; k < parts; k++) {
         const int end = wff_part_begin(n, parts, k + 1);
-        wff_fixed w = wff_fixed_zero();
+        double w = 0;
         for (int i = wff_part_begin(n, parts, k); i < end; i++) {
             double du = dt * m->v[i];
             if (m->dof_kind[i] == WFF_DOF_PRESCRIBED)
-                wff_fixed_add(&w, 0.5 * m->reaction[i] * du);
+                w += 0.5 * m->reaction[i] * du;
             m->u[i] += du;
             m->f[i] = 0; /* the force pass that follows adds into it */
             m->contact_force[i] = 0; /* (and the parts' impulses after it) */
         }
         work[k] = w;
     }
-    return wff_fixed_parts(work, parts);
+    return wff_sum_parts(work, parts);
 }
 
 void wff_step_zero(const wff_model *m, double *f, int n)
@@ -70,22 +70,19 @@ void wff_step_zero(const wff_model *m, double *f, int n)
     }
 }
 
-wff_fixed wff_step_velocities(wff_model *m, double dt_mid, double dt_done)
+double wff_step_velocities(wff_model *m, double dt_mid, double dt_done)
 {
     const int n = m->n_dofs, parts = wff_part_count(n, DOF_GRAIN);
-    wff_fixed part_work[MAX_PARTS];
+    double part_work[MAX_PARTS];
 #pragma omp parallel for schedule(static) num_threads(wff_pass_threads(m, parts)) if (wff_pass_threads(m, parts) > 1)
     for (int k = 0; k < parts; k++) {
         const int end = wff_part_begin(n, parts, k + 1);
-        wff_fixed w = wff_fixed_zero();
+        double w = 0;
         for (int i = wff_part_begin(n, parts, k); i < end; i++)
-            if (m->dof_kind[i] == WFF_DOF_PRESCRIBED) /* (0 elsewhere) */
-                wff_fixed_add(&w, update_dof(m, i, dt_mid, dt_done));
-            else
-                update_dof(m, i, dt_mid, dt_done);
+            w += update_dof(m, i, dt_mid, dt_done);
         part_work[k] = w;
     }
-    return wff_fixed_parts(part_work, parts);
+    return wff_sum_parts(part_work, parts);
 }
 
 double wff_step_travel(const wff_model *m, double reach)
@@ -116,18 +113,16 @@ double wff_step_travel(const wff_model *m, double reach)
     return shortest;
 }
 
-void wff_step_kinetic(const wff_model *m, double half, wff_fixed k4[5])
+void wff_step_kinetic(const wff_model *m, double half, double k4[5])
 {
     const double *v = m->v, *f = m->f, *mass = m->mass, *g = m->contact_force;
     const unsigned char *kind = m->dof_kind;
     const int n = m->n_nodes, parts = wff_part_count(n, NODE_GRAIN);
-    wff_fixed part_e[MAX_PARTS][5];
-    const double stagger = 0.5 * half * half; /* (the terms in J: order-free sums' range) */
+    double part_e[MAX_PARTS][5];
 #pragma omp parallel for schedule(static) num_threads(wff_pass_threads(m, parts)) if (wff_pass_threads(m, parts) > 1)
     for (int k = 0; k < parts; k++) {
         const int end = wff_part_begin(n, parts, k + 1);
-        wff_fixed sums[5] = {wff_fixed_zero(), wff_fixed_zero(), wff_fixed_zero(),
-                             wff_fixed_zero(), wff_fixed_zero()};
+        double inplane = 0, transverse = 0, amplitude = 0, force = 0, contact = 0;
         for (int node = wff_part_begin(n, parts, k); node < end; node++) {
             const int i = D * node; /* branch-free over the 5 DOFs of a node */
             double e[D], q[D], c[D];
@@ -135,24 +130,25 @@ void wff_step_kinetic(const wff_model *m, double half, wff_fixed k4[5])
                 const int free = kind[i + j] == WFF_DOF_FREE;
                 double vn = v[i + j] - half * f[i + j] / mass[i + j];
                 e[j] = free ? mass[i + j] * vn * vn : 0;
-                q[j] = free ? stagger * f[i + j] * f[i + j] / mass[i + j] : 0;
-                c[j] = free ? half * v[i + j] * g[i + j] : 0;
+                q[j] = free ? f[i + j] * f[i + j] / mass[i + j] : 0;
+                c[j] = free ? v[i + j] * g[i + j] : 0;
             }
-            /* a node's terms in its order, the nodes' order-free (fixed_sum.h) */
-            wff_fixed_add(&sums[0], e[0] + e[1]);
-            wff_fixed_add(&sums[1], e[2]);
-            wff_fixed_add(&sums[2], e[3] + e[4]);
-            wff_fixed_add(&sums[3], q[0] + q[1] + q[2] + q[3] + q[4]);
-            wff_fixed_add(&sums[4], c[0] + c[1] + c[2] + c[3] + c[4]);
+            force += q[0] + q[1] + q[2] + q[3] + q[4];
+            contact += c[0] + c[1] + c[2] + c[3] + c[4];
+            inplane += e[0] + e[1];
+            transverse += e[2];
+            amplitude += e[3] + e[4];
         }
-        for (int j = 0; j < 5; j++)
-            part_e[k][j] = sums[j];
+        part_e[k][0] = inplane;
+        part_e[k][1] = transverse;
+        part_e[k][2] = amplitude;
+        part_e[k][3] = force;
+        part_e[k][4] = contact;
     }
-    for (int j = 0; j < 5; j++)
-        k4[j] = wff_fixed_zero();
+    k4[0] = k4[1] = k4[2] = k4[3] = k4[4] = 0;
     for (int k = 0; k < parts; k++)
         for (int j = 0; j < 5; j++)
-            wff_fixed_merge(&k4[j], &part_e[k][j]);
+            k4[j] += part_e[k][j];
 }
 
 int wff_step_candidates(const wff_model *m, double reach, int *candidates)

@@ -14,6 +14,7 @@
  * files or FreeFEM. Without zones (m->zones NULL) every function is the plain
  * call the model made before zones existed. */
 #include "zones.h"
+#include "distribute.h"
 #include "wovenff/cell_ops.h"
 #include "clamp.h"
 #include "plies.h"
@@ -574,7 +575,9 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
 {
     struct wff_zones *Z = m->zones;
     if (!Z) {
+        wff_dist_prepare(m, &m->el, NULL);
         wff_elements_forces(&m->el, &m->em, m->mesh.xy, u, state, dt, f, totals);
+        wff_dist_forces(m, f, totals, 1); /* (over ranks: plugin/distribute.c) */
         return;
     }
     zones_eroded_copy(m);
@@ -591,6 +594,9 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
      * order, one thread each), the totals summed in zone order below: the same bits */
     const int plies = m->pack ? wff_pack_plies(m) : 1;
     const int by_ply = plies > 1 && m->el.n_threads > 1;
+    for (int k = 0; k < Z->n; k++) /* (over ranks: each zone's masks, before the threads) */
+        if (Z->zone[k].n_elements > 0)
+            wff_dist_prepare(m, &Z->zone[k].el, Z->zone[k].element);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(m->el.n_threads) if (by_ply)
     for (int p = 0; p < (by_ply ? plies : 1); p++)
         for (int k = 0; k < Z->n; k++) {
@@ -606,6 +612,17 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
                                 &z->pass);
             zone_state(m, k, state, 1);
         }
+    if (m->dist) { /* over ranks: each zone's sums reduced (a pack's per-ply accounts) */
+        for (int k = 0; k < Z->n; k++) {
+            wff_zone *z = &Z->zone[k];
+            if (z->n_elements == 0)
+                continue;
+            wff_dist_sum_fixed(m, z->pass.sums, 3);
+            z->pass.internal_energy = wff_fixed_value(&z->pass.sums[0]);
+            z->pass.dissipated = wff_fixed_value(&z->pass.sums[1]);
+            z->pass.failure_dissipated = wff_fixed_value(&z->pass.sums[2]);
+        }
+    }
     for (int k = 0; k < Z->n; k++) {
         const wff_zone *z = &Z->zone[k];
         if (z->n_elements == 0)
@@ -625,6 +642,7 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
     totals->internal_energy = wff_fixed_value(&totals->sums[0]);
     totals->dissipated = wff_fixed_value(&totals->sums[1]);
     totals->failure_dissipated = wff_fixed_value(&totals->sums[2]);
+    wff_dist_forces(m, f, totals, 0); /* (over ranks: the zones' sums reduced above) */
 }
 
 void wff_zones_masses(wff_model *m)

@@ -60,6 +60,23 @@ void wff_comm_exchange(const wff_comm *c, const void *send, const long *send_cou
 void wff_comm_gather(const wff_comm *c, int root, const void *bytes, long n, void *all,
                      const long *counts);
 void wff_comm_barrier(const wff_comm *c);
+/* Every rank's part of all (rank r's counts[r] bytes at offsets[r], in place)
+ * to every rank: all whole on every rank. */
+void wff_comm_allgather(const wff_comm *c, void *all, const long *counts, const long *offsets);
+/* The communicator a new model runs over: every rank of MPI_COMM_WORLD when
+ * this build has MPI and the process runs under it with more than one rank
+ * (FreeFem++-mpi under mpirun), else one rank. -1 (err set) on failure. */
+int wff_comm_default(wff_comm *c, wff_error *err);
+/* This process's rank in MPI_COMM_WORLD and how many there are (0 and 1
+ * without MPI or outside mpirun): which rank writes the results. */
+int wff_comm_world_rank(void);
+int wff_comm_world_size(void);
+/* Rank 0's value of `value` on every rank of MPI_COMM_WORLD (collective: every
+ * rank calls it at the same point; the value itself without MPI): a wall time
+ * every rank decides by alike (how many passes a timing takes, when a
+ * progress line or a re-estimate comes), so that the ranks' calls stay in
+ * step. */
+double wff_comm_world_agreed(double value);
 
 #ifdef __cplusplus
 }

@@ -82,6 +82,14 @@ typedef struct wff_elements {
                              stable-step limit, no stored energy), or NULL while erosion is
                              off (every pass then runs as before erosion existed); owned,
                              freed by wff_elements_free (plugin/erosion.c) */
+    unsigned char *block_run;   /* over ranks (plugin/distribute.c): per block (triangles'
+                                   blocks, then quads'), 1 if this rank computes it (its own
+                                   blocks and those touching a node it owns), or NULL: every
+                                   block (one rank) */
+    unsigned char *block_count; /* per block, 1 if its energies are this rank's to add (each
+                                   block counted on one rank), or NULL: every block */
+    int gather_begin, gather_end; /* the range of node_list whose forces this rank gathers
+                                     (its own nodes; 0 and n_gather on one rank) */
     int erosion;          /* erosion rule: WFF_EROSION_OFF, _BOTH (every point of the element
                              has both yarn families ruptured), _EITHER (one family ruptured
                              at every point) */

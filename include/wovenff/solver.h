@@ -138,6 +138,7 @@ typedef struct wff_model wff_model;
 #ifndef WFF_MODEL_OPAQUE
 struct wff_model {
     wff_comm comm;            /* the ranks the model runs over (comm.h; one by default) */
+    struct wff_dist *dist;    /* its split over them (plugin/distribute.c), NULL on one rank */
     wff_mesh mesh;
     wff_material mat;
     wff_elements el;
