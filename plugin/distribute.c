@@ -40,6 +40,10 @@ struct wff_dist {
     int *owner;        /* per element (model order): its rank */
     long *counts, *offsets; /* scratch for an exchange, size each */
     long *taken, *taken_at; /* scratch: a pass's eroded elements per rank, where each goes */
+    char *scratch;              /* a pass's exchange: every rank's message */
+    size_t scratch_size;
+    wff_fixed *fixed;           /* a zone's sums for the exchange (wff_dist_fixed_scratch) */
+    size_t fixed_size;
     double exchange_seconds;    /* wall time in the exchanges and reductions so far, s */
     double gather_seconds;      /* of it, the states gathered whole (at each advance's end), s */
 };
@@ -53,6 +57,8 @@ void wff_dist_free(wff_model *m)
     free(d->node_lo);
     free(d->owner);
     free(d->counts);
+    free(d->scratch);
+    free(d->fixed);
     free(d);
     m->dist = NULL;
 }
@@ -195,48 +201,115 @@ void wff_dist_prepare(wff_model *m, wff_elements *el, const int *global)
     }
 }
 
-int wff_dist_forces(wff_model *m, double *f, wff_force_totals *t, int reduce_sums)
+/* The scratch buffer of at least `bytes` (grown, never shrunk: one
+ * allocation at a run's first pass); out of memory stops the run. */
+static void *scratch(struct wff_dist *d, size_t bytes)
+{
+    if (bytes > d->scratch_size) {
+        void *p = realloc(d->scratch, bytes);
+        if (!p) {
+            fprintf(stderr, "wovenff: rank %d: out of memory for a force exchange of %zu bytes\n",
+                    d->rank, bytes);
+            abort();
+        }
+        d->scratch = p;
+        d->scratch_size = bytes;
+    }
+    return d->scratch;
+}
+
+wff_fixed *wff_dist_fixed_scratch(wff_model *m, int n)
+{
+    struct wff_dist *d = m->dist;
+    if (!d)
+        return NULL;
+    if ((size_t)n > d->fixed_size) {
+        wff_fixed *p = realloc(d->fixed, sizeof(wff_fixed) * (size_t)n);
+        if (!p) {
+            fprintf(stderr, "wovenff: rank %d: out of memory for %d sums\n", d->rank, n);
+            abort();
+        }
+        d->fixed = p;
+        d->fixed_size = (size_t)n;
+    }
+    return d->fixed;
+}
+
+/* What a rank adds to its forces in the one exchange of a pass: its sums (the
+ * pass's three and `n_more` others), its Newton count and whether it met a bad
+ * point. */
+typedef struct pass_extras {
+    long amplitude_iterations, bad;
+} pass_extras;
+
+int wff_dist_forces(wff_model *m, double *f, wff_force_totals *t, wff_fixed *more, int n_more)
 {
     struct wff_dist *d = m->dist;
     if (!d)
         return 0;
     const double start = wff_wall_seconds();
-    /* the nodes' forces: each rank's own to every rank */
+    /* one exchange a pass: each rank's message its nodes' forces, then its sums
+     * and counts; every rank gets every rank's */
+    const size_t extra = sizeof(wff_fixed) * (size_t)(3 + n_more) + sizeof(pass_extras);
+    size_t total = 0;
     for (int r = 0; r < d->size; r++) {
-        d->counts[r] = (long)sizeof(double) * D * (d->node_lo[r + 1] - d->node_lo[r]);
-        d->offsets[r] = (long)sizeof(double) * D * d->node_lo[r];
+        d->offsets[r] = (long)total;
+        d->counts[r] = (long)(sizeof(double) * D * (size_t)(d->node_lo[r + 1] - d->node_lo[r]) + extra);
+        total += (size_t)d->counts[r];
     }
-    wff_comm_allgather(&m->comm, f, d->counts, d->offsets);
-    /* the energies, order-free; the Newton count and the bad points: summed */
-    if (reduce_sums)
-        wff_comm_sum_fixed(&m->comm, t->sums, 3);
+    char *all = scratch(d, total);
+    {   /* this rank's message */
+        char *mine = all + d->offsets[d->rank];
+        const size_t forces = sizeof(double) * D * (size_t)(d->node_lo[d->rank + 1] - d->node_lo[d->rank]);
+        memcpy(mine, f + D * (size_t)d->node_lo[d->rank], forces);
+        memcpy(mine + forces, t->sums, sizeof(wff_fixed) * 3);
+        if (n_more > 0)
+            memcpy(mine + forces + sizeof(wff_fixed) * 3, more, sizeof(wff_fixed) * (size_t)n_more);
+        pass_extras e = {t->amplitude_iterations, t->bad_element >= 0};
+        memcpy(mine + forces + sizeof(wff_fixed) * (size_t)(3 + n_more), &e, sizeof e);
+    }
+    wff_comm_allgather(&m->comm, all, d->counts, d->offsets);
+    /* every rank's forces into f; the sums added (order-free), the counts too */
+    wff_fixed sums[3] = {wff_fixed_zero(), wff_fixed_zero(), wff_fixed_zero()};
+    for (int k = 0; k < n_more; k++)
+        more[k] = wff_fixed_zero();
+    long iterations = 0, bad = 0;
+    for (int r = 0; r < d->size; r++) {
+        const char *msg = all + d->offsets[r];
+        const size_t forces = sizeof(double) * D * (size_t)(d->node_lo[r + 1] - d->node_lo[r]);
+        if (r != d->rank)
+            memcpy(f + D * (size_t)d->node_lo[r], msg, forces);
+        for (int k = 0; k < 3 + n_more; k++) {
+            wff_fixed x;
+            memcpy(&x, msg + forces + sizeof(wff_fixed) * (size_t)k, sizeof x);
+            wff_fixed_merge(k < 3 ? &sums[k] : &more[k - 3], &x);
+        }
+        pass_extras e;
+        memcpy(&e, msg + forces + sizeof(wff_fixed) * (size_t)(3 + n_more), sizeof e);
+        iterations += e.amplitude_iterations;
+        bad += e.bad;
+    }
+    for (int k = 0; k < 3; k++)
+        t->sums[k] = sums[k];
     t->internal_energy = wff_fixed_value(&t->sums[0]);
     t->dissipated = wff_fixed_value(&t->sums[1]);
     t->failure_dissipated = wff_fixed_value(&t->sums[2]);
-    long counts[2] = {t->amplitude_iterations, t->bad_element >= 0};
-    wff_comm_sum_long(&m->comm, counts, 2);
-    t->amplitude_iterations = counts[0];
-    if (counts[1] > 0) { /* a bad point somewhere (rare: the run stops): the lowest element's */
+    t->amplitude_iterations = iterations;
+    if (bad > 0) { /* a bad point somewhere (rare: the run stops): the lowest element's */
         double lowest = t->bad_element >= 0 ? t->bad_element : (double)d->n_elements;
         int from = d->rank;
         wff_comm_min_index(&m->comm, &lowest, &from);
-        struct { int element, point, status, iterations; double residual; } bad = {
+        struct { int element, point, status, iterations; double residual; } worst = {
             t->bad_element, t->bad_point, t->bad_status, t->bad_iterations, t->bad_residual};
-        wff_comm_broadcast(&m->comm, from, &bad, (long)sizeof bad);
-        t->bad_element = bad.element;
-        t->bad_point = bad.point;
-        t->bad_status = bad.status;
-        t->bad_iterations = bad.iterations;
-        t->bad_residual = bad.residual;
+        wff_comm_broadcast(&m->comm, from, &worst, (long)sizeof worst);
+        t->bad_element = worst.element;
+        t->bad_point = worst.point;
+        t->bad_status = worst.status;
+        t->bad_iterations = worst.iterations;
+        t->bad_residual = worst.residual;
     }
-    m->dist->exchange_seconds += wff_wall_seconds() - start;
+    d->exchange_seconds += wff_wall_seconds() - start;
     return 0;
-}
-
-void wff_dist_sum_fixed(const wff_model *m, wff_fixed *v, int n)
-{
-    if (m->dist)
-        wff_comm_sum_fixed(&m->comm, v, n);
 }
 
 int wff_dist_owns_element(const wff_model *m, int e)

@@ -18,12 +18,13 @@ int wff_dist_elements(const wff_model *m, wff_elements *el, const int *global, w
  * model indices): the model's split and el's masks, made once (out of memory:
  * the run cannot go on, and stops with a message). */
 void wff_dist_prepare(wff_model *m, wff_elements *el, const int *global);
-/* After a force pass's gather into f: every rank's nodes' forces to every
- * rank; the pass's sums reduced (reduce_sums; 0: reduced already); the lowest
- * bad element over the ranks. */
-int wff_dist_forces(wff_model *m, double *f, wff_force_totals *t, int reduce_sums);
-/* Order-free sums of this rank's counted blocks reduced (a zone's totals). */
-void wff_dist_sum_fixed(const wff_model *m, wff_fixed *v, int n);
+/* After a force pass's gather into f, one exchange: every rank's nodes'
+ * forces to every rank; the pass's sums t->sums and more[0..n_more) (a zone's,
+ * NULL: none) reduced over the ranks, order-free; the Newton count summed; the
+ * lowest bad element over the ranks (a second exchange, only then). */
+int wff_dist_forces(wff_model *m, double *f, wff_force_totals *t, wff_fixed *more, int n_more);
+/* n order-free sums of scratch for wff_dist_forces' more (NULL on one rank). */
+wff_fixed *wff_dist_fixed_scratch(wff_model *m, int n);
 /* 1 if element e (model order) is this rank's (always on one rank). */
 int wff_dist_owns_element(const wff_model *m, int e);
 /* Erosion: this rank's n_mine elements taken in a pass (m->eroded_now and

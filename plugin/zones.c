@@ -577,7 +577,7 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
     if (!Z) {
         wff_dist_prepare(m, &m->el, NULL);
         wff_elements_forces(&m->el, &m->em, m->mesh.xy, u, state, dt, f, totals);
-        wff_dist_forces(m, f, totals, 1); /* (over ranks: plugin/distribute.c) */
+        wff_dist_forces(m, f, totals, NULL, 0); /* (over ranks: plugin/distribute.c) */
         return;
     }
     zones_eroded_copy(m);
@@ -612,17 +612,6 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
                                 &z->pass);
             zone_state(m, k, state, 1);
         }
-    if (m->dist) { /* over ranks: each zone's sums reduced (a pack's per-ply accounts) */
-        for (int k = 0; k < Z->n; k++) {
-            wff_zone *z = &Z->zone[k];
-            if (z->n_elements == 0)
-                continue;
-            wff_dist_sum_fixed(m, z->pass.sums, 3);
-            z->pass.internal_energy = wff_fixed_value(&z->pass.sums[0]);
-            z->pass.dissipated = wff_fixed_value(&z->pass.sums[1]);
-            z->pass.failure_dissipated = wff_fixed_value(&z->pass.sums[2]);
-        }
-    }
     for (int k = 0; k < Z->n; k++) {
         const wff_zone *z = &Z->zone[k];
         if (z->n_elements == 0)
@@ -642,7 +631,25 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
     totals->internal_energy = wff_fixed_value(&totals->sums[0]);
     totals->dissipated = wff_fixed_value(&totals->sums[1]);
     totals->failure_dissipated = wff_fixed_value(&totals->sums[2]);
-    wff_dist_forces(m, f, totals, 0); /* (over ranks: the zones' sums reduced above) */
+    wff_fixed *zone_sums = wff_dist_fixed_scratch(m, 3 * Z->n); /* (NULL on one rank) */
+    if (!zone_sums)
+        return;
+    /* over ranks: the forces, the pass's sums and each zone's (a pack's per-ply
+     * accounts) in one exchange (plugin/distribute.c) */
+    for (int k = 0; k < Z->n; k++)
+        for (int s = 0; s < 3; s++)
+            zone_sums[3 * k + s] = Z->zone[k].n_elements ? Z->zone[k].pass.sums[s] : wff_fixed_zero();
+    wff_dist_forces(m, f, totals, zone_sums, 3 * Z->n);
+    for (int k = 0; k < Z->n; k++) {
+        wff_zone *z = &Z->zone[k];
+        if (z->n_elements == 0)
+            continue;
+        for (int s = 0; s < 3; s++)
+            z->pass.sums[s] = zone_sums[3 * k + s];
+        z->pass.internal_energy = wff_fixed_value(&z->pass.sums[0]);
+        z->pass.dissipated = wff_fixed_value(&z->pass.sums[1]);
+        z->pass.failure_dissipated = wff_fixed_value(&z->pass.sums[2]);
+    }
 }
 
 void wff_zones_masses(wff_model *m)

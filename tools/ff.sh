@@ -3,7 +3,8 @@
 # Usage: tools/ff.sh [-np N] script.edp [script arguments...]
 #   -np N: one model over N MPI ranks (docs/distributed.md): mpirun -np N FreeFem++-mpi with
 #          the MPI module (build/mpi/wovenff.so: make builds it where OpenMPI's mpicc is);
-#          rank 0 prints and writes the results, the other ranks' output goes nowhere.
+#          rank 0 prints and writes the results, the other ranks' output goes nowhere;
+#          the ranks run on this machine (a cluster: mpirun yourself, README "On a cluster").
 # Run from the repository root (the Makefile does).
 root=$(cd "$(dirname "$0")/.." && pwd)
 if [ "${1:-}" = "-np" ]; then
@@ -26,9 +27,10 @@ if [ "${1:-}" = "-np" ]; then
         export OMPI_ALLOW_RUN_AS_ROOT OMPI_ALLOW_RUN_AS_ROOT_CONFIRM
     fi
     over=""; [ "$np" -gt "$(nproc)" ] && over=--oversubscribe
-    mpirun -np "$np" $over -x FF_LOADPATH -x FF_INCLUDEPATH -x OMP_WAIT_POLICY -x TMPDIR \
-        sh -c 'if [ "${OMPI_COMM_WORLD_RANK:-0}" != 0 ]; then exec >/dev/null; fi
-               exec FreeFem++-mpi -nw -v 0 "$@"' sh "$@"
+    # (--mca plm isolated: the ranks on this machine, also inside a Slurm job step, where
+    # mpirun would otherwise ask Slurm to start its daemons)
+    mpirun --mca plm isolated -np "$np" $over -x FF_LOADPATH -x FF_INCLUDEPATH -x OMP_WAIT_POLICY -x TMPDIR \
+        sh -c 'if [ "${OMPI_COMM_WORLD_RANK:-0}" != 0 ]; then exec >/dev/null; fi; exec FreeFem++-mpi -nw -v 0 "$@"' sh "$@"
     rc=$?
     rm -rf "$scratch"
     exit "$rc"
