@@ -2,7 +2,8 @@
 #   make deps    install the Debian packages this project needs (root or sudo)
 #   make         build the C core, the C tests and the FreeFEM module
 #   make run     the paper's ballistic scene (SCENE=name for another, ARGS="-mesh fine ...");
-#                installs what is missing (make deps), builds the module only (no test binary)
+#                installs what is missing (make deps), builds the module only (no test binary);
+#                NP=N: one model over N MPI ranks (the MPI module; docs/distributed.md)
 #   make test    C tests, .edp tests and physics checks; ends with "N passed, N failed";
 #                installs what is missing (make deps) and builds everything first
 #   make bench   benchmarks (not part of make test)
@@ -170,10 +171,11 @@ LOCKED_SCENES := ballistic_impact strip_tension explicit_loop unit_cell_explorer
 RUN_FRESH := $(if $(filter $(SCENE),$(LOCKED_SCENES)),$(if $(findstring -out,$(ARGS))$(findstring -overwrite,$(ARGS)),,-overwrite 1))
 # (make deps first, then the build: a recursive make, so that -j cannot compile before the
 # packages are there on a fresh machine)
+NP ?=
 run:
 	@$(MAKE) --no-print-directory deps
-	@$(MAKE) --no-print-directory $(MODULE)
-	@sh tools/ff.sh freefem_scripts/$(SCENE).edp $(RUN_FRESH) $(ARGS)
+	@$(MAKE) --no-print-directory $(if $(NP),$(MPI_MODULE),$(MODULE))
+	@sh tools/ff.sh $(if $(NP),-np $(NP) )freefem_scripts/$(SCENE).edp $(RUN_FRESH) $(ARGS)
 
 test:
 	@$(MAKE) --no-print-directory deps

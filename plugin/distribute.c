@@ -375,15 +375,20 @@ int wff_dist_rank_count(const wff_model *m)
     return m->dist ? m->dist->size : 1;
 }
 
-/* The part (part.h): the model's ranks in its values; a mesh transfer over
+/* The part (part.h): the model's ranks and the timers of the pass it splits
+ * (force_seconds: the steps' force passes with their exchange; exchange_seconds:
+ * the exchanges alone) in its values; a mesh transfer over
  * ranks refused (not built: the states would have to be gathered first). */
-static const char *const distributed_value_names[] = {"mpi_ranks", "exchange_seconds", NULL};
+static const char *const distributed_value_names[] = {"mpi_ranks", "force_seconds",
+                                                      "exchange_seconds", NULL};
 
 static void distributed_value(const wff_model *m, const char *key, double *value)
 {
     const struct wff_dist *d = m->dist;
     if (strcmp(key, "mpi_ranks") == 0)
         *value = m->comm.size;
+    else if (strcmp(key, "force_seconds") == 0) /* (the model's timer: the split's share) */
+        *value = m->force_seconds;
     else
         *value = d ? d->exchange_seconds : 0;
 }

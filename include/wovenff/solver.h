@@ -216,6 +216,8 @@ struct wff_model {
     double dt_mid;            /* the last velocity update's Δt_mid, s */
     int v_half_valid;         /* 1 once v holds a half-step velocity */
     long element_steps;       /* elements × steps done, for cost figures */
+    double force_seconds;     /* wall time in the steps' force passes (with their exchange
+                                 over ranks), s: a timer (summary.json force_seconds) */
     long amplitude_iterations; /* static amplitudes: Newton iterations over all points and
                                   steps since the model was built (not checkpointed) */
     int blowup_steps;         /* consecutive steps with more than half the reference
