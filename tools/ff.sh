@@ -4,7 +4,8 @@
 #   -np N: one model over N MPI ranks (docs/distributed.md): mpirun -np N FreeFem++-mpi with
 #          the MPI module (build/mpi/wovenff.so: make builds it where OpenMPI's mpicc is);
 #          rank 0 prints and writes the results, the other ranks' output goes nowhere;
-#          the ranks run on this machine (a cluster: mpirun yourself, README "On a cluster").
+#          the ranks run on this machine (a cluster: mpirun yourself, README "How to run on a
+#          cluster"); WFF_MPIRUN_ARGS: more of mpirun's options (--bind-to none for -threads > 1).
 # Run from the repository root (the Makefile does).
 root=$(cd "$(dirname "$0")/.." && pwd)
 if [ "${1:-}" = "-np" ]; then
@@ -29,7 +30,8 @@ if [ "${1:-}" = "-np" ]; then
     over=""; [ "$np" -gt "$(nproc)" ] && over=--oversubscribe
     # (--mca plm isolated: the ranks on this machine, also inside a Slurm job step, where
     # mpirun would otherwise ask Slurm to start its daemons)
-    mpirun --mca plm isolated -np "$np" $over -x FF_LOADPATH -x FF_INCLUDEPATH -x OMP_WAIT_POLICY -x TMPDIR \
+    # shellcheck disable=SC2086 # ($over and $WFF_MPIRUN_ARGS: words for mpirun, e.g. --bind-to none)
+    mpirun --mca plm isolated -np "$np" $over ${WFF_MPIRUN_ARGS:-} -x FF_LOADPATH -x FF_INCLUDEPATH -x OMP_WAIT_POLICY -x TMPDIR \
         sh -c 'if [ "${OMPI_COMM_WORLD_RANK:-0}" != 0 ]; then exec >/dev/null; fi; exec FreeFem++-mpi -nw -v 0 "$@"' sh "$@"
     rc=$?
     rm -rf "$scratch"
