@@ -9,6 +9,7 @@
 #    count set (wall and pass times, mpi_ranks, threads, the options' -out);
 #    state_hash in it (the bits of u, v, f, every point's internal state, the erosion
 #    flags, the projectile and the energy accounts) the serial run's;
+#  - 2 ranks of 2 threads each: the pack's serial one-thread state and history;
 #  - a checkpoint written at 2 ranks is the serial run's checkpoint byte for byte, and
 #    restarted at 3 ranks ends on the serial run's state, history and summary;
 #  - a single ply struck within 1 % of its ballistic limit (coarse, fixed clamp: V50
@@ -76,6 +77,15 @@ grep -q '"perforated": true' "$tmp/perforation_0/summary.json" \
     || { echo "the 4-ply run at 45 m/s did not perforate: the case tests no erosion"; fail=1; }
 eroded=$(sed -n 's/.*"eroded_elements": \([0-9]*\).*/\1/p' "$tmp/perforation_0/summary.json")
 echo "perforation: $eroded elements eroded"
+
+# ranks x threads: 2 ranks of 2 threads each (unbound), the pack's serial one-thread answer
+WFF_MPIRUN_ARGS="--bind-to none" timeout -k 5 300 sh tools/ff.sh -np 2 "$scene" -mesh coarse -plies 8 -tend 2e-4 \
+    -threads 2 -plots 0 -vtkdt 1 -out "$tmp/hybrid_2" > "$tmp/hybrid_2.log" 2>&1 \
+    || { echo "2 ranks x 2 threads: exit $?"; tail -5 "$tmp/hybrid_2.log"; fail=1; }
+grep -q '"threads": 2' "$tmp/hybrid_2/summary.json" || { echo "2 ranks x 2 threads: the run did not take 2 threads"; fail=1; }
+cmp -s "$tmp/pack_0/history.csv" "$tmp/hybrid_2/history.csv" && [ "$(hash_of "$tmp/hybrid_2")" = "$(hash_of "$tmp/pack_0")" ] \
+    || { echo "2 ranks x 2 threads: the pack's state $(hash_of "$tmp/hybrid_2"), serial one thread $(hash_of "$tmp/pack_0")"; fail=1; }
+echo "pack at 2 ranks x 2 threads: state $(hash_of "$tmp/hybrid_2")"
 
 # a checkpoint at 2 ranks, restarted at 3
 ck="-mesh coarse -tend 5e-4 -checkpoint 10"
