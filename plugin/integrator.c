@@ -8,6 +8,8 @@
  * fields, of checkpoints or of FreeFEM. */
 #include "part.h"
 #include "zones.h"
+#include "distribute.h"
+#include "wall_clock.h"
 #include "wovenff/renumber.h"
 
 #include <math.h>
@@ -167,10 +169,14 @@ static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
     return wff_force_pass(m, m->u, m->f, m->state, dt_flow, 1, NULL, err);
 }
 
-/* The same, f zeroed already (by the position update: one pass less a step). */
+/* The same, f zeroed already (by the position update: one pass less a step);
+ * its wall time into m->force_seconds. */
 static int compute_forces_zeroed(wff_model *m, double dt_flow, wff_error *err)
 {
-    return force_pass_added(m, m->u, m->f, m->state, dt_flow, 1, NULL, err);
+    const double start = wff_wall_seconds();
+    int rc = force_pass_added(m, m->u, m->f, m->state, dt_flow, 1, NULL, err);
+    m->force_seconds += wff_wall_seconds() - start;
+    return rc;
 }
 
 /* v^{n+½} from f^n; dt_done is the step just taken (0 on the first half step):
@@ -242,7 +248,8 @@ static void kinetic_now(const wff_model *m, double k[6])
 {
     const double half = m->v_half_valid ? 0.5 * m->dt : 0;
     double sums[5]; /* Σ m v² in-plane, transverse, amplitude, Σ f²/m, Σ v^{n+½}·g
-                       (threaded: step_threads.c) */
+                       (threaded: step_threads.c; over ranks every rank's pass is whole,
+                       plugin/distribute.c) */
     wff_step_kinetic(m, half, sums);
     const double inplane = sums[0], transverse = sums[1], amplitude = sums[2];
     k[0] = 0.5 * inplane;
@@ -386,7 +393,19 @@ static int cut_step(wff_model *m)
     return 1;
 }
 
+static int advance(wff_model *m, double t_end, long max_steps, wff_error *err);
+
+/* Over ranks, every rank's points' states whole again when the advance
+ * returns (each advanced its own elements': fields, values and checkpoints
+ * read them all; plugin/distribute.c). */
 int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err)
+{
+    int rc = advance(m, t_end, max_steps, err);
+    wff_dist_states_whole(m);
+    return rc;
+}
+
+static int advance(wff_model *m, double t_end, long max_steps, wff_error *err)
 {
     const double stop = m->t_stop > 0 ? m->t_stop : INFINITY;
     int lands = 0; /* the step planned ends at stop */

@@ -273,8 +273,6 @@ static int cell_takes_points(const wff_element_material *em, double dt)
 int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
                                            const wff_element_material *em, const double *X,
                                            const double *u, double *state, double dt,
-                                           double *energy, double *dissipated,
-                                           double *failure, double *slip,
                                            wff_force_totals *totals)
 {
     if (el->n_quads == 0 || !wff_cell_has_point_block(em->mat) || em->reference_path ||
@@ -284,8 +282,8 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
     quad_table_init(&gauss);
     const int n_blocks = (el->n_quads + WFF_BLOCK - 1) / WFF_BLOCK;
     /* the quads' blocks' sums follow the triangles' */
-    double *block_sums =
-        el->block_sums + WFF_BLOCK_SUMS * (size_t)((el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK);
+    const int tri_blocks = (el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK;
+    double *block_sums = el->block_sums + WFF_BLOCK_SUMS * (size_t)tri_blocks;
     /* small meshes are not worth a thread team (membrane.h, wff_elements_team) */
     int threads = wff_elements_team(el);
     quad_sums part[WFF_MAX_THREADS];
@@ -302,6 +300,8 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
         quad_sums bad = {0, 0, 0, 0, -1, -1, 0};
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
+            if (el->block_run && !el->block_run[tri_blocks + blk])
+                continue; /* (over ranks: another rank's block, plugin/distribute.c) */
             int e0 = blk * WFF_BLOCK;
             int n = el->n_quads - e0 < WFF_BLOCK ? el->n_quads - e0 : WFF_BLOCK;
             quad_sums sums = {0, 0, 0, 0, bad.bad_element, bad.bad_point, bad.bad_status};
@@ -317,12 +317,13 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
         }
         part[t] = bad;
     }
-    for (int blk = 0; blk < n_blocks; blk++) { /* in block order: the same sums for any team */
+    const double inv_J = 1 / em->J_pre;
+    for (int blk = 0; blk < n_blocks; blk++) { /* each block's sums, order-free across blocks */
+        if (el->block_count && !el->block_count[tri_blocks + blk])
+            continue; /* (another rank's to add) */
         const double *b = block_sums + WFF_BLOCK_SUMS * (size_t)blk;
-        *energy += b[0];
-        *dissipated += b[1];
-        *failure += b[2];
-        *slip += b[3];
+        for (int k = 0; k < WFF_BLOCK_SUMS; k++)
+            wff_fixed_add(&totals->sums[k], b[k] * inv_J);
     }
     quad_sums all = {0, 0, 0, 0, -1, -1, 0};
     for (int t = 0; t < team; t++)
@@ -340,17 +341,20 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
  * point (evaluate, or the static amplitudes' Newton, at each Gauss point). */
 void WFF_KERNEL_NAME(wff_quad_forces)(const wff_elements *el, const wff_element_material *em,
                                       const double *X, const double *u, double *state,
-                                      double dt, double *energy, double *dissipated,
-                                      double *failure, double *slip, wff_force_totals *totals)
+                                      double dt, wff_force_totals *totals)
 {
     const wff_material *mat = em->mat;
     const int amplitudes = wff_cell_amplitudes(mat->cell);
     const int ns = mat->n_state;
     const int quads_blocked = WFF_KERNEL_NAME(wff_quad_block_forces)(
-                                  el, em, X, u, state, dt, energy, dissipated, failure, slip,
-                                  totals) == 0;
+                                  el, em, X, u, state, dt, totals) == 0;
+    const int tri_blocks = (el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK;
     for (int e = 0; !quads_blocked && e < el->n_quads; e++) {
         int id = el->n_tris + e;
+        const int block = tri_blocks + e / WFF_BLOCK;
+        if (el->block_run && !el->block_run[block])
+            continue; /* (over ranks: another rank's, plugin/distribute.c) */
+        const int counted = !el->block_count || el->block_count[block];
         double *slot = el->slot + D * (3 * (size_t)el->n_tris + 4 * (size_t)e);
         memset(slot, 0, sizeof(double) * D * 4); /* (its points add into it) */
         if (wff_element_eroded(el, id))
@@ -372,7 +376,8 @@ void WFF_KERNEL_NAME(wff_quad_forces)(const wff_elements *el, const wff_element_
                                       ? wff_balance_point(mat, Fe, pdA, ps, dt, &r, &iterations)
                                       : wff_material_evaluate(mat, Fe, dA, ps, dt, &r),
                                   Fe, pdA, &r);
-            totals->amplitude_iterations += iterations;
+            if (counted)
+                totals->amplitude_iterations += iterations;
             if (status != WFF_POINT_OK) {
                 if (status == WFF_POINT_UNBALANCED && totals->bad_element < 0) {
                     totals->bad_residual = fmax(fabs(r.residual[0]), fabs(r.residual[1]));
@@ -392,10 +397,12 @@ void WFF_KERNEL_NAME(wff_quad_forces)(const wff_elements *el, const wff_element_
                 for (int k = 0; k < point_amplitudes; k++)
                     fb[3 + k] += w * N[b] * r.residual[k] / em->J_pre;
             }
-            *energy += w * r.energy;
-            *dissipated += w * r.dissipated;
-            *failure += w * r.failure_dissipated;
-            *slip += w * r.slip_dissipated;
+            if (!counted)
+                continue; /* (its energies another rank's to add) */
+            wff_fixed_add(&totals->sums[0], w * r.energy / em->J_pre);
+            wff_fixed_add(&totals->sums[1], w * r.dissipated / em->J_pre);
+            wff_fixed_add(&totals->sums[2], w * r.failure_dissipated / em->J_pre);
+            wff_fixed_add(&totals->sums[3], w * r.slip_dissipated / em->J_pre);
         }
     }
 }

@@ -439,8 +439,7 @@ static int tri_block_static_forces(const wff_elements *el, const wff_element_mat
 
 void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_material *em,
                                      const double *X, const double *u, double *state,
-                                     double dt, double *energy, double *dissipated,
-                                     double *failure, double *slip, wff_force_totals *totals)
+                                     double dt, wff_force_totals *totals)
 {
     const wff_material *mat = em->mat;
     /* small meshes are not worth a thread team (membrane.h, WFF_TEAM_MIN_TRIS) */
@@ -458,12 +457,17 @@ void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_m
         int t = omp_thread();
 #pragma omp single nowait /* (read after the element loop's barrier: no barrier of its own) */
         team = omp_team();
-        wff_force_totals bad = {0, 0, 0, 0, -1, -1, 0, 0, 0, 0};
+        wff_force_totals bad;
+        memset(&bad, 0, sizeof bad);
+        bad.bad_element = bad.bad_point = -1;
         int blocked = use_block; /* a cell declines by its parameters: ask once per thread */
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
+            if (el->block_run && !el->block_run[blk])
+                continue; /* (over ranks: another rank's block, plugin/distribute.c) */
             int e0 = blk * WFF_BLOCK;
             int n = el->n_tris - e0 < WFF_BLOCK ? el->n_tris - e0 : WFF_BLOCK;
+            const int iterations_before = bad.amplitude_iterations;
             /* the block's own sums (its elements in order; the blocks added in
              * order after the pass) */
             tri_sums sums = {0, 0, 0, 0, bad};
@@ -492,15 +496,18 @@ void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_m
             double *b = el->block_sums + WFF_BLOCK_SUMS * (size_t)blk;
             b[0] = sums.energy, b[1] = sums.dissipated, b[2] = sums.failure, b[3] = sums.slip;
             bad = sums.bad;
+            if (el->block_count && !el->block_count[blk]) /* (a block another rank counts) */
+                bad.amplitude_iterations = iterations_before;
         }
         part_bad[t] = bad;
     }
-    for (int blk = 0; blk < n_blocks; blk++) { /* in block order: the same sums for any team */
+    const double inv_J = 1 / em->J_pre;
+    for (int blk = 0; blk < n_blocks; blk++) { /* each block's sums, order-free across blocks */
+        if (el->block_count && !el->block_count[blk])
+            continue; /* (another rank's to add) */
         const double *b = el->block_sums + WFF_BLOCK_SUMS * (size_t)blk;
-        *energy += b[0];
-        *dissipated += b[1];
-        *failure += b[2];
-        *slip += b[3];
+        for (int k = 0; k < WFF_BLOCK_SUMS; k++)
+            wff_fixed_add(&totals->sums[k], b[k] * inv_J);
     }
     for (int t = 0; t < team; t++) {
         totals->amplitude_iterations += part_bad[t].amplitude_iterations;

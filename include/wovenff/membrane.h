@@ -30,6 +30,7 @@
 #define WOVENFF_MEMBRANE_H
 
 #include "wovenff/cell.h"
+#include "wovenff/fixed_sum.h"
 
 #include <stddef.h>
 
@@ -86,6 +87,14 @@ typedef struct wff_elements {
                              stable-step limit, no stored energy), or NULL while erosion is
                              off (every pass then runs as before erosion existed); owned,
                              freed by wff_elements_free (plugin/erosion.c) */
+    unsigned char *block_run;   /* over ranks (plugin/distribute.c): per block (triangles'
+                                   blocks, then quads'), 1 if this rank computes it (its own
+                                   blocks and those touching a node it owns), or NULL: every
+                                   block (one rank) */
+    unsigned char *block_count; /* per block, 1 if its energies are this rank's to add (each
+                                   block counted on one rank), or NULL: every block */
+    int gather_begin, gather_end; /* the range of node_list whose forces this rank gathers
+                                     (its own nodes; 0 and n_gather on one rank) */
     int erosion;          /* erosion rule: WFF_EROSION_OFF, _BOTH (every point of the element
                              has both yarn families ruptured), _EITHER (one family ruptured
                              at every point) */
@@ -202,6 +211,9 @@ typedef struct wff_force_totals {
     int bad_iterations;      /* WFF_POINT_UNBALANCED: the Newton iterations spent */
     long amplitude_iterations; /* static amplitudes: Newton iterations (tangents) over all
                                   points of the pass */
+    wff_fixed sums[WFF_BLOCK_SUMS]; /* the four energies above as order-free sums of the
+                                blocks' (fixed_sum.h): the doubles are their values; a model
+                                over ranks adds the ranks' before taking them */
 } wff_force_totals;
 
 /* The threads a pass over el's elements (or the model's DOFs) uses: n_threads,

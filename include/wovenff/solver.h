@@ -26,6 +26,7 @@
 #ifndef WOVENFF_SOLVER_H
 #define WOVENFF_SOLVER_H
 
+#include "wovenff/comm.h"
 #include "wovenff/membrane.h"
 #include "wovenff/mesh.h"
 
@@ -138,6 +139,8 @@ typedef struct wff_bc_record {
 typedef struct wff_model wff_model;
 #ifndef WFF_MODEL_OPAQUE
 struct wff_model {
+    wff_comm comm;            /* the ranks the model runs over (comm.h; one by default) */
+    struct wff_dist *dist;    /* its split over them (plugin/distribute.c), NULL on one rank */
     wff_mesh mesh;
     wff_material mat;
     wff_elements el;
@@ -216,6 +219,8 @@ struct wff_model {
     double dt_mid;            /* the last velocity update's Δt_mid, s */
     int v_half_valid;         /* 1 once v holds a half-step velocity */
     long element_steps;       /* elements × steps done, for cost figures */
+    double force_seconds;     /* wall time in the steps' force passes (with their exchange
+                                 over ranks), s: a timer (summary.json force_seconds) */
     long amplitude_iterations; /* static amplitudes: Newton iterations over all points and
                                   steps since the model was built (not checkpointed) */
     int blowup_steps;         /* consecutive steps with more than half the reference
