@@ -2,7 +2,8 @@
 #   make deps    install the Debian packages this project needs (root or sudo)
 #   make         build the C core, the C tests and the FreeFEM module
 #   make run     the paper's ballistic scene (SCENE=name for another, ARGS="-mesh fine ...");
-#                installs what is missing (make deps), builds the module only (no test binary)
+#                installs what is missing (make deps), builds the module only (no test binary);
+#                NP=N: one model over N MPI ranks (the MPI module; docs/distributed.md)
 #   make test    C tests, .edp tests and physics checks; ends with "N passed, N failed";
 #                installs what is missing (make deps) and builds everything first
 #   make bench   benchmarks (not part of make test)
@@ -42,6 +43,10 @@ DEB_PACKAGES := freefem++ libfreefem++-dev gmsh libgmsh-dev libgsl-dev gnuplot-n
 # srun|slurm). make deps installs them too, but one that cannot be installed is a warning,
 # never a failed build or `make run` (the test then skips its Slurm part, saying why).
 DEB_TEST_PACKAGES := slurm-wlm munge
+# MPI (docs/distributed.md): OpenMPI, the MPI FreeFEM's FreeFem++-mpi runs on. Installed by make
+# deps like the test packages: without it the MPI module is not built and the distributed tests
+# skip, saying why; the serial build and `make run` never need it.
+DEB_MPI_PACKAGES := libopenmpi-dev openmpi-bin
 
 CORE_SRC := $(sort $(wildcard plugin/*.c plugin/cells/*.c))
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
@@ -68,6 +73,13 @@ CTEST_BIN := $(CTEST_SRC:tests/c/%.c=$(BUILD)/tests/%)
 TESTLIB_SRC := $(sort $(wildcard tests/c/lib/*.c))
 TESTLIB_OBJ := $(TESTLIB_SRC:%.c=$(BUILD)/%.o)
 MODULE   := $(BUILD)/wovenff.so
+# The MPI module (docs/distributed.md): the same objects, comm.c built with OpenMPI's mpicc
+# (-DWFF_MPI), for FreeFem++-mpi under mpirun (tools/ff.sh -np N, make run NP=N). Built with
+# the rest when mpicc and mpi.h are there (MPI=1 to require it, MPI=0 to leave it out).
+MPICC    ?= mpicc
+MPI      ?= $(shell $(MPICC) --showme:incdirs >/dev/null 2>&1 && test -f "$$($(MPICC) --showme:incdirs | cut -d' ' -f1)/mpi.h" && echo 1 || echo 0)
+MPI_MODULE := $(BUILD)/mpi/wovenff.so
+MPI_CORE_OBJ = $(filter-out $(BUILD)/plugin/comm.o,$(CORE_OBJ)) $(BUILD)/mpi/plugin/comm.o
 MODULE_SRC := $(sort $(wildcard plugin/ff/*.cpp))
 
 MODULE_OBJ := $(MODULE_SRC:%.cpp=$(BUILD)/%.o)
@@ -85,7 +97,7 @@ $(shell mkdir -p $(BUILD) && [ "$$(cat $(FLAGS_FILE) 2>/dev/null)" = '$(FLAGS_NO
 
 .PHONY: all deps run test bench clean print-core-objects
 .SECONDARY:
-all: $(CORE_OBJ) $(CTEST_BIN) $(MODULE)
+all: $(CORE_OBJ) $(CTEST_BIN) $(MODULE) $(if $(filter 1,$(MPI)),$(MPI_MODULE))
 
 $(BUILD)/plugin/%.o: plugin/%.c $(FLAGS_FILE)
 	@mkdir -p $(dir $@)
@@ -123,6 +135,16 @@ $(MODULE): $(MODULE_OBJ) $(CORE_OBJ)
 	$(CXX) $(CXXFLAGS) -shared $(MODULE_OBJ) $(CORE_OBJ) $(LDLIBS) -Wl,-Map=$(BUILD)/wovenff.map \
 	    -o $@
 
+# gcc 12 misreads OpenMPI's MPI_UNWEIGHTED (-Wstringop-overread: a false warning, our -Werror)
+$(BUILD)/mpi/plugin/comm.o: plugin/comm.c $(FLAGS_FILE)
+	@mkdir -p $(dir $@)
+	$(MPICC) $(CFLAGS) -DWFF_MPI -Wno-stringop-overread $(CORE_INC) $(DEPFLAGS) -c $< -o $@
+
+$(MPI_MODULE): $(MODULE_OBJ) $(MPI_CORE_OBJ)
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS) -shared $(MODULE_OBJ) $(MPI_CORE_OBJ) $(LDLIBS) \
+	    $(shell $(MPICC) --showme:link 2>/dev/null) -o $@
+
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
@@ -132,14 +154,14 @@ deps:
 	  SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO=sudo; \
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
 	else echo "all Debian packages present"; fi; \
-	missing=""; for p in $(DEB_TEST_PACKAGES); do \
+	missing=""; for p in $(DEB_TEST_PACKAGES) $(DEB_MPI_PACKAGES); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
 	done; \
 	if [ -n "$$missing" ]; then \
 	  echo "installing (for the tests):$$missing"; \
 	  SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO=sudo; \
 	  { $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; } \
-	    || echo "warning: could not install$$missing: tests/sh/slurm_sweep.sh will skip its Slurm part"; \
+	    || echo "warning: could not install$$missing: tests/sh/slurm_sweep.sh (Slurm) or tests/sh/distributed.sh (MPI) will skip"; \
 	fi
 
 # A scene with a run lock refuses a folder holding an earlier run's results;
@@ -149,10 +171,11 @@ LOCKED_SCENES := ballistic_impact strip_tension explicit_loop unit_cell_explorer
 RUN_FRESH := $(if $(filter $(SCENE),$(LOCKED_SCENES)),$(if $(findstring -out,$(ARGS))$(findstring -overwrite,$(ARGS)),,-overwrite 1))
 # (make deps first, then the build: a recursive make, so that -j cannot compile before the
 # packages are there on a fresh machine)
+NP ?=
 run:
 	@$(MAKE) --no-print-directory deps
-	@$(MAKE) --no-print-directory $(MODULE)
-	@sh tools/ff.sh freefem_scripts/$(SCENE).edp $(RUN_FRESH) $(ARGS)
+	@$(MAKE) --no-print-directory $(if $(NP),$(MPI_MODULE),$(MODULE))
+	@sh tools/ff.sh $(if $(NP),-np $(NP) )freefem_scripts/$(SCENE).edp $(RUN_FRESH) $(ARGS)
 
 test:
 	@$(MAKE) --no-print-directory deps

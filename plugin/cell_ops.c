@@ -43,6 +43,7 @@ int wff_cell_parse(wff_kv *kv, wff_material *mat, wff_error *err)
 int wff_material_evaluate(const wff_material *mat, const double F[6], const double dA[2],
                           const double *state, double dt, wff_point_result *out)
 {
+    out->slip_dissipated = 0; /* (a cell without yarn slip leaves it: none) */
     return mat->cell->evaluate(mat->params, F, dA, state, dt, out);
 }
 
@@ -77,17 +78,19 @@ int wff_cell_has_shared(const wff_material *mat) { return mat->cell->evaluate_sh
 int wff_cell_evaluate_shared(const wff_material *mat, const double F[6], int n_points,
                              const double *dA, const double *weight, double *state, double dt,
                              double stress_sum[6], double *residual, double *energy,
-                             double *dissipated, double *failure_dissipated, int *bad_point)
+                             double *dissipated, double *failure_dissipated,
+                             double *slip_dissipated, int *bad_point)
 {
     const wff_cell_type *cell = mat->cell;
     if (cell->evaluate_shared)
         return cell->evaluate_shared(mat->params, F, n_points, dA, weight, state, dt,
                                      stress_sum, residual, energy, dissipated,
-                                     failure_dissipated, bad_point);
+                                     failure_dissipated, slip_dissipated, bad_point);
     *bad_point = 0;
     const int ns = mat->n_state;
     for (int q = 0; q < n_points; q++) {
         wff_point_result r;
+        r.slip_dissipated = 0; /* (a cell without yarn slip leaves it: none) */
         double *ps = state + ns * q;
         int status = cell->evaluate(mat->params, F, dA + 2 * q, ps, dt, &r);
         if (status != WFF_POINT_OK) {
@@ -101,6 +104,7 @@ int wff_cell_evaluate_shared(const wff_material *mat, const double F[6], int n_p
         *energy += weight[q] * r.energy;
         *dissipated += weight[q] * r.dissipated;
         *failure_dissipated += weight[q] * r.failure_dissipated;
+        *slip_dissipated += weight[q] * r.slip_dissipated;
         for (int i = 0; i < ns; i++)
             ps[i] = r.state[i];
     }
@@ -142,6 +146,8 @@ int wff_cell_tri_block(const wff_material *mat, double dt, wff_tri_block *blk)
 {
     if (!mat->cell->evaluate_tri_block)
         return -1;
+    for (int j = 0; j < WFF_BLOCK; j++) /* (a cell without yarn slip leaves it: none) */
+        blk->slip_dissipated[j] = 0;
     return mat->cell->evaluate_tri_block(mat->params, dt, blk) == 0 ? 0 : -1;
 }
 
@@ -154,6 +160,8 @@ int wff_cell_point_block(const wff_material *mat, double dt, wff_point_block *bl
 {
     if (!mat->cell->evaluate_point_block)
         return -1;
+    for (int j = 0; j < WFF_BLOCK; j++) /* (a cell without yarn slip leaves it: none) */
+        blk->slip_dissipated[j] = 0;
     return mat->cell->evaluate_point_block(mat->params, dt, blk) == 0 ? 0 : -1;
 }
 

@@ -9,6 +9,7 @@
  * integrator's step, contact, output files or FreeFEM. */
 #include "erosion.h"
 #include "zones.h"
+#include "distribute.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -136,10 +137,10 @@ static double erosion_after_forces(wff_model *m, const double *u, const double *
     if (!(dt_flow > 0) || m->el.erosion == WFF_EROSION_OFF)
         return 0;
     const int nt = m->el.n_tris, n_el = nt + m->el.n_quads;
-    double removed = 0;
-    int any = 0;
+    /* the elements whose yarns have ruptured, in element order (over ranks:
+     * each rank's own, plugin/distribute.c) ... */
     for (int e = 0; e < n_el; e++) {
-        if (eroded[e])
+        if (eroded[e] || !wff_dist_owns_element(m, e))
             continue;
         wff_element_material scratch;
         const wff_element_material *em = wff_zones_element_material(m, e, &scratch);
@@ -148,14 +149,18 @@ static double erosion_after_forces(wff_model *m, const double *u, const double *
                       m->el.erosion))
             continue;
         double stored = wff_element_stored_energy(&m->el, em, m->mesh.xy, u, state, m->n_state, e);
-        removed += stored;
         m->eroded_now[m->n_eroded_now] = e; /* (a pack's ply accounts read them) */
         m->eroded_now_energy[m->n_eroded_now++] = stored;
-        eroded[e] = 1;
-        m->n_eroded++;
-        any = 1;
     }
-    if (any)
+    /* ... (over ranks: every rank's, in element order) taken out */
+    m->n_eroded_now = wff_dist_eroded_gather(m, m->n_eroded_now);
+    double removed = 0;
+    for (int i = 0; i < m->n_eroded_now; i++) {
+        removed += m->eroded_now_energy[i];
+        eroded[m->eroded_now[i]] = 1;
+        m->n_eroded++;
+    }
+    if (m->n_eroded_now > 0)
         m->eroded_energy += removed;
     return removed;
 }

@@ -8,6 +8,8 @@
  * fields, of checkpoints or of FreeFEM. */
 #include "part.h"
 #include "zones.h"
+#include "distribute.h"
+#include "wall_clock.h"
 #include "wovenff/renumber.h"
 
 #include <math.h>
@@ -94,7 +96,7 @@ static int fail_unstable(const wff_model *m, const char *what, wff_error *err)
 
 /* The element force pass (internal forces only) at displacement u into f
  * (zeroed first), the points' state advanced by dt_flow in state; with
- * `accumulate` the model's stored energy, shear and failure dissipation and
+ * `accumulate` the model's stored energy, shear, failure and slip dissipation and
  * element-step count follow it;
  * the pass's stored energy (J, model part) into *energy unless NULL.
  * Returns 0 or -1 (err set, naming the element and quadrature point). Shared
@@ -155,6 +157,7 @@ static int force_pass_added(wff_model *m, const double *u, double *f, double *st
         m->internal_energy = t.internal_energy;
         m->dissipated_shear += t.dissipated;
         m->dissipated_failure += t.failure_dissipated;
+        m->dissipated_slip += t.slip_dissipated;
     }
     return 0;
 }
@@ -166,10 +169,14 @@ static int compute_forces(wff_model *m, double dt_flow, wff_error *err)
     return wff_force_pass(m, m->u, m->f, m->state, dt_flow, 1, NULL, err);
 }
 
-/* The same, f zeroed already (by the position update: one pass less a step). */
+/* The same, f zeroed already (by the position update: one pass less a step);
+ * its wall time into m->force_seconds. */
 static int compute_forces_zeroed(wff_model *m, double dt_flow, wff_error *err)
 {
-    return force_pass_added(m, m->u, m->f, m->state, dt_flow, 1, NULL, err);
+    const double start = wff_wall_seconds();
+    int rc = force_pass_added(m, m->u, m->f, m->state, dt_flow, 1, NULL, err);
+    m->force_seconds += wff_wall_seconds() - start;
+    return rc;
 }
 
 /* v^{n+½} from f^n; dt_done is the step just taken (0 on the first half step):
@@ -241,7 +248,8 @@ static void kinetic_now(const wff_model *m, double k[6])
 {
     const double half = m->v_half_valid ? 0.5 * m->dt : 0;
     double sums[5]; /* Σ m v² in-plane, transverse, amplitude, Σ f²/m, Σ v^{n+½}·g
-                       (threaded: step_threads.c) */
+                       (threaded: step_threads.c; over ranks every rank's pass is whole,
+                       plugin/distribute.c) */
     wff_step_kinetic(m, half, sums);
     const double inplane = sums[0], transverse = sums[1], amplitude = sums[2];
     k[0] = 0.5 * inplane;
@@ -276,11 +284,12 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     out->external_work = s * m->external_work;
     out->transfer = s * m->transfer_energy;
     out->dissipated_failure = s * m->dissipated_failure;
+    out->dissipated_slip = s * m->dissipated_slip;
     out->eroded = s * m->eroded_energy;
     const double parts = wff_parts_dissipated(m); /* (part.h: the ply contact's) */
     out->dissipated_ply_contact = s * parts;
-    /* initial + external work = kinetic + internal + shear + friction + failure + eroded,
-     * the kinetic energy the staggered one ½ m v^{n−½}·v^{n+½} */
+    /* initial + external work = kinetic + internal + shear + friction + failure + slip +
+     * eroded, the kinetic energy the staggered one ½ m v^{n−½}·v^{n+½} */
     const double kinetic = k[0] + k[1] + k[2] + k[3];
     out->impulse_stagger = s * k[5];
     /* the balance's kinetic measure, ½ Σ m v^{n+½}·(v^{n+½} − Δt_{n+½} a_elastic^n): the
@@ -288,7 +297,8 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
      * (their work is booked at the trapezoidal rule's measure, part.h's book) */
     double total = kinetic - k[4] + k[5] + m->stagger_shift + m->internal_energy +
                    m->dissipated_shear + m->dissipated_friction + m->dissipated_failure +
-                   m->eroded_energy - m->external_work - m->transfer_energy + parts;
+                   m->dissipated_slip + m->eroded_energy - m->external_work -
+                   m->transfer_energy + parts;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
      * boundaries) the work done on it or the energy it now holds */
     double stored = m->internal_energy - (m->initial_total - m->initial_kinetic);
@@ -383,7 +393,19 @@ static int cut_step(wff_model *m)
     return 1;
 }
 
+static int advance(wff_model *m, double t_end, long max_steps, wff_error *err);
+
+/* Over ranks, every rank's points' states whole again when the advance
+ * returns (each advanced its own elements': fields, values and checkpoints
+ * read them all; plugin/distribute.c). */
 int wff_model_advance(wff_model *m, double t_end, long max_steps, wff_error *err)
+{
+    int rc = advance(m, t_end, max_steps, err);
+    wff_dist_states_whole(m);
+    return rc;
+}
+
+static int advance(wff_model *m, double t_end, long max_steps, wff_error *err)
 {
     const double stop = m->t_stop > 0 ? m->t_stop : INFINITY;
     int lands = 0; /* the step planned ends at stop */

@@ -17,9 +17,10 @@
  * nodes (each node one thread's). */
 static void elements_gather(const wff_elements *el, double *f)
 {
-    const int n = el->n_gather, threads = wff_elements_team(el);
+    const int threads = wff_elements_team(el);
+    /* (over ranks: this rank's own nodes, plugin/distribute.c) */
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-    for (int k = 0; k < n; k++) {
+    for (int k = el->gather_begin; k < el->gather_end; k++) {
         const int *slot = el->node_slot + el->node_slot_start[k];
         const int count = el->node_slot_start[k + 1] - el->node_slot_start[k];
         double sum[D] = {0, 0, 0, 0, 0};
@@ -38,21 +39,19 @@ void WFF_KERNEL_NAME(wff_elements_forces)(const wff_elements *el, const wff_elem
                                           const double *X, const double *u, double *state,
                                           double dt, double *f, wff_force_totals *totals)
 {
-    totals->internal_energy = totals->dissipated = totals->failure_dissipated = 0;
     totals->bad_element = -1;
     totals->bad_point = -1;
     totals->bad_status = 0;
     totals->bad_residual = 0;
     totals->bad_iterations = 0;
     totals->amplitude_iterations = 0;
-    double energy = 0, dissipated = 0, failure = 0;
-
-    WFF_KERNEL_NAME(wff_tri_forces)(el, em, X, u, state, dt, &energy, &dissipated, &failure,
-                                    totals);
-    WFF_KERNEL_NAME(wff_quad_forces)(el, em, X, u, state, dt, &energy, &dissipated, &failure,
-                                     totals);
+    for (int k = 0; k < WFF_BLOCK_SUMS; k++)
+        totals->sums[k] = wff_fixed_zero();
+    WFF_KERNEL_NAME(wff_tri_forces)(el, em, X, u, state, dt, totals);
+    WFF_KERNEL_NAME(wff_quad_forces)(el, em, X, u, state, dt, totals);
     elements_gather(el, f);
-    totals->internal_energy = energy / em->J_pre;
-    totals->dissipated = dissipated / em->J_pre;
-    totals->failure_dissipated = failure / em->J_pre;
+    totals->internal_energy = wff_fixed_value(&totals->sums[0]);
+    totals->dissipated = wff_fixed_value(&totals->sums[1]);
+    totals->failure_dissipated = wff_fixed_value(&totals->sums[2]);
+    totals->slip_dissipated = wff_fixed_value(&totals->sums[3]);
 }

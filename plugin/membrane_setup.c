@@ -30,7 +30,7 @@ static int slots_init(wff_elements *el, int n_nodes)
     const size_t n_slots = 3 * (size_t)n_tris + 4 * (size_t)n_quads;
     const int n_blocks = (n_tris + WFF_BLOCK - 1) / WFF_BLOCK + (n_quads + WFF_BLOCK - 1) / WFF_BLOCK;
     el->slot = calloc(D * (n_slots ? n_slots : 1), sizeof(double));
-    el->block_sums = calloc(3 * (size_t)(n_blocks ? n_blocks : 1), sizeof(double));
+    el->block_sums = calloc(WFF_BLOCK_SUMS * (size_t)(n_blocks ? n_blocks : 1), sizeof(double));
     int *count = calloc((size_t)n_nodes + 1, sizeof(int));
     el->node_slot = malloc(sizeof(int) * (n_slots ? n_slots : 1));
     if (!el->slot || !el->block_sums || !count || !el->node_slot) {
@@ -61,6 +61,8 @@ static int slots_init(wff_elements *el, int n_nodes)
         start += count[n];
     }
     el->node_slot_start[used] = start;
+    el->gather_begin = 0;
+    el->gather_end = used;
     /* slots in ascending order: the triangles' (3e + b), then the quads' */
     for (size_t s = 0; s < n_slots; s++) {
         const int n = s < 3 * (size_t)n_tris ? el->tri[s] : el->quad[s - 3 * (size_t)n_tris];
@@ -169,12 +171,15 @@ void wff_elements_free(wff_elements *el)
     free(el->node_list);
     free(el->point_dA);
     free(el->eroded);
+    free(el->block_run);
+    free(el->block_count);
+    el->block_run = el->block_count = NULL;
     el->point_dA = NULL;
     el->eroded = NULL;
     el->tri_grad = el->tri_area = el->quad_grad = el->quad_weight = el->size = NULL;
     el->slot = el->block_sums = NULL;
     el->node_slot = el->node_slot_start = el->node_list = NULL;
-    el->n_gather = 0;
+    el->n_gather = el->gather_begin = el->gather_end = 0;
 }
 
 int wff_elements_set_threads(wff_elements *el, int n_threads, wff_error *err)

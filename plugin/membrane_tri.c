@@ -30,7 +30,7 @@ static int omp_team(void) { return 1; }
 
 /* Sums one thread gathers over its triangles. */
 typedef struct tri_sums {
-    double energy, dissipated, failure;
+    double energy, dissipated, failure, slip;
     wff_force_totals bad; /* only bad_element, bad_point, bad_status are used */
 } tri_sums;
 
@@ -89,7 +89,7 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
     const int ns = mat->n_state;
     const int *node = el->tri + 3 * e;
     double F[6], Fe[6], dA[6], P[6] = {0, 0, 0, 0, 0, 0}, R[6] = {0, 0, 0, 0, 0, 0};
-    double W = 0, Dis = 0, Fail = 0, check = 0;
+    double W = 0, Dis = 0, Fail = 0, Slip = 0, check = 0;
     tri_deformation(el, em, X, u, e, F, Fe);
     for (int q = 0; q < WFF_TRI_POINTS; q++) {
         dA[2 * q] = u[D * node[q] + 3];
@@ -106,7 +106,7 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
         int bad = 0;
         int status = wff_cell_evaluate_shared(mat, Fe, 3, dA, third,
                                                 state + ns * 3 * e, dt, P, R, &W, &Dis,
-                                                &Fail, &bad);
+                                                &Fail, &Slip, &bad);
         double sum = W + R[0] + R[1] + R[2] + R[3] + R[4] + R[5];
         for (int i = 0; i < 6; i++)
             sum += P[i];
@@ -135,12 +135,14 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
             W += r.energy / 3;
             Dis += r.dissipated / 3;
             Fail += r.failure_dissipated / 3;
+            Slip += r.slip_dissipated / 3;
         }
     }
     tri_slots(el, em, e, P, R, wff_cell_amplitudes(mat->cell));
     sums->energy += el->tri_area[e] * W;
     sums->dissipated += el->tri_area[e] * Dis;
     sums->failure += el->tri_area[e] * Fail;
+    sums->slip += el->tri_area[e] * Slip;
 }
 
 /* n (≤ WFF_BLOCK) triangles from e0 through the cell's blocked kernel.
@@ -229,6 +231,7 @@ tri_block_forces_n(const wff_elements *el, const wff_element_material *em, const
         sums->energy += el->tri_area[e] * blk.energy[j];
         sums->dissipated += el->tri_area[e] * blk.dissipated[j];
         sums->failure += el->tri_area[e] * blk.failure_dissipated[j];
+        sums->slip += el->tri_area[e] * blk.slip_dissipated[j];
     }
     return 0;
 }
@@ -270,7 +273,7 @@ static void tri_forces_static(const wff_elements *el, const wff_element_material
     const wff_material *mat = em->mat;
     const int ns = mat->n_state;
     double F[6], Fe[6], P[6] = {0, 0, 0, 0, 0, 0}, R[6] = {0, 0, 0, 0, 0, 0}, W = 0, Dis = 0;
-    double Fail = 0;
+    double Fail = 0, Slip = 0;
     tri_deformation(el, em, X, u, e, F, Fe);
     for (int q = 0; q < WFF_TRI_POINTS; q++) {
         double *dA = el->point_dA + 6 * e + 2 * q;
@@ -295,11 +298,13 @@ static void tri_forces_static(const wff_elements *el, const wff_element_material
         W += r.energy / 3;
         Dis += r.dissipated / 3;
         Fail += r.failure_dissipated / 3;
+        Slip += r.slip_dissipated / 3;
     }
     tri_slots(el, em, e, P, R, 0); /* no amplitude forces: balanced at the points */
     sums->energy += el->tri_area[e] * W;
     sums->dissipated += el->tri_area[e] * Dis;
     sums->failure += el->tri_area[e] * Fail;
+    sums->slip += el->tri_area[e] * Slip;
 }
 
 /* n (≤ WFF_BLOCK) triangles from e0 with quasi-static amplitudes, blocked: per
@@ -399,6 +404,7 @@ tri_block_static_forces_n(const wff_elements *el, const wff_element_material *em
         sums->energy += el->tri_area[e] * blk.energy[j];
         sums->dissipated += el->tri_area[e] * blk.dissipated[j];
         sums->failure += el->tri_area[e] * blk.failure_dissipated[j];
+        sums->slip += el->tri_area[e] * blk.slip_dissipated[j];
     }
     return 0;
 }
@@ -433,8 +439,7 @@ static int tri_block_static_forces(const wff_elements *el, const wff_element_mat
 
 void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_material *em,
                                      const double *X, const double *u, double *state,
-                                     double dt, double *energy, double *dissipated,
-                                     double *failure, wff_force_totals *totals)
+                                     double dt, wff_force_totals *totals)
 {
     const wff_material *mat = em->mat;
     /* small meshes are not worth a thread team (membrane.h, WFF_TEAM_MIN_TRIS) */
@@ -452,15 +457,20 @@ void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_m
         int t = omp_thread();
 #pragma omp single nowait /* (read after the element loop's barrier: no barrier of its own) */
         team = omp_team();
-        wff_force_totals bad = {0, 0, 0, -1, -1, 0, 0, 0, 0};
+        wff_force_totals bad;
+        memset(&bad, 0, sizeof bad);
+        bad.bad_element = bad.bad_point = -1;
         int blocked = use_block; /* a cell declines by its parameters: ask once per thread */
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
+            if (el->block_run && !el->block_run[blk])
+                continue; /* (over ranks: another rank's block, plugin/distribute.c) */
             int e0 = blk * WFF_BLOCK;
             int n = el->n_tris - e0 < WFF_BLOCK ? el->n_tris - e0 : WFF_BLOCK;
+            const int iterations_before = bad.amplitude_iterations;
             /* the block's own sums (its elements in order; the blocks added in
              * order after the pass) */
-            tri_sums sums = {0, 0, 0, bad};
+            tri_sums sums = {0, 0, 0, 0, bad};
             if (em->static_amplitudes) {
                 if (blocked &&
                     tri_block_static_forces(el, em, X, u, state, dt, e0, n, &sums) != 0)
@@ -483,17 +493,21 @@ void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_m
                             tri_slots_zero(el, e);
                     }
             }
-            double *b = el->block_sums + 3 * (size_t)blk;
-            b[0] = sums.energy, b[1] = sums.dissipated, b[2] = sums.failure;
+            double *b = el->block_sums + WFF_BLOCK_SUMS * (size_t)blk;
+            b[0] = sums.energy, b[1] = sums.dissipated, b[2] = sums.failure, b[3] = sums.slip;
             bad = sums.bad;
+            if (el->block_count && !el->block_count[blk]) /* (a block another rank counts) */
+                bad.amplitude_iterations = iterations_before;
         }
         part_bad[t] = bad;
     }
-    for (int blk = 0; blk < n_blocks; blk++) { /* in block order: the same sums for any team */
-        const double *b = el->block_sums + 3 * (size_t)blk;
-        *energy += b[0];
-        *dissipated += b[1];
-        *failure += b[2];
+    const double inv_J = 1 / em->J_pre;
+    for (int blk = 0; blk < n_blocks; blk++) { /* each block's sums, order-free across blocks */
+        if (el->block_count && !el->block_count[blk])
+            continue; /* (another rank's to add) */
+        const double *b = el->block_sums + WFF_BLOCK_SUMS * (size_t)blk;
+        for (int k = 0; k < WFF_BLOCK_SUMS; k++)
+            wff_fixed_add(&totals->sums[k], b[k] * inv_J);
     }
     for (int t = 0; t < team; t++) {
         totals->amplitude_iterations += part_bad[t].amplitude_iterations;

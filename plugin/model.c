@@ -9,6 +9,7 @@
 #include "contact.h"
 #include "erosion.h"
 #include "zones.h"
+#include "distribute.h"
 #include "wovenff/material.h"
 #include "wovenff/kernel.h"
 #include "wovenff/renumber.h"
@@ -42,6 +43,8 @@ const wff_material *wff_model_material(const wff_model *m) { return &m->mat; }
 
 void wff_model_free(wff_model *m)
 {
+    wff_dist_free(m);
+    wff_comm_free(&m->comm);
     free(m->u);
     free(m->v);
     free(m->f);
@@ -166,6 +169,10 @@ int wff_model_setup(wff_model *m, wff_error *err)
             m->dof_kind[D * n + 3] = m->dof_kind[D * n + 4] = WFF_DOF_FIXED;
     m->dt_factor = 0.8;
     m->travel_fraction = WFF_TRAVEL;
+    if (wff_comm_default(&m->comm, err)) { /* (every rank of mpirun's, or one) */
+        wff_model_free(m);
+        return -1;
+    }
     m->travel_share = 1; /* (before a step: as tight as the limit goes) */
     m->dt_interval = 20;
     m->snapshot_step[0] = m->snapshot_step[1] = -1;

@@ -8,6 +8,7 @@
  * scripted loop that calls them in the built-in order gives the built-in's
  * numbers. Knows the model; nothing of cells by name, of output fields, of
  * checkpoints or of FreeFEM. */
+#include "distribute.h"
 #include "clamp.h"
 #include "contact.h"
 #include "zones.h"
@@ -83,6 +84,7 @@ static int forces_model(wff_model *m, const double *U, double *R, double dt, dou
     if (dt > 0) { /* as the built-in step's force pass */
         if (wff_force_pass(m, U, R, m->state, dt, 1, &e, err))
             return -1;
+        wff_dist_states_whole(m); /* (over ranks: each rank advanced its own points) */
     } else {      /* γᶠ (and static amplitudes) on a copy: the model stays as it was */
         double *held = scratch(m, err);
         if (!held)

@@ -5,6 +5,7 @@
 #include "part.h"
 #include "clamp.h"
 #include "contact.h"
+#include "distribute.h"
 #include "erosion.h"
 #include "pack.h"
 #include "perforation.h"
@@ -27,6 +28,7 @@ const wff_part_ops *const wff_parts[] = {
     &wff_projectile_contact_part,
     &wff_ply_contact_part,
     &wff_perforation_part,
+    &wff_distributed_part,
     NULL,
 };
 

@@ -494,6 +494,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
                         "without zones", wff_model_zone_count(m));
     }
     wff_model nm = *m; /* every scalar: settings, preload, accumulators, projectile */
+    nm.dist = NULL;    /* (the new mesh's split over the ranks is made anew) */
     nm.mesh = *new_mesh;
     memset(new_mesh, 0, sizeof *new_mesh);
     memset(&nm.el, 0, sizeof nm.el);
@@ -623,6 +624,7 @@ int wff_model_remesh(wff_model *m, wff_mesh *new_mesh, wff_remesh_report *report
     wff_model old = *m;
     *m = nm;
     m->em.mat = &m->mat;
+    old.comm = wff_comm_self(); /* (the communicator moved to m with the struct) */
     wff_model_free(&old); /* the old one's arrays (a copy of the struct: m keeps the rest) */
     rep.before = e_before;
     rep.after = e_after;
@@ -634,6 +636,7 @@ fail_prefixed:
     wff_fail(err, "wff_model_remesh: %s", why);
 fail:
     locator_free(&L);
+    nm.comm = wff_comm_self(); /* (m keeps its communicator) */
     wff_model_free(&nm);
     return -1;
 }

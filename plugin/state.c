@@ -173,3 +173,36 @@ int wff_model_amplitude(const wff_model *m, int k, double *out, wff_error *err)
         out[wff_model_user_node(m, n)] = amplitude0[k] + m->u[D * n + WFF_DA1 + k];
     return 0;
 }
+
+static unsigned long long hash_bytes(unsigned long long h, const void *data, size_t size)
+{
+    const unsigned char *b = data;
+    for (size_t i = 0; i < size; i++) {
+        h ^= b[i];
+        h *= 1099511628211ULL; /* (FNV-1a, 64 bits) */
+    }
+    return h;
+}
+
+unsigned long long wff_model_state_hash(const wff_model *m)
+{
+    unsigned long long h = 14695981039346656037ULL;
+    const double scalars[] = {m->time, (double)m->step, m->dt, m->projectile.tip,
+                              m->projectile.velocity, m->projectile.force,
+                              m->projectile.impulse_total, m->internal_energy,
+                              m->dissipated_shear, m->dissipated_friction,
+                              m->dissipated_failure, m->dissipated_slip, m->eroded_energy,
+                              m->external_work,
+                              (double)m->n_eroded};
+    h = hash_bytes(h, scalars, sizeof scalars);
+    const size_t dofs = sizeof(double) * (size_t)m->n_dofs;
+    h = hash_bytes(h, m->u, dofs);
+    h = hash_bytes(h, m->v, dofs);
+    h = hash_bytes(h, m->f, dofs);
+    const int n_el = m->el.n_tris + m->el.n_quads;
+    h = hash_bytes(h, m->state, sizeof(double) * (size_t)m->n_state *
+                                    wff_element_first_point(m->el.n_tris, n_el));
+    if (m->el.eroded)
+        h = hash_bytes(h, m->el.eroded, (size_t)n_el);
+    return h;
+}

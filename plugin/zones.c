@@ -14,6 +14,7 @@
  * files or FreeFEM. Without zones (m->zones NULL) every function is the plain
  * call the model made before zones existed. */
 #include "zones.h"
+#include "distribute.h"
 #include "wovenff/cell_ops.h"
 #include "clamp.h"
 #include "plies.h"
@@ -460,12 +461,13 @@ int wff_zones_pack(wff_model *m, wff_error *err)
     return 0;
 }
 
-void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, double *failure)
+void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, double *failure,
+                          double *slip)
 {
     const struct wff_zones *Z = m->zones;
     int plies = m->pack ? wff_pack_plies(m) : 1;
     for (int p = 0; p < plies; p++)
-        stored[p] = shear[p] = failure[p] = 0;
+        stored[p] = shear[p] = failure[p] = slip[p] = 0;
     if (!Z)
         return;
     for (int k = 0; k < Z->n; k++) {
@@ -476,6 +478,7 @@ void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, dou
         stored[p] += z->pass.internal_energy;
         shear[p] += z->pass.dissipated;
         failure[p] += z->pass.failure_dissipated;
+        slip[p] += z->pass.slip_dissipated;
     }
 }
 
@@ -574,11 +577,16 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
 {
     struct wff_zones *Z = m->zones;
     if (!Z) {
+        wff_dist_prepare(m, &m->el, NULL);
         wff_elements_forces(&m->el, &m->em, m->mesh.xy, u, state, dt, f, totals);
+        wff_dist_forces(m, f, totals, NULL, 0); /* (over ranks: plugin/distribute.c) */
         return;
     }
     zones_eroded_copy(m);
     totals->internal_energy = totals->dissipated = totals->failure_dissipated = 0;
+    totals->slip_dissipated = 0;
+    for (int s = 0; s < WFF_BLOCK_SUMS; s++)
+        totals->sums[s] = wff_fixed_zero();
     totals->bad_element = -1;
     totals->bad_point = 0;
     totals->bad_status = WFF_POINT_OK;
@@ -589,6 +597,9 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
      * order, one thread each), the totals summed in zone order below: the same bits */
     const int plies = m->pack ? wff_pack_plies(m) : 1;
     const int by_ply = plies > 1 && m->el.n_threads > 1;
+    for (int k = 0; k < Z->n; k++) /* (over ranks: each zone's masks, before the threads) */
+        if (Z->zone[k].n_elements > 0)
+            wff_dist_prepare(m, &Z->zone[k].el, Z->zone[k].element);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(m->el.n_threads) if (by_ply)
     for (int p = 0; p < (by_ply ? plies : 1); p++)
         for (int k = 0; k < Z->n; k++) {
@@ -609,9 +620,8 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
         if (z->n_elements == 0)
             continue;
         const wff_force_totals t = z->pass;
-        totals->internal_energy += t.internal_energy;
-        totals->dissipated += t.dissipated;
-        totals->failure_dissipated += t.failure_dissipated;
+        for (int s = 0; s < WFF_BLOCK_SUMS; s++) /* (order-free: the zones' sums are one sum) */
+            wff_fixed_merge(&totals->sums[s], &t.sums[s]);
         totals->amplitude_iterations += t.amplitude_iterations;
         if (t.bad_element >= 0 && totals->bad_element < 0) {
             totals->bad_element = z->element[t.bad_element];
@@ -620,6 +630,31 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
             totals->bad_residual = t.bad_residual;
             totals->bad_iterations = t.bad_iterations;
         }
+    }
+    totals->internal_energy = wff_fixed_value(&totals->sums[0]);
+    totals->dissipated = wff_fixed_value(&totals->sums[1]);
+    totals->failure_dissipated = wff_fixed_value(&totals->sums[2]);
+    totals->slip_dissipated = wff_fixed_value(&totals->sums[3]);
+    const int ns = WFF_BLOCK_SUMS;
+    wff_fixed *zone_sums = wff_dist_fixed_scratch(m, ns * Z->n); /* (NULL on one rank) */
+    if (!zone_sums)
+        return;
+    /* over ranks: the forces, the pass's sums and each zone's (a pack's per-ply
+     * accounts) in one exchange (plugin/distribute.c) */
+    for (int k = 0; k < Z->n; k++)
+        for (int s = 0; s < ns; s++)
+            zone_sums[ns * k + s] = Z->zone[k].n_elements ? Z->zone[k].pass.sums[s] : wff_fixed_zero();
+    wff_dist_forces(m, f, totals, zone_sums, ns * Z->n);
+    for (int k = 0; k < Z->n; k++) {
+        wff_zone *z = &Z->zone[k];
+        if (z->n_elements == 0)
+            continue;
+        for (int s = 0; s < ns; s++)
+            z->pass.sums[s] = zone_sums[ns * k + s];
+        z->pass.internal_energy = wff_fixed_value(&z->pass.sums[0]);
+        z->pass.dissipated = wff_fixed_value(&z->pass.sums[1]);
+        z->pass.failure_dissipated = wff_fixed_value(&z->pass.sums[2]);
+        z->pass.slip_dissipated = wff_fixed_value(&z->pass.sums[3]);
     }
 }
 

@@ -26,6 +26,7 @@
 #ifndef WOVENFF_SOLVER_H
 #define WOVENFF_SOLVER_H
 
+#include "wovenff/comm.h"
 #include "wovenff/membrane.h"
 #include "wovenff/mesh.h"
 
@@ -93,6 +94,8 @@ typedef struct wff_energies {
     double dissipated_friction;  /* clamp friction, projectile friction and the inelastic
                                     normal contact */
     double dissipated_failure;   /* stored energy released by yarn damage */
+    double dissipated_slip;      /* dissipated by yarn slip at the crossovers (docs/model.md
+                                    §24) */
     double eroded;               /* stored energy of eroded elements at their erosion */
     double external_work;     /* work done on the model by prescribed-velocity DOFs */
     double transfer;          /* stored + kinetic energy changed by mesh transfers
@@ -136,6 +139,8 @@ typedef struct wff_bc_record {
 typedef struct wff_model wff_model;
 #ifndef WFF_MODEL_OPAQUE
 struct wff_model {
+    wff_comm comm;            /* the ranks the model runs over (comm.h; one by default) */
+    struct wff_dist *dist;    /* its split over them (plugin/distribute.c), NULL on one rank */
     wff_mesh mesh;
     wff_material mat;
     wff_elements el;
@@ -191,6 +196,7 @@ struct wff_model {
     double internal_energy;   /* at the last force pass, J (model part) */
     double dissipated_shear, dissipated_friction, external_work;
     double dissipated_failure; /* stored energy released by yarn damage, J (model part) */
+    double dissipated_slip;   /* dissipated by yarn slip at the crossovers, J (model part) */
     double eroded_energy;     /* stored energy of eroded elements at erosion, J (model part) */
     int n_eroded;             /* elements eroded so far */
     int *eroded_now;          /* the elements the last force pass eroded (plugin/erosion.c;
@@ -213,6 +219,8 @@ struct wff_model {
     double dt_mid;            /* the last velocity update's Δt_mid, s */
     int v_half_valid;         /* 1 once v holds a half-step velocity */
     long element_steps;       /* elements × steps done, for cost figures */
+    double force_seconds;     /* wall time in the steps' force passes (with their exchange
+                                 over ranks), s: a timer (summary.json force_seconds) */
     long amplitude_iterations; /* static amplitudes: Newton iterations over all points and
                                   steps since the model was built (not checkpointed) */
     int blowup_steps;         /* consecutive steps with more than half the reference
@@ -485,7 +493,7 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 9 /* 2: the projectile's impulse_total added; 3: the points'
+#define WFF_CHECKPOINT_VERSION 10 /* 2: the projectile's impulse_total added; 3: the points'
                                     generic state (n_state and names in the header, every
                                     state saved), failure and eroded energies; 4: the
                                     erosion rule (header) and the eroded flags; 5: the
@@ -493,7 +501,8 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
                                     count; 7: the initial kinetic energy the staggered one,
                                     its stagger kept (stagger_reference); 8: the stagger's
                                     shift with the step (stagger_shift); 9: the contact
-                                    forces (contact_force) and the last Δt_mid */
+                                    forces (contact_force) and the last Δt_mid; 10: the
+                                    yarn slip's dissipation (dissipated_slip) */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 

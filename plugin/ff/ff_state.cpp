@@ -7,12 +7,14 @@
 //   wovenffSetVector(md, "v", ux[]);            // v (m/s): checked, energies follow
 //   fespace Ph(Th, P0); Ph s;
 //   wovenffElementField(md, "T1", s[]);         // one value per triangle of wovenffMesh(md)
+//   string h = wovenffStateHash(md);            // 16 hex digits: the state's bits hashed
 //
 // Sizes are checked (5 x nodes for a vector); the C core checks the values
 // and recomputes what follows a set state. Thin: no physics here.
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 
+#include <cstdio>
 #include <string>
 
 #include "ff_wovenff.hpp"
@@ -67,10 +69,18 @@ long ffElementField(const long &id, string *const &name, KN<double> *const &out)
     return n;
 }
 
+string *ffStateHash(Stack stack, const long &id)
+{
+    char hex[32];
+    snprintf(hex, sizeof hex, "%016llx", wff_model_state_hash(wff_ff_model(id, "wovenffStateHash")));
+    return Add2StackOfPtr2Free(stack, new string(hex));
+}
+
 } // namespace
 
 void wff_ff_register_state()
 {
+    Global.Add("wovenffStateHash", "(", new OneOperator1s_<string *, long>(ffStateHash));
     Global.Add("wovenffGetVector", "(",
                new OneOperator3_<long, long, string *, KN<double> *>(ffGetVector));
     Global.Add("wovenffSetVector", "(",
