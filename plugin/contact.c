@@ -96,6 +96,45 @@ double wff_projectile_penetration(const wff_projectile *p, const double x[3], do
     }
 }
 
+/* The signed distance of a point from the projectile's surface (> 0 outside,
+ * −δ inside: −wff_projectile_penetration's δ there) and the outward normal at
+ * the nearest surface point (for the ply contact's solve, which holds a node
+ * on the nose with the plies behind it, inside or just outside). */
+double wff_projectile_gap(const wff_projectile *p, const double x[3], double normal[3])
+{
+    if (p->nose == WFF_NOSE_FLAT) {
+        const double re = p->edge_radius, a = p->radius - re, zc = p->tip - re;
+        const double dx = x[0] - p->axis[0], dy = x[1] - p->axis[1], dz = x[2] - zc;
+        const double rho = hypot(dx, dy);
+        if (rho <= a && dz <= 0) { /* inside the core: as penetration_flat */
+            const double to_side = a - rho, to_face = -dz;
+            if (to_face <= to_side || rho == 0) {
+                normal[0] = normal[1] = 0, normal[2] = 1;
+                return -(re + to_face);
+            }
+            normal[0] = dx / rho, normal[1] = dy / rho, normal[2] = 0;
+            return -(re + to_side);
+        }
+        const double out_r = rho > a ? rho - a : 0, out_z = dz > 0 ? dz : 0;
+        const double dist = hypot(out_r, out_z); /* (> 0: outside the core) */
+        const double er[2] = {out_r > 0 ? dx / rho : 0, out_r > 0 ? dy / rho : 0};
+        normal[0] = er[0] * out_r / dist, normal[1] = er[1] * out_r / dist;
+        normal[2] = out_z / dist;
+        return dist - re;
+    }
+    /* the sphere, or the hemisphere's nose (ahead of its centre) and shank */
+    const double c[3] = {p->axis[0], p->axis[1], p->tip - p->radius};
+    const double d[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
+    const int shank = p->nose != WFF_NOSE_SPHERE && d[2] <= 0;
+    const double r = shank ? hypot(d[0], d[1]) : sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (r == 0) {
+        normal[0] = normal[1] = 0, normal[2] = 1;
+        return -p->radius;
+    }
+    normal[0] = d[0] / r, normal[1] = d[1] / r, normal[2] = shank ? 0 : d[2] / r;
+    return r - p->radius;
+}
+
 double wff_projectile_nose_length(const wff_projectile *p)
 {
     switch (p->nose) {

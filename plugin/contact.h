@@ -23,6 +23,11 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err);
  * the step just taken, 0 at a start; dt_mid the step's Δt_mid). */
 void wff_contact_book(wff_model *m, double dt_before, double dt_mid);
 
+/* The signed distance of point x from the projectile's surface as it is now
+ * (m, > 0 outside, −δ of wff_projectile_penetration inside) and the outward
+ * normal at the nearest surface point (always set). */
+double wff_projectile_gap(const wff_projectile *p, const double x[3], double normal[3]);
+
 /* The symmetry factor changed (or the axis did): the projectile's
  * modelled mass follows; -1 (err set) if its axis is off the symmetry
  * planes. */

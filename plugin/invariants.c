@@ -49,11 +49,12 @@ int wff_model_invariants(const wff_model *m, char *out, size_t size)
     check_dissipation("dissipated_slip", e.dissipated_slip, tol, out, size, &n);
     check_dissipation("eroded_energy", e.eroded, tol, out, size, &n);
     /* contact and friction: the model's (clamp, the projectile's contact) and
-     * each part's, as one sum. Two contacts acting on one node in a step (a
-     * node on the nose that the next ply pushes back) share its velocity
-     * change, and which account takes which share is the accounting's, not
-     * the physics': measured, 8 plies at 22 m/s, the projectile's -3.0 mJ and
-     * the ply contact's +11.8 mJ at 0.5 ms. The sum is what cannot be negative. */
+     * each part's, as one sum. (Each is its own constraints' work since the
+     * ply contact books the nose contacts its solve holds as the projectile
+     * contact's: before, a node on the nose that the next ply pushed back had
+     * its velocity change shared between the two accounts, the projectile's
+     * -3.0 mJ and the ply contact's +11.8 mJ at 0.5 ms on 8 plies at 22 m/s;
+     * the sum is what is checked here, each account by the pack's tests.) */
     char name[WFF_ERROR_MAX / 2];
     int used = snprintf(name, sizeof name, "the contacts' and friction's dissipation "
                         "(dissipated_friction %.4g J", e.dissipated_friction);

@@ -24,15 +24,18 @@ struct wff_pack {
     double stored[WFF_PLIES_MAX];
     double removed[WFF_PLIES_MAX]; /* eroded in the pass under way (erosion.c) */
     /* ply contact (ply_contact.c) */
-    double dissipated;        /* kinetic energy the ply contact removed, J (model part) */
+    double dissipated;        /* kinetic energy the ply contact's pairs removed, J (model
+                                 part; the nose contacts its solve holds are the projectile
+                                 contact's, in m->dissipated_friction) */
     double penetration;       /* largest interpenetration left after the last correction, m */
     int contacts;             /* node pairs corrected in the last step */
-    double *impulse;          /* per DOF (3 per node), this step's contact impulses, N·s */
+    double *impulse;          /* per DOF (3 per node), this step's pairs' impulses, N·s */
+    double *nose_impulse;     /* per DOF (3 per node), this step's impulses of the nose
+                                 contacts the solve holds, N·s */
     unsigned char *touched;   /* per node: an impulse this step */
     int *touched_list, n_touched;
-    int *active, n_active;    /* node pairs corrected in this step's first sweep */
     int *on_projectile;       /* per node: its index in the projectile's contacts this step,
-                                 -1 if none (such a node moves with the projectile along z) */
+                                 -1 if none (the solve holds such a node on the nose) */
     double *normal;           /* per node: its ply's normal at the predicted positions (3) */
     unsigned char *live;      /* per node: 1 if an element of it has not eroded */
     double *reach;            /* per specimen node: its shortest reference edge, m */
@@ -44,9 +47,8 @@ struct wff_pack {
     int left_out;             /* pairs left out in the last step (fragment, slid apart, crossed) */
     int *node_facets;         /* per specimen node: its facets, from node_facet_start[i] (CSR) */
     int *node_facet_start;    /* nodes + 1 */
-    int *grad_node;           /* a pair's workspace: the nodes its constraint's gradient moves */
-    double *grad;             /* and the gradient, 3 per node */
-    int grad_max;             /* the workspace's length, nodes */
+    struct wff_ply_solve *solve; /* the contact's solve: its workspace (ply_contact.c) */
+    int sweeps;               /* sweeps over the columns in the last step */
 };
 
 static inline int wff_pack_plies(const wff_model *m)

@@ -26,7 +26,12 @@
  *      nodes have no facet left); ply 0 thrown at ply 2 meets it, as a ply
  *      thrown at its neighbour does in 1: momentum to round-off, both on at
  *      half the speed, h apart, the energy dissipated = the kinetic energy
- *      lost. */
+ *      lost;
+ *   8. a chain of 8 plies struck: one step's collision, every ply at v0 / 8;
+ *   9. friction under a clear ply: ply 0 thrown obliquely at ply 1 sticks to it
+ *      (both on at half the thrown velocity, in plane too), ply 2 clear above
+ *      them (a pair of the same column without a normal impulse) left at rest;
+ *      the energy dissipated = the kinetic energy lost. */
 #include "check.h"
 #include "test_meshes.h"
 #include "test_tmp.h"
@@ -332,8 +337,8 @@ static void track_worst(const wff_model *m, double impact, double *worst, double
     *worst_pen = fmax(*worst_pen, pen);
 }
 
-/* 4. */
-static void eight_plies(check_state *st, int clamped)
+/* 4. (frames of 0.01 ms: 10, to 0.1 ms; fewer for memcheck's run) */
+static void eight_plies(check_state *st, int clamped, int frames)
 {
     wff_model m;
     wff_error err;
@@ -346,19 +351,33 @@ static void eight_plies(check_state *st, int clamped)
     for (int g = 0; g < 4 && rc == 0 && clamped; g++)
         for (int c = WFF_UX; c <= WFF_UZ && rc == 0; c++)
             rc = wff_model_fix_group(&m, edges[g], c, &err) < 0;
+    /* (a nose the mesh resolves: radius 8 mm on elements of ~6 mm; with 4 mm,
+     * within one ring of elements, the nose's normal at the strike face's node
+     * 1.2 mm off the axis is ~20 deg off its facets' and squeezes the strike face
+     * out from under the stack: docs/limits.md "Packs") */
     if (rc == 0)
-        rc = wff_model_set_projectile(&m, 0.004, 0.004, 150, 0.2, &err);
+        rc = wff_model_set_projectile(&m, 0.008, 0.004, 150, 0.2, &err);
     CHECK(st, rc == 0, "8 plies: %s", err.message);
     if (rc) {
         wff_model_free(&m);
         return;
     }
     const double impact = 0.5 * 0.004 * 150 * 150;
-    double worst = 0, worst_pen = 0;
-    for (int k = 1; k <= 10; k++) {
-        if (wff_model_advance(&m, k * 0.01e-3, 10000000, &err)) {
-            CHECK(st, 0, "advance: %s", err.message);
-            break;
+    double worst = 0, worst_pen = 0, lowest = 0, lowest_nose = 0;
+    for (int k = 1; k <= frames; k++) {
+        /* step by step: the contacts' dissipation is never negative, each
+         * contact's (the plies' pairs; the projectile's, the nose contacts the
+         * ply contact's solve holds with it) */
+        while (m.time < k * 0.01e-3) {
+            if (wff_model_advance(&m, k * 0.01e-3, 1, &err)) {
+                CHECK(st, 0, "advance: %s", err.message);
+                k = frames;
+                break;
+            }
+            wff_energies now;
+            wff_model_energies(&m, &now);
+            lowest = fmin(lowest, now.dissipated_ply_contact);
+            lowest_nose = fmin(lowest_nose, now.dissipated_friction);
         }
         track_worst(&m, impact, &worst, &worst_pen);
     }
@@ -371,16 +390,22 @@ static void eight_plies(check_state *st, int clamped)
     wff_model_pack_value(&m, "ply_contacts", &contacts, &err);
     double impulse = m.projectile.impulse_total;
     printf("  8 plies, %s edges, %ld steps: energy error %.3g %% of the impact energy, ply "
-           "contact dissipated %.4g J, back face %.4f mm, %g contacts, penetration %.3g m, "
-           "slip %.3g mm (element %.3g mm); projectile impulse %.9g N s, fabric momentum "
-           "%.9g N s\n", clamped ? "clamped" : "free", m.step, 100 * worst,
-           e.dissipated_ply_contact, 1e3 * back, contacts, worst_pen, 1e3 * slip, 1e3 * m.el.size[0],
-           impulse, p[2]);
+           "contact dissipated %.4g J (its lowest %.3g J, the projectile's %.3g J), back face %.4f mm, %g "
+           "contacts, penetration %.3g m, slip %.3g mm (element %.3g mm); projectile impulse "
+           "%.9g N s, fabric momentum %.9g N s\n", clamped ? "clamped" : "free", m.step, 100 * worst,
+           e.dissipated_ply_contact, lowest, lowest_nose, 1e3 * back, contacts, worst_pen, 1e3 * slip,
+           1e3 * m.el.size[0], impulse, p[2]);
     CHECK(st, worst <= 0.01, "energy balance %.3g %% of the impact energy", 100 * worst);
     CHECK(st, e.dissipated_ply_contact > 0 && back > 0 && contacts > 0,
           "the pack works: dissipated %g, back face %g, contacts %g", e.dissipated_ply_contact,
           back, contacts);
-    CHECK(st, worst_pen <= 0.2 * t, "penetration %g m (bound 20 %% of t)", worst_pen);
+    /* (the column solve: the stack's pairs in one solve; the sweeps over pairs
+     * before it left 2.1e-5 m = 10 % of t clamped, where a ply bends over the
+     * held edge) */
+    CHECK(st, worst_pen <= 0.01 * t, "penetration %g m (bound 1 %% of t)", worst_pen);
+    CHECK(st, lowest >= -1e-9 * impact && lowest_nose >= -1e-9 * impact,
+          "the contacts' dissipation fell to %g J (the plies'), %g J (the projectile's): energy "
+          "put in", lowest, lowest_nose);
     CHECK(st, slip <= 0.1 * m.el.size[0], "ply slip %g m against the element size %g m: the "
           "node-to-node pairing needs it small", slip, m.el.size[0]);
     if (!clamped)
@@ -645,20 +670,151 @@ static void through_hole(check_state *st)
     wff_model_free(&m);
 }
 
-int main(void)
+/* 8. A chain: eight free plies stacked touching (gap h), ply 0 thrown at v0 at
+ * the seven at rest. The collision is one step's: every pair of the stack's
+ * column takes its impulse at once, which a Gauss-Seidel sweep over the pairs
+ * passes one pair a sweep (a chain of 8 is a 1-D Laplacian to it: 20 sweeps
+ * left the back pairs closing). After it: every ply at v0 / 8 (inelastic,
+ * momentum kept) to round-off, the energy lost = 7/8 of the thrown ply's =
+ * dissipated, no pair closer than h beyond round-off at any frame. */
+static void chain(check_state *st)
+{
+    wff_model m;
+    wff_error err;
+    const int plies = 8;
+    const double t = 0.5e-3, v0 = 10;
+    if (square(st, &m, 6, 0.02, KEVLAR))
+        return;
+    if (wff_model_set_plies(&m, plies, t, &err) || wff_model_set_option(&m, "ply_thickness", t, &err) ||
+        wff_model_set_option(&m, "ply_mu", 0.3, &err)) {
+        CHECK(st, 0, "set-up: %s", err.message);
+        wff_model_free(&m);
+        return;
+    }
+    const int per = m.n_nodes / plies;
+    for (int n = 0; n < per; n++) /* ply 0 at v0 towards the stack */
+        m.v[D * n + WFF_UZ] = v0;
+    double p0[3];
+    momentum(&m, p0);
+    wff_energies e0, e;
+    wff_model_energies(&m, &e0);
+    double worst_pen = 0;
+    for (int k = 1; k <= 10; k++) {
+        if (wff_model_advance(&m, k * 1e-6, 1000000, &err)) {
+            CHECK(st, 0, "chain: advance: %s", err.message);
+            wff_model_free(&m);
+            return;
+        }
+        double pen;
+        wff_model_pack_value(&m, "ply_penetration", &pen, &err);
+        worst_pen = fmax(worst_pen, pen);
+    }
+    double p1[3], vmin = INFINITY, vmax = -INFINITY;
+    momentum(&m, p1);
+    for (int n = 0; n < m.n_nodes; n++) {
+        vmin = fmin(vmin, m.v[D * n + WFF_UZ]);
+        vmax = fmax(vmax, m.v[D * n + WFF_UZ]);
+    }
+    wff_model_energies(&m, &e);
+    const double kin = e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude;
+    const double lost = e0.kinetic_transverse - kin, share = (1 - 1.0 / plies) * e0.kinetic_transverse;
+    printf("  a chain of %d plies, ply 0 thrown at %g m/s: v_z %.12f .. %.12f m/s (v0 / %d = %g), "
+           "dissipated %.9g J (lost %.9g, 7/8 of the thrown %.9g), worst penetration %.3g m (h %g m)\n",
+           plies, v0, vmin, vmax, plies, v0 / plies, e.dissipated_ply_contact, lost, share, worst_pen, t);
+    CHECK(st, fabs(p1[2] - p0[2]) <= 1e-12 * fabs(p0[2]), "chain: momentum %.15g, was %.15g", p1[2], p0[2]);
+    CHECK(st, fabs(vmin - v0 / plies) <= 1e-9 * v0 && fabs(vmax - v0 / plies) <= 1e-9 * v0,
+          "chain, inelastic: v_z %.12g .. %.12g, not v0 / %d", vmin, vmax, plies);
+    CHECK(st, fabs(e.dissipated_ply_contact - lost) <= 1e-9 * lost && fabs(lost - share) <= 1e-9 * share,
+          "chain: dissipated %.12g J, lost %.12g J, 7/8 of the thrown ply's %.12g J",
+          e.dissipated_ply_contact, lost, share);
+    CHECK(st, worst_pen <= 1e-9 * t, "chain: penetration %g m (h %g m)", worst_pen, t);
+    wff_model_free(&m);
+}
+
+/* 9. Friction under a clear ply: three free plies, ply 0 touching ply 1 (gap
+ * h: the collision in the first step, the pairs not yet offset in plane) and
+ * thrown at it at (v_x, v_z) = (2, 10) m/s, ply 2 5 mm further off (clear, but
+ * a pair of the same columns, with no normal impulse). The normal impulse per
+ * unit mass is 5 m/s, the cone μ 5 = 1.5 m/s: the pair sticks, both plies on
+ * at v_x = 1 m/s (to 1e-8), v_z = 5 m/s (within 1e-3: the pair's offset of one
+ * step, 0.3 µm, turns the constraint's gradient onto the facets' nodes); ply 2
+ * at rest; the kinetic energy lost (half the thrown ply's) = dissipated. (A
+ * pair without a normal impulse entered its neighbours' friction rows from
+ * uninitialised stack before, what the column's normal solve had left there:
+ * zeros here, so this case passed with it too; on 40 plies it put 0.29 J in.) */
+static void friction_under_clear_ply(check_state *st)
+{
+    wff_model m;
+    wff_error err;
+    const double t = 0.5e-3, vx = 2, vz = 10;
+    if (square(st, &m, 8, 0.025, KEVLAR))
+        return;
+    if (wff_model_set_plies(&m, 3, t, &err) || wff_model_set_option(&m, "ply_thickness", t, &err) ||
+        wff_model_set_option(&m, "ply_mu", 0.3, &err)) {
+        CHECK(st, 0, "set-up: %s", err.message);
+        wff_model_free(&m);
+        return;
+    }
+    const int per = m.n_nodes / 3;
+    for (int n = 0; n < per; n++) { /* ply 0 thrown obliquely; ply 2 further off */
+        m.v[D * n + WFF_UX] = vx;
+        m.v[D * n + WFF_UZ] = vz;
+        m.u[D * (2 * per + n) + WFF_UZ] += 5e-3;
+    }
+    wff_energies e0, e;
+    wff_model_energies(&m, &e0);
+    for (int k = 1; k <= 3; k++)
+        if (wff_model_advance(&m, k * 1e-5, 1000000, &err)) {
+            CHECK(st, 0, "friction under a clear ply: advance: %s", err.message);
+            wff_model_free(&m);
+            return;
+        }
+    double off_x = 0, off_z = 0, rest = 0;
+    for (int n = 0; n < 2 * per; n++) {
+        off_x = fmax(off_x, fabs(m.v[D * n + WFF_UX] - vx / 2) + fabs(m.v[D * n + WFF_UY]));
+        off_z = fmax(off_z, fabs(m.v[D * n + WFF_UZ] - vz / 2));
+    }
+    for (int n = 2 * per; n < 3 * per; n++)
+        for (int c = WFF_UX; c <= WFF_UZ; c++)
+            rest = fmax(rest, fabs(m.v[D * n + c]));
+    wff_model_energies(&m, &e);
+    const double k0 = e0.kinetic_inplane + e0.kinetic_transverse + e0.kinetic_amplitude;
+    const double lost = k0 - (e.kinetic_inplane + e.kinetic_transverse + e.kinetic_amplitude);
+    printf("  friction under a clear ply: plies 0 and 1 at v_x %g m/s to %.3g, v_z %g m/s to %.3g, ply 2 at "
+           "%.3g m/s, dissipated %.9g J (lost %.9g J, half the thrown ply's %.9g J)\n",
+           vx / 2, off_x, vz / 2, off_z, rest, e.dissipated_ply_contact, lost, 0.5 * k0);
+    CHECK(st, off_x <= 1e-8 * vx && off_z <= 1e-3 * vz,
+          "friction under a clear ply: plies 0 and 1 %.3g m/s off sticking (v_x), %.3g m/s (v_z)", off_x, off_z);
+    CHECK(st, rest <= 1e-9 * vz, "friction under a clear ply: ply 2 moves (%g m/s)", rest);
+    CHECK(st, fabs(e.dissipated_ply_contact - lost) <= 1e-9 * lost && fabs(lost - 0.5 * k0) <= 1e-9 * k0,
+          "friction under a clear ply: dissipated %.12g J, lost %.12g J, half %.12g J",
+          e.dissipated_ply_contact, lost, 0.5 * k0);
+    wff_model_free(&m);
+}
+
+/* With the argument "memcheck": the clamped 8-ply impact of 4 to 0.03 ms only
+ * (~300 steps, every part of the column solve), for tests/sh/memcheck_ply_contact.sh
+ * to run under valgrind. */
+int main(int argc, char **argv)
 {
     check_state st = {0, 0};
+    if (argc > 1 && strcmp(argv[1], "memcheck") == 0) {
+        eight_plies(&st, 1, 3);
+        return check_summary(&st, "test_ply_contact memcheck");
+    }
     if (test_tmp_dir("ply_contact", tmpdir, sizeof tmpdir))
         return 1;
     thrown_ply(&st, TEST_MESH_TRI);
     thrown_ply(&st, TEST_MESH_QUAD);
     quarter_turn(&st);
-    eight_plies(&st, 0);
-    eight_plies(&st, 1);
+    eight_plies(&st, 0, 10);
+    eight_plies(&st, 1, 10);
     double_ply(&st);
     deep_pair(&st);
     perforated_pack(&st);
     through_hole(&st);
+    chain(&st);
+    friction_under_clear_ply(&st);
     test_tmp_remove(tmpdir);
     return check_summary(&st, "test_ply_contact");
 }

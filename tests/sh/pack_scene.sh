@@ -13,9 +13,12 @@
 # and the projectile's tip, not the eroded fabric's nodes flung further (what gnuplot
 # draws: its -e settings logged by a gnuplot stand-in on PATH, the axis range printed);
 # damage.csv has a block per ply and damage.png a panel per ply, each titled with its ply
-# and its eroded elements (the summary's ply_eroded); 8 plies at dtfactor 0.8 to 0.5 ms
-# never show a negative ply-contact dissipation (and the summary's "invariants" is "ok"); every bad input exits 2 naming
-# the option with nothing written.
+# and its eroded elements (the summary's ply_eroded); 8 plies at dtfactor 0.8 to 1.2 ms
+# never show a negative contact dissipation, the ply contact's or the projectile's (and the summary's
+# "invariants" is "ok"), their ply penetration below 1 % of h, the balance within 1e-5;
+# so do 20 plies to 1 ms;
+# 8 frictionless plies without the travel limit run to 0.4 ms (a crimp amplitude ran
+# away at 0.30 ms before); every bad input exits 2 naming the option with nothing written.
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}"
 out="$tmp/pack_scene"
@@ -141,29 +144,86 @@ else
     fi
 fi
 # 8 plies at the scene's default step (dtfactor 0.8: a pack has no rule of its
-# own since issue 26) to 0.5 ms: contact and friction only take energy out, so
-# the ply contact's dissipation is never below 0 in any history row (the
-# impulse along the pair's normal alone, not the constraint's gradient, put
-# energy in: -0.10 J by 0.5 ms here, -31 J by 1.5 ms; docs/model.md §23); the
-# balance within 1e-5 of the impact energy (3.6e-4 to 3 ms with the impulses
-# booked at the integer-step velocity, 7.2e-6 now: docs/model.md §14)
+# own since issue 26) to 1.2 ms: contact and friction only take energy out,
+# so neither the ply contact's dissipation nor the projectile contact's
+# (dissipated_friction, with the nose contacts the ply contact's solve holds) is
+# ever below 0 in a history row (the impulse along the pair's normal alone, not the constraint's gradient,
+# put energy in: -0.10 J by 0.5 ms here, -31 J by 1.5 ms; then the push-out of
+# pairs the sweeps over pairs left closer than h: the sum below 0 from 0.88 ms,
+# -78 mJ at 1.63 ms; docs/model.md §23), the summary's "invariants" says ok, the
+# ply penetration stays below 1 % of the contact distance (7.1 um = 3.4 % before
+# the column solve) and the energy error below 1e-5
 dir="$out-eight"
 rm -rf "$dir"
-run -tend 0.5e-3 -plies 8 -out "$dir" > "$dir.log" 2>&1
+run -tend 1.2e-3 -plies 8 -out "$dir" > "$dir.log" 2>&1
 rc=$?
 if [ $rc -ne 0 ]; then
-    echo "-plies 8 -dtfactor 0.8: exit $rc"; tail -3 "$dir.log"; fail=1
+    echo "-plies 8: exit $rc"; tail -3 "$dir.log"; fail=1
 else
-    col=$(head -1 "$dir/history.csv" | tr ',' '\n' | grep -nx ply_contact_dissipated | cut -d: -f1)
+    head -1 "$dir/history.csv" | tr ',' '\n' > "$dir.cols"
+    col=$(grep -nx ply_contact_dissipated "$dir.cols" | cut -d: -f1)
+    fr=$(grep -nx dissipated_friction "$dir.cols" | cut -d: -f1)
     low=$(awk -F, -v c="$col" 'NR > 1 && (NR == 2 || $c < m) { m = $c } END { print m }' "$dir/history.csv")
-    echo "-plies 8 -dtfactor 0.8 to 0.5 ms: ply contact dissipated $(num ply_contact_dissipated "$dir") J, lowest $low J, largest energy error $(num max_energy_error "$dir")"
-    awk -v l="$low" 'BEGIN { exit !(l != "" && l >= 0) }' \
-        || { echo "-plies 8 -dtfactor 0.8: the ply contact's dissipation fell to $low J: energy put in"; fail=1; }
+    proj=$(awk -F, -v f="$fr" 'NR > 1 && (NR == 2 || $f < m) { m = $f } END { print m }' "$dir/history.csv")
+    pen=$(num max_ply_penetration "$dir") h=$(num ply_thickness "$dir") err=$(num max_energy_error "$dir")
+    echo "-plies 8 (dtfactor 0.8) to 1.2 ms: ply contact dissipated $(num ply_contact_dissipated "$dir") J, lowest $low J, the projectile contact's (dissipated_friction) lowest $proj J, ply penetration $pen m, largest energy error $err"
+    awk -v l="$low" -v b="$proj" 'BEGIN { exit !(l != "" && l >= 0 && b != "" && b >= 0) }' \
+        || { echo "-plies 8: the contacts' dissipation fell to $low J (ply), $proj J (projectile): energy put in"; fail=1; }
     grep -q '^  "invariants": "ok",' "$dir/summary.json" \
-        || { echo "-plies 8 -dtfactor 0.8: summary invariants not ok: $(grep '"invariants"' "$dir/summary.json")"; fail=1; }
+        || { echo "-plies 8: summary invariants not ok: $(grep '"invariants"' "$dir/summary.json")"; fail=1; }
     [ "$(num dtfactor_used "$dir")" = 0.8 ] || { echo "-plies 8: dtfactor_used $(num dtfactor_used "$dir"), not the scene's 0.8"; fail=1; }
-    awk -v e="$(num max_energy_error "$dir")" 'BEGIN { exit !(e < 1e-5 && e > -1e-5) }' \
-        || { echo "-plies 8 at 0.8: energy error $(num max_energy_error "$dir") not within 1e-5"; fail=1; }
+    awk -v p="$pen" -v h="$h" 'BEGIN { exit !(p != "" && p >= 0 && p < 0.01 * h) }' \
+        || { echo "-plies 8: ply penetration $pen m not below 1 % of h $h m"; fail=1; }
+    awk -v e="$err" 'BEGIN { exit !(e != "" && e < 1e-5 && e > -1e-5) }' \
+        || { echo "-plies 8: energy error $err not within 1e-5"; fail=1; }
+fi
+# 20 plies to 1 ms, the same checks: either contact's dissipation never below 0 in a
+# history row (before the column solve the contacts' sum was below 0 from 0.77 ms,
+# -0.93 J at 1 ms; 40 plies, where the column's friction read a pair without a
+# normal impulse from uninitialised memory, -0.15 J: docs/model.md §23), the
+# summary's "invariants" ok, the ply penetration below 1 % of h, the balance 1e-5.
+# (The 8-ply pack with failure on at 60 m/s, to its perforation: tests/sh/verdict.sh.)
+dir="$out-twenty"
+rm -rf "$dir"
+run -tend 1e-3 -plies 20 -out "$dir" > "$dir.log" 2>&1
+rc=$?
+if [ $rc -ne 0 ]; then
+    echo "-plies 20: exit $rc"; tail -3 "$dir.log"; fail=1
+else
+    head -1 "$dir/history.csv" | tr ',' '\n' > "$dir.cols"
+    col=$(grep -nx ply_contact_dissipated "$dir.cols" | cut -d: -f1)
+    fr=$(grep -nx dissipated_friction "$dir.cols" | cut -d: -f1)
+    low=$(awk -F, -v c="$col" 'NR > 1 && (NR == 2 || $c < m) { m = $c } END { print m }' "$dir/history.csv")
+    proj=$(awk -F, -v f="$fr" 'NR > 1 && (NR == 2 || $f < m) { m = $f } END { print m }' "$dir/history.csv")
+    pen=$(num max_ply_penetration "$dir") h=$(num ply_thickness "$dir") err=$(num max_energy_error "$dir")
+    echo "-plies 20 to 1 ms: $(num steps "$dir") steps, ply contact dissipated $(num ply_contact_dissipated "$dir") J, lowest $low J, the projectile contact's (dissipated_friction) lowest $proj J, ply penetration $pen m, largest energy error $err"
+    awk -v l="$low" -v b="$proj" 'BEGIN { exit !(l != "" && l >= 0 && b != "" && b >= 0) }' \
+        || { echo "-plies 20: the contacts' dissipation fell to $low J (ply), $proj J (projectile): energy put in"; fail=1; }
+    grep -q '^  "invariants": "ok",' "$dir/summary.json" \
+        || { echo "-plies 20: summary invariants not ok: $(grep '"invariants"' "$dir/summary.json")"; fail=1; }
+    awk -v p="$pen" -v h="$h" 'BEGIN { exit !(p != "" && p >= 0 && p < 0.01 * h) }' \
+        || { echo "-plies 20: ply penetration $pen m not below 1 % of h $h m"; fail=1; }
+    awk -v e="$err" 'BEGIN { exit !(e != "" && e < 1e-5 && e > -1e-5) }' \
+        || { echo "-plies 20: energy error $err not within 1e-5"; fail=1; }
+fi
+# frictionless plies without the travel limit (8 plies, 0.4 ms): before the nose's
+# contacts joined the column solve, a crimp amplitude at ply 0's apex, between the
+# nose and ply 1, ran away at 0.30 ms at any dtfactor (with the travel limit the
+# step fell instead: 236,886 steps to 1 ms, the contacts -20 J); now it runs, the
+# contacts take energy out, the balance within 1e-5
+dir="$out-frictionless"
+rm -rf "$dir"
+run -tend 0.4e-3 -plies 8 -plymu 0 -travel 0 -out "$dir" > "$dir.log" 2>&1
+rc=$?
+if [ $rc -ne 0 ]; then
+    echo "-plies 8 -plymu 0 -travel 0: exit $rc"; grep -m1 -E 'unstable|error' "$dir.log"; fail=1
+else
+    err=$(num max_energy_error "$dir")
+    echo "-plies 8 -plymu 0 -travel 0 to 0.4 ms: $(num steps "$dir") steps, largest energy error $err, invariants $(sed -n 's/^  "invariants": \(.*\),$/\1/p' "$dir/summary.json")"
+    grep -q '^  "invariants": "ok",' "$dir/summary.json" \
+        || { echo "-plies 8 -plymu 0 -travel 0: summary invariants not ok: $(grep '"invariants"' "$dir/summary.json")"; fail=1; }
+    awk -v e="$err" 'BEGIN { exit !(e != "" && e < 1e-5 && e > -1e-5) }' \
+        || { echo "-plies 8 -plymu 0 -travel 0: energy error $err not within 1e-5"; fail=1; }
 fi
 # a layup at 45 struck at the centre: the full specimen, said
 dir="$out-45"

@@ -11,11 +11,15 @@
 # dtfactor_used the model's; cut short (-tend 0.3 ms): undecided, perforated
 # null, the projectile's speed and position, never "not perforated"; a slower shot
 # (14 m/s): stopped, the run ended there. The 8-ply pack at 60 m/s of issue 27
-# (every ply torn, the projectile moving on at ~29 m/s: the old scene said "not
-# perforated, residual 0" at 3 ms): perforated, every ply holed, no back-face
+# (every ply torn, the projectile moving on, at ~8 m/s since the column solve of the
+# ply contact, 24-29 m/s before it: the old scene said "not perforated, residual 0"
+# at 3 ms): perforated, every ply holed, no back-face
 # deformation (null, a reason), every ply_apex within what the clamp allows (the
 # held part's yarns at their rupture strain: R sqrt(lambda^2 - 1), lambda =
-# (1 + rupture) x the crimp's L0/p0); a 2-ply pack stopped: its back-face
+# (1 + rupture) x the crimp's L0/p0), the contacts' dissipation (the ply contact's,
+# the projectile contact's) never below 0 in a history row and the summary's
+# "invariants" ok (issue 27 item 7: -0.67 J at 0.48 ms before the column solve),
+# the ply penetration within its bound; a 2-ply pack stopped: its back-face
 # deformation a number.
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/verdict"
@@ -118,7 +122,11 @@ else
     [ "$(text "$dir" verdict)" = perforated ] && [ "$(num "$dir" perforated)" = true ] \
         || { echo "pack8: verdict '$(text "$dir" verdict)', perforated '$(num "$dir" perforated)'"; fail=1; }
     grep -q "not perforated" "$dir.log" && { echo "pack8: 'not perforated' printed"; fail=1; }
-    check pack8 "r > 20 && r < 60" "residual velocity" r="$(num "$dir" residual_velocity)"
+    # (the residual of the model, not a bound of the verdict's: 24.0 m/s, ply 0 torn first
+    # at a 23.6 mm apex, while the ply contact glued a node on the nose to the projectile
+    # along z and put energy in; 8.1 m/s since the nose's contacts joined the plies'
+    # column solve: the plies tear together at 28.8-29.0 mm, docs/limits.md "Packs")
+    check pack8 "r > 4 && r < 16" "residual velocity" r="$(num "$dir" residual_velocity)"
     [ "$(list "$dir" ply_holed | tr -d ' ')" = "1,1,1,1,1,1,1,1" ] || { echo "pack8: ply_holed '$(list "$dir" ply_holed)'"; fail=1; }
     [ "$(num "$dir" back_face_deformation)" = null ] && [ -n "$(text "$dir" back_face_deformation_note)" ] \
         || { echo "pack8: back_face_deformation '$(num "$dir" back_face_deformation)' without a stopped shot"; fail=1; }
@@ -128,6 +136,16 @@ else
         END { exit bad }' || fail=1
     used=$(num "$dir" dtfactor_used)
     grep -q "^estimate: .* = dtfactor $used x the stable step" "$dir.log" || { echo "pack8: the estimate's factor is not dtfactor_used $used"; fail=1; }
+    # contact and friction only take energy out, through the tear too
+    low=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+        { p = $c["ply_contact_dissipated"]; s = $c["dissipated_friction"]
+          if (NR == 2 || p < lp) lp = p; if (NR == 2 || s < ls) ls = s } END { print lp, ls }' "$dir/history.csv")
+    echo "pack8: the ply contact's dissipation at least $(echo "$low" | cut -d' ' -f1) J, the projectile contact's $(echo "$low" | cut -d' ' -f2) J; ply penetration $(num "$dir" max_ply_penetration) m (bound $(num "$dir" ply_penetration_bound) m), largest energy error $(num "$dir" max_energy_error)"
+    check pack8 "p != \"\" && p >= 0 && s != \"\" && s >= 0" "the contacts' dissipation below 0: energy put in" \
+        p="$(echo "$low" | cut -d' ' -f1)" s="$(echo "$low" | cut -d' ' -f2)"
+    grep -q '^  "invariants": "ok",' "$dir/summary.json" \
+        || { echo "pack8: summary invariants not ok: $(grep '"invariants"' "$dir/summary.json" | cut -c1-300)"; fail=1; }
+    check pack8 "p >= 0 && p < b" "ply penetration not within its bound" p="$(num "$dir" max_ply_penetration)" b="$(num "$dir" ply_penetration_bound)"
 fi
 
 # 6. a stopped pack: its back-face deformation
