@@ -77,13 +77,14 @@ int wff_cell_has_shared(const wff_material *mat) { return mat->cell->evaluate_sh
 int wff_cell_evaluate_shared(const wff_material *mat, const double F[6], int n_points,
                              const double *dA, const double *weight, double *state, double dt,
                              double stress_sum[6], double *residual, double *energy,
-                             double *dissipated, double *failure_dissipated, int *bad_point)
+                             double *dissipated, double *failure_dissipated,
+                             double *slip_dissipated, int *bad_point)
 {
     const wff_cell_type *cell = mat->cell;
     if (cell->evaluate_shared)
         return cell->evaluate_shared(mat->params, F, n_points, dA, weight, state, dt,
                                      stress_sum, residual, energy, dissipated,
-                                     failure_dissipated, bad_point);
+                                     failure_dissipated, slip_dissipated, bad_point);
     *bad_point = 0;
     const int ns = mat->n_state;
     for (int q = 0; q < n_points; q++) {
@@ -101,6 +102,7 @@ int wff_cell_evaluate_shared(const wff_material *mat, const double F[6], int n_p
         *energy += weight[q] * r.energy;
         *dissipated += weight[q] * r.dissipated;
         *failure_dissipated += weight[q] * r.failure_dissipated;
+        *slip_dissipated += weight[q] * r.slip_dissipated;
         for (int i = 0; i < ns; i++)
             ps[i] = r.state[i];
     }

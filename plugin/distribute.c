@@ -275,7 +275,7 @@ int wff_dist_forces(wff_model *m, double *f, wff_force_totals *t, wff_fixed *mor
     /* one exchange a pass: each rank's message its nodes' forces (then its
      * elements' static amplitudes, if any), then its sums and counts; every
      * rank gets every rank's */
-    const size_t extra = sizeof(wff_fixed) * (size_t)(3 + n_more) + sizeof(pass_extras);
+    const size_t extra = sizeof(wff_fixed) * (size_t)(WFF_BLOCK_SUMS + n_more) + sizeof(pass_extras);
     double *dA = pass_amplitudes(m);
     size_t total = 0, first;
     for (int r = 0; r < d->size; r++) {
@@ -293,15 +293,17 @@ int wff_dist_forces(wff_model *m, double *f, wff_force_totals *t, wff_fixed *mor
         if (amplitudes)
             memcpy(mine + forces, dA + first, amplitudes);
         forces += amplitudes; /* (what comes before the sums) */
-        memcpy(mine + forces, t->sums, sizeof(wff_fixed) * 3);
+        memcpy(mine + forces, t->sums, sizeof(wff_fixed) * WFF_BLOCK_SUMS);
         if (n_more > 0)
-            memcpy(mine + forces + sizeof(wff_fixed) * 3, more, sizeof(wff_fixed) * (size_t)n_more);
+            memcpy(mine + forces + sizeof(wff_fixed) * WFF_BLOCK_SUMS, more, sizeof(wff_fixed) * (size_t)n_more);
         pass_extras e = {t->amplitude_iterations, t->bad_element >= 0};
-        memcpy(mine + forces + sizeof(wff_fixed) * (size_t)(3 + n_more), &e, sizeof e);
+        memcpy(mine + forces + sizeof(wff_fixed) * (size_t)(WFF_BLOCK_SUMS + n_more), &e, sizeof e);
     }
     wff_comm_allgather(&m->comm, all, d->counts, d->offsets);
     /* every rank's forces into f; the sums added (order-free), the counts too */
-    wff_fixed sums[3] = {wff_fixed_zero(), wff_fixed_zero(), wff_fixed_zero()};
+    wff_fixed sums[WFF_BLOCK_SUMS];
+    for (int k = 0; k < WFF_BLOCK_SUMS; k++)
+        sums[k] = wff_fixed_zero();
     for (int k = 0; k < n_more; k++)
         more[k] = wff_fixed_zero();
     long iterations = 0, bad = 0;
@@ -315,21 +317,22 @@ int wff_dist_forces(wff_model *m, double *f, wff_force_totals *t, wff_fixed *mor
                 memcpy(dA + first, msg + forces, amplitudes);
         }
         forces += amplitudes;
-        for (int k = 0; k < 3 + n_more; k++) {
+        for (int k = 0; k < WFF_BLOCK_SUMS + n_more; k++) {
             wff_fixed x;
             memcpy(&x, msg + forces + sizeof(wff_fixed) * (size_t)k, sizeof x);
-            wff_fixed_merge(k < 3 ? &sums[k] : &more[k - 3], &x);
+            wff_fixed_merge(k < WFF_BLOCK_SUMS ? &sums[k] : &more[k - WFF_BLOCK_SUMS], &x);
         }
         pass_extras e;
-        memcpy(&e, msg + forces + sizeof(wff_fixed) * (size_t)(3 + n_more), sizeof e);
+        memcpy(&e, msg + forces + sizeof(wff_fixed) * (size_t)(WFF_BLOCK_SUMS + n_more), sizeof e);
         iterations += e.amplitude_iterations;
         bad += e.bad;
     }
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < WFF_BLOCK_SUMS; k++)
         t->sums[k] = sums[k];
     t->internal_energy = wff_fixed_value(&t->sums[0]);
     t->dissipated = wff_fixed_value(&t->sums[1]);
     t->failure_dissipated = wff_fixed_value(&t->sums[2]);
+    t->slip_dissipated = wff_fixed_value(&t->sums[3]);
     t->amplitude_iterations = iterations;
     if (bad > 0) { /* a bad point somewhere (rare: the run stops): the lowest element's */
         double lowest = t->bad_element >= 0 ? t->bad_element : (double)d->n_elements;

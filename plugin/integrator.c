@@ -96,7 +96,7 @@ static int fail_unstable(const wff_model *m, const char *what, wff_error *err)
 
 /* The element force pass (internal forces only) at displacement u into f
  * (zeroed first), the points' state advanced by dt_flow in state; with
- * `accumulate` the model's stored energy, shear and failure dissipation and
+ * `accumulate` the model's stored energy, shear, failure and slip dissipation and
  * element-step count follow it;
  * the pass's stored energy (J, model part) into *energy unless NULL.
  * Returns 0 or -1 (err set, naming the element and quadrature point). Shared
@@ -157,6 +157,7 @@ static int force_pass_added(wff_model *m, const double *u, double *f, double *st
         m->internal_energy = t.internal_energy;
         m->dissipated_shear += t.dissipated;
         m->dissipated_failure += t.failure_dissipated;
+        m->dissipated_slip += t.slip_dissipated;
     }
     return 0;
 }
@@ -283,11 +284,12 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
     out->external_work = s * m->external_work;
     out->transfer = s * m->transfer_energy;
     out->dissipated_failure = s * m->dissipated_failure;
+    out->dissipated_slip = s * m->dissipated_slip;
     out->eroded = s * m->eroded_energy;
     const double parts = wff_parts_dissipated(m); /* (part.h: the ply contact's) */
     out->dissipated_ply_contact = s * parts;
-    /* initial + external work = kinetic + internal + shear + friction + failure + eroded,
-     * the kinetic energy the staggered one ½ m v^{n−½}·v^{n+½} */
+    /* initial + external work = kinetic + internal + shear + friction + failure + slip +
+     * eroded, the kinetic energy the staggered one ½ m v^{n−½}·v^{n+½} */
     const double kinetic = k[0] + k[1] + k[2] + k[3];
     out->impulse_stagger = s * k[5];
     /* the balance's kinetic measure, ½ Σ m v^{n+½}·(v^{n+½} − Δt_{n+½} a_elastic^n): the
@@ -295,7 +297,8 @@ void wff_model_energies(const wff_model *m, wff_energies *out)
      * (their work is booked at the trapezoidal rule's measure, part.h's book) */
     double total = kinetic - k[4] + k[5] + m->stagger_shift + m->internal_energy +
                    m->dissipated_shear + m->dissipated_friction + m->dissipated_failure +
-                   m->eroded_energy - m->external_work - m->transfer_energy + parts;
+                   m->dissipated_slip + m->eroded_energy - m->external_work -
+                   m->transfer_energy + parts;
     /* normaliser: the initial kinetic energy, or (for a scene driven by its
      * boundaries) the work done on it or the energy it now holds */
     double stored = m->internal_energy - (m->initial_total - m->initial_kinetic);

@@ -46,6 +46,7 @@ int wff_model_invariants(const wff_model *m, char *out, size_t size)
     const double s = m->symmetry_factor, tol = INVARIANT_ROUND_OFF * e.reference;
     check_dissipation("dissipated_shear", e.dissipated_shear, tol, out, size, &n);
     check_dissipation("dissipated_failure", e.dissipated_failure, tol, out, size, &n);
+    check_dissipation("dissipated_slip", e.dissipated_slip, tol, out, size, &n);
     check_dissipation("eroded_energy", e.eroded, tol, out, size, &n);
     /* contact and friction: the model's (clamp, the projectile's contact) and
      * each part's, as one sum. Two contacts acting on one node in a step (a

@@ -45,7 +45,7 @@ void WFF_KERNEL_NAME(wff_elements_forces)(const wff_elements *el, const wff_elem
     totals->bad_residual = 0;
     totals->bad_iterations = 0;
     totals->amplitude_iterations = 0;
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < WFF_BLOCK_SUMS; k++)
         totals->sums[k] = wff_fixed_zero();
     WFF_KERNEL_NAME(wff_tri_forces)(el, em, X, u, state, dt, totals);
     WFF_KERNEL_NAME(wff_quad_forces)(el, em, X, u, state, dt, totals);
@@ -53,4 +53,5 @@ void WFF_KERNEL_NAME(wff_elements_forces)(const wff_elements *el, const wff_elem
     totals->internal_energy = wff_fixed_value(&totals->sums[0]);
     totals->dissipated = wff_fixed_value(&totals->sums[1]);
     totals->failure_dissipated = wff_fixed_value(&totals->sums[2]);
+    totals->slip_dissipated = wff_fixed_value(&totals->sums[3]);
 }

@@ -54,7 +54,7 @@ static void quad_table_init(quad_table *t)
 
 /* Sums one thread gathers over its quads. */
 typedef struct quad_sums {
-    double energy, dissipated, failure;
+    double energy, dissipated, failure, slip;
     int bad_element, bad_point, bad_status; /* bad_element: quad index, −1 if none */
 } quad_sums;
 
@@ -95,6 +95,7 @@ quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_
     double amp[4][2][WFF_BLOCK]; /* ΔA1, ΔA2 at the nodes */
     double acc[4][D][WFF_BLOCK]; /* force on node a of each lane's quad */
     double lane_energy[WFF_BLOCK], lane_dissipated[WFF_BLOCK], lane_failure[WFF_BLOCK];
+    double lane_slip[WFF_BLOCK];
     double state_new[WFF_QUAD_POINTS][WFF_STATE_MAX][WFF_BLOCK]; /* where the point is sound */
     int status[WFF_QUAD_POINTS][WFF_BLOCK]; /* WFF_POINT_* per point */
 #pragma omp simd
@@ -124,7 +125,7 @@ quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_
             dX[1][i][j] = 0.25 * (-Xn[0][i] - Xn[1][i] + Xn[2][i] + Xn[3][i]);
             dX[2][i][j] = 0.25 * (Xn[0][i] - Xn[1][i] + Xn[2][i] - Xn[3][i]);
         }
-        lane_energy[j] = lane_dissipated[j] = lane_failure[j] = 0;
+        lane_energy[j] = lane_dissipated[j] = lane_failure[j] = lane_slip[j] = 0;
     }
     wff_point_block blk;
     blk.n = n;
@@ -202,6 +203,7 @@ quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_
             lane_energy[j] += sound ? w * blk.energy[j] : 0;
             lane_dissipated[j] += sound ? w * blk.dissipated[j] : 0;
             lane_failure[j] += sound ? w * blk.failure_dissipated[j] : 0;
+            lane_slip[j] += sound ? w * blk.slip_dissipated[j] : 0;
         }
         for (int i = 0; i < ns; i++)
             for (int j = 0; j < WFF_BLOCK; j++)
@@ -230,6 +232,7 @@ quad_block_n(const wff_elements *el, const wff_element_material *em, const quad_
         sums->energy += lane_energy[j];
         sums->dissipated += lane_dissipated[j];
         sums->failure += lane_failure[j];
+        sums->slip += lane_slip[j];
     }
 }
 
@@ -280,7 +283,7 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
     const int n_blocks = (el->n_quads + WFF_BLOCK - 1) / WFF_BLOCK;
     /* the quads' blocks' sums follow the triangles' */
     const int tri_blocks = (el->n_tris + WFF_BLOCK - 1) / WFF_BLOCK;
-    double *block_sums = el->block_sums + 3 * (size_t)tri_blocks;
+    double *block_sums = el->block_sums + WFF_BLOCK_SUMS * (size_t)tri_blocks;
     /* small meshes are not worth a thread team (membrane.h, wff_elements_team) */
     int threads = wff_elements_team(el);
     quad_sums part[WFF_MAX_THREADS];
@@ -294,20 +297,20 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
 #else
         int t = 0;
 #endif
-        quad_sums bad = {0, 0, 0, -1, -1, 0};
+        quad_sums bad = {0, 0, 0, 0, -1, -1, 0};
 #pragma omp for schedule(static)
         for (int blk = 0; blk < n_blocks; blk++) {
             if (el->block_run && !el->block_run[tri_blocks + blk])
                 continue; /* (over ranks: another rank's block, plugin/distribute.c) */
             int e0 = blk * WFF_BLOCK;
             int n = el->n_quads - e0 < WFF_BLOCK ? el->n_quads - e0 : WFF_BLOCK;
-            quad_sums sums = {0, 0, 0, bad.bad_element, bad.bad_point, bad.bad_status};
+            quad_sums sums = {0, 0, 0, 0, bad.bad_element, bad.bad_point, bad.bad_status};
             if (em->mat->n_state == 1) /* (King without failure: the state loops fold away) */
                 quad_block_one(el, em, &gauss, X, u, state, dt, e0, n, &sums);
             else
                 quad_block_any(el, em, &gauss, X, u, state, dt, e0, n, &sums);
-            double *b = block_sums + 3 * (size_t)blk;
-            b[0] = sums.energy, b[1] = sums.dissipated, b[2] = sums.failure;
+            double *b = block_sums + WFF_BLOCK_SUMS * (size_t)blk;
+            b[0] = sums.energy, b[1] = sums.dissipated, b[2] = sums.failure, b[3] = sums.slip;
             bad.bad_element = sums.bad_element;
             bad.bad_point = sums.bad_point;
             bad.bad_status = sums.bad_status;
@@ -318,11 +321,11 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
     for (int blk = 0; blk < n_blocks; blk++) { /* each block's sums, order-free across blocks */
         if (el->block_count && !el->block_count[tri_blocks + blk])
             continue; /* (another rank's to add) */
-        const double *b = block_sums + 3 * (size_t)blk;
-        for (int k = 0; k < 3; k++)
+        const double *b = block_sums + WFF_BLOCK_SUMS * (size_t)blk;
+        for (int k = 0; k < WFF_BLOCK_SUMS; k++)
             wff_fixed_add(&totals->sums[k], b[k] * inv_J);
     }
-    quad_sums all = {0, 0, 0, -1, -1, 0};
+    quad_sums all = {0, 0, 0, 0, -1, -1, 0};
     for (int t = 0; t < team; t++)
         if (part[t].bad_element >= 0)
             note_bad_point(&all, part[t].bad_element, part[t].bad_point, part[t].bad_status);
@@ -399,6 +402,7 @@ void WFF_KERNEL_NAME(wff_quad_forces)(const wff_elements *el, const wff_element_
             wff_fixed_add(&totals->sums[0], w * r.energy / em->J_pre);
             wff_fixed_add(&totals->sums[1], w * r.dissipated / em->J_pre);
             wff_fixed_add(&totals->sums[2], w * r.failure_dissipated / em->J_pre);
+            wff_fixed_add(&totals->sums[3], w * r.slip_dissipated / em->J_pre);
         }
     }
 }

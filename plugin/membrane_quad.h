@@ -10,7 +10,7 @@
 
 /* Internal forces of every quad through the cell's evaluate_point_block,
  * written into its slots (el->slot); the state of the quads' points (mat->n_state each) updated
- * with step dt. Adds Σ w W, Σ w × dissipation and Σ w × failure dissipation
+ * with step dt. Adds Σ w W, Σ w × dissipation, Σ w × failure dissipation and Σ w × slip dissipation
  * (w = Gauss weight × det J) / J_pre into totals->sums (order-free,
  * fixed_sum.h), and notes the first bad point (lowest quad, then
  * lowest point) in totals if totals has none. Threads: el->n_threads on large
@@ -23,8 +23,8 @@ int WFF_KERNEL_NAME(wff_quad_block_forces)(const wff_elements *el,
                                            wff_force_totals *totals);
 
 /* The two halves of the force pass wff_elements_forces (membrane_forces.c), each
- * writing its elements' forces into their slots (el->slot), adding Σ A W, Σ A × dissipation and Σ A ×
- * failure dissipation / J_pre into totals->sums (each block's, order-free),
+ * writing its elements' forces into their slots (el->slot), adding Σ A W, Σ A × dissipation, Σ A ×
+ * failure dissipation and Σ A × slip dissipation / J_pre into totals->sums (each block's, order-free),
  * its Newton iterations and first bad point into totals: the
  * triangles (membrane_tri.c; the first bad one wins over the quads'), then
  * the quads (membrane_quad.c: wff_quad_block_forces, else point by point). */

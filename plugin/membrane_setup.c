@@ -30,7 +30,7 @@ static int slots_init(wff_elements *el, int n_nodes)
     const size_t n_slots = 3 * (size_t)n_tris + 4 * (size_t)n_quads;
     const int n_blocks = (n_tris + WFF_BLOCK - 1) / WFF_BLOCK + (n_quads + WFF_BLOCK - 1) / WFF_BLOCK;
     el->slot = calloc(D * (n_slots ? n_slots : 1), sizeof(double));
-    el->block_sums = calloc(3 * (size_t)(n_blocks ? n_blocks : 1), sizeof(double));
+    el->block_sums = calloc(WFF_BLOCK_SUMS * (size_t)(n_blocks ? n_blocks : 1), sizeof(double));
     int *count = calloc((size_t)n_nodes + 1, sizeof(int));
     el->node_slot = malloc(sizeof(int) * (n_slots ? n_slots : 1));
     if (!el->slot || !el->block_sums || !count || !el->node_slot) {

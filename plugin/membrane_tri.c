@@ -30,7 +30,7 @@ static int omp_team(void) { return 1; }
 
 /* Sums one thread gathers over its triangles. */
 typedef struct tri_sums {
-    double energy, dissipated, failure;
+    double energy, dissipated, failure, slip;
     wff_force_totals bad; /* only bad_element, bad_point, bad_status are used */
 } tri_sums;
 
@@ -89,7 +89,7 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
     const int ns = mat->n_state;
     const int *node = el->tri + 3 * e;
     double F[6], Fe[6], dA[6], P[6] = {0, 0, 0, 0, 0, 0}, R[6] = {0, 0, 0, 0, 0, 0};
-    double W = 0, Dis = 0, Fail = 0, check = 0;
+    double W = 0, Dis = 0, Fail = 0, Slip = 0, check = 0;
     tri_deformation(el, em, X, u, e, F, Fe);
     for (int q = 0; q < WFF_TRI_POINTS; q++) {
         dA[2 * q] = u[D * node[q] + 3];
@@ -106,7 +106,7 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
         int bad = 0;
         int status = wff_cell_evaluate_shared(mat, Fe, 3, dA, third,
                                                 state + ns * 3 * e, dt, P, R, &W, &Dis,
-                                                &Fail, &bad);
+                                                &Fail, &Slip, &bad);
         double sum = W + R[0] + R[1] + R[2] + R[3] + R[4] + R[5];
         for (int i = 0; i < 6; i++)
             sum += P[i];
@@ -135,12 +135,14 @@ static void tri_forces(const wff_elements *el, const wff_element_material *em, c
             W += r.energy / 3;
             Dis += r.dissipated / 3;
             Fail += r.failure_dissipated / 3;
+            Slip += r.slip_dissipated / 3;
         }
     }
     tri_slots(el, em, e, P, R, wff_cell_amplitudes(mat->cell));
     sums->energy += el->tri_area[e] * W;
     sums->dissipated += el->tri_area[e] * Dis;
     sums->failure += el->tri_area[e] * Fail;
+    sums->slip += el->tri_area[e] * Slip;
 }
 
 /* n (≤ WFF_BLOCK) triangles from e0 through the cell's blocked kernel.
@@ -229,6 +231,7 @@ tri_block_forces_n(const wff_elements *el, const wff_element_material *em, const
         sums->energy += el->tri_area[e] * blk.energy[j];
         sums->dissipated += el->tri_area[e] * blk.dissipated[j];
         sums->failure += el->tri_area[e] * blk.failure_dissipated[j];
+        sums->slip += el->tri_area[e] * blk.slip_dissipated[j];
     }
     return 0;
 }
@@ -270,7 +273,7 @@ static void tri_forces_static(const wff_elements *el, const wff_element_material
     const wff_material *mat = em->mat;
     const int ns = mat->n_state;
     double F[6], Fe[6], P[6] = {0, 0, 0, 0, 0, 0}, R[6] = {0, 0, 0, 0, 0, 0}, W = 0, Dis = 0;
-    double Fail = 0;
+    double Fail = 0, Slip = 0;
     tri_deformation(el, em, X, u, e, F, Fe);
     for (int q = 0; q < WFF_TRI_POINTS; q++) {
         double *dA = el->point_dA + 6 * e + 2 * q;
@@ -295,11 +298,13 @@ static void tri_forces_static(const wff_elements *el, const wff_element_material
         W += r.energy / 3;
         Dis += r.dissipated / 3;
         Fail += r.failure_dissipated / 3;
+        Slip += r.slip_dissipated / 3;
     }
     tri_slots(el, em, e, P, R, 0); /* no amplitude forces: balanced at the points */
     sums->energy += el->tri_area[e] * W;
     sums->dissipated += el->tri_area[e] * Dis;
     sums->failure += el->tri_area[e] * Fail;
+    sums->slip += el->tri_area[e] * Slip;
 }
 
 /* n (≤ WFF_BLOCK) triangles from e0 with quasi-static amplitudes, blocked: per
@@ -399,6 +404,7 @@ tri_block_static_forces_n(const wff_elements *el, const wff_element_material *em
         sums->energy += el->tri_area[e] * blk.energy[j];
         sums->dissipated += el->tri_area[e] * blk.dissipated[j];
         sums->failure += el->tri_area[e] * blk.failure_dissipated[j];
+        sums->slip += el->tri_area[e] * blk.slip_dissipated[j];
     }
     return 0;
 }
@@ -464,7 +470,7 @@ void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_m
             const int iterations_before = bad.amplitude_iterations;
             /* the block's own sums (its elements in order; the blocks added in
              * order after the pass) */
-            tri_sums sums = {0, 0, 0, bad};
+            tri_sums sums = {0, 0, 0, 0, bad};
             if (em->static_amplitudes) {
                 if (blocked &&
                     tri_block_static_forces(el, em, X, u, state, dt, e0, n, &sums) != 0)
@@ -487,8 +493,8 @@ void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_m
                             tri_slots_zero(el, e);
                     }
             }
-            double *b = el->block_sums + 3 * (size_t)blk;
-            b[0] = sums.energy, b[1] = sums.dissipated, b[2] = sums.failure;
+            double *b = el->block_sums + WFF_BLOCK_SUMS * (size_t)blk;
+            b[0] = sums.energy, b[1] = sums.dissipated, b[2] = sums.failure, b[3] = sums.slip;
             bad = sums.bad;
             if (el->block_count && !el->block_count[blk]) /* (a block another rank counts) */
                 bad.amplitude_iterations = iterations_before;
@@ -499,8 +505,8 @@ void WFF_KERNEL_NAME(wff_tri_forces)(const wff_elements *el, const wff_element_m
     for (int blk = 0; blk < n_blocks; blk++) { /* each block's sums, order-free across blocks */
         if (el->block_count && !el->block_count[blk])
             continue; /* (another rank's to add) */
-        const double *b = el->block_sums + 3 * (size_t)blk;
-        for (int k = 0; k < 3; k++)
+        const double *b = el->block_sums + WFF_BLOCK_SUMS * (size_t)blk;
+        for (int k = 0; k < WFF_BLOCK_SUMS; k++)
             wff_fixed_add(&totals->sums[k], b[k] * inv_J);
     }
     for (int t = 0; t < team; t++) {

@@ -74,11 +74,13 @@ static double pack_after_forces(wff_model *m, const double *u, const double *sta
     for (int i = 0; i < m->n_eroded_now; i++) /* (in element order, as erosion took them) */
         P->removed[wff_pack_element_ply(m, m->eroded_now[i])] += m->eroded_now_energy[i];
     double stored[WFF_PLIES_MAX], shear[WFF_PLIES_MAX], failure[WFF_PLIES_MAX];
-    wff_zones_ply_totals(m, stored, shear, failure);
+    double slip[WFF_PLIES_MAX];
+    wff_zones_ply_totals(m, stored, shear, failure, slip);
     for (int p = 0; p < P->n; p++) {
         P->stored[p] = stored[p] - P->removed[p];
         P->shear[p] += shear[p];
         P->failure[p] += failure[p];
+        P->slip[p] += slip[p];
         P->eroded[p] += P->removed[p];
         P->removed[p] = 0;
     }
@@ -183,16 +185,17 @@ int wff_model_ply_value(const wff_model *m, int ply, const char *key, double *va
         if (single) {
             stored = m->internal_energy;
         } else if (m->step == 0 && !m->v_half_valid) { /* before the run: the set-up's pass */
-            double st[WFF_PLIES_MAX], sh[WFF_PLIES_MAX], fa[WFF_PLIES_MAX];
-            wff_zones_ply_totals(m, st, sh, fa);
+            double st[WFF_PLIES_MAX], sh[WFF_PLIES_MAX], fa[WFF_PLIES_MAX], sl[WFF_PLIES_MAX];
+            wff_zones_ply_totals(m, st, sh, fa, sl);
             stored = st[ply];
         } else {
             stored = P->stored[ply];
         }
     }
     if (diss_k || abs_k)
-        dissipated = single ? m->dissipated_shear + m->dissipated_failure + m->eroded_energy
-                            : P->shear[ply] + P->failure[ply] + P->eroded[ply];
+        dissipated = single ? m->dissipated_shear + m->dissipated_failure + m->eroded_energy +
+                                  m->dissipated_slip
+                            : P->shear[ply] + P->failure[ply] + P->eroded[ply] + P->slip[ply];
     if (kin_k || abs_k) {
         int first, end;
         wff_ply_node_range(m, ply, &first, &end);

@@ -20,6 +20,7 @@ struct wff_pack {
     double orientation[WFF_PLIES_MAX]; /* each ply's warp direction, rad */
     /* energies per ply, model part, J */
     double shear[WFF_PLIES_MAX], failure[WFF_PLIES_MAX], eroded[WFF_PLIES_MAX];
+    double slip[WFF_PLIES_MAX]; /* yarn slip at the crossovers */
     double stored[WFF_PLIES_MAX];
     double removed[WFF_PLIES_MAX]; /* eroded in the pass under way (erosion.c) */
     /* ply contact (ply_contact.c) */

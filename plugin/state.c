@@ -191,7 +191,8 @@ unsigned long long wff_model_state_hash(const wff_model *m)
                               m->projectile.velocity, m->projectile.force,
                               m->projectile.impulse_total, m->internal_energy,
                               m->dissipated_shear, m->dissipated_friction,
-                              m->dissipated_failure, m->eroded_energy, m->external_work,
+                              m->dissipated_failure, m->dissipated_slip, m->eroded_energy,
+                              m->external_work,
                               (double)m->n_eroded};
     h = hash_bytes(h, scalars, sizeof scalars);
     const size_t dofs = sizeof(double) * (size_t)m->n_dofs;

@@ -29,6 +29,7 @@ int wff_state_fields(wff_model *m, int n_candidates, wff_state_field *f)
     FIELD(&m->dissipated_shear, 1);
     FIELD(&m->dissipated_friction, 1);
     FIELD(&m->dissipated_failure, 1);
+    FIELD(&m->dissipated_slip, 1);
     FIELD(&m->eroded_energy, 1);
     FIELD(&m->n_eroded, 1);
     FIELD(&m->external_work, 1);

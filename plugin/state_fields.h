@@ -6,7 +6,7 @@
 #include "solver_internal.h"
 
 typedef struct wff_state_field { void *data; size_t size, count; } wff_state_field;
-#define WFF_STATE_FIELDS_MAX 40
+#define WFF_STATE_FIELDS_MAX 48 /* room for what wff_state_fields gives: 42 at most now */
 
 /* The fields in file order (pointer, element size, count) into f, with
  * n_candidates contact candidates; returns their number. */

@@ -33,9 +33,19 @@ static const own_value own_values[] = {
     {"failure_energy", 1},    {"travel_steps", 0},
     {"step_cuts", 0},         {"dtfactor", 0},
     {"kinetic_stagger", 1},   {"stagger_shift", 1},
-    {"impulse_stagger", 1},
+    {"impulse_stagger", 1}, {"dissipated_slip", 1},
+    {"yarn_slip", 0},
 };
 #define N_OWN ((int)(sizeof own_values / sizeof own_values[0]))
+
+/* 1 when the model's points carry yarn slip states (slip_1: docs/model.md §24), else 0. */
+static double has_slip(const wff_model *m)
+{
+    for (int j = 0; j < m->n_state; j++)
+        if (strcmp(wff_model_state_name(m, j), "slip_1") == 0)
+            return 1;
+    return 0;
+}
 
 /* The model's own quantities in own_values' order (the energies only when
  * with_energies, else 0). */
@@ -55,7 +65,8 @@ static void own(const wff_model *m, int with_energies, double *out)
         (double)(wff_model_user_element(m, m->dt_worst_element) + 1), e.transfer,
         s * m->projectile.impulse_total, e.dissipated_failure, e.eroded, (double)m->n_eroded,
         e.dissipated_failure, (double)m->travel_steps, (double)m->step_cuts, m->dt_factor,
-        e.kinetic_stagger, s * m->stagger_shift, e.impulse_stagger};
+        e.kinetic_stagger, s * m->stagger_shift, e.impulse_stagger, e.dissipated_slip,
+        has_slip(m)};
     memcpy(out, v, sizeof v);
 }
 

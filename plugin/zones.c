@@ -461,12 +461,13 @@ int wff_zones_pack(wff_model *m, wff_error *err)
     return 0;
 }
 
-void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, double *failure)
+void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, double *failure,
+                          double *slip)
 {
     const struct wff_zones *Z = m->zones;
     int plies = m->pack ? wff_pack_plies(m) : 1;
     for (int p = 0; p < plies; p++)
-        stored[p] = shear[p] = failure[p] = 0;
+        stored[p] = shear[p] = failure[p] = slip[p] = 0;
     if (!Z)
         return;
     for (int k = 0; k < Z->n; k++) {
@@ -477,6 +478,7 @@ void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, dou
         stored[p] += z->pass.internal_energy;
         shear[p] += z->pass.dissipated;
         failure[p] += z->pass.failure_dissipated;
+        slip[p] += z->pass.slip_dissipated;
     }
 }
 
@@ -582,7 +584,8 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
     }
     zones_eroded_copy(m);
     totals->internal_energy = totals->dissipated = totals->failure_dissipated = 0;
-    for (int s = 0; s < 3; s++)
+    totals->slip_dissipated = 0;
+    for (int s = 0; s < WFF_BLOCK_SUMS; s++)
         totals->sums[s] = wff_fixed_zero();
     totals->bad_element = -1;
     totals->bad_point = 0;
@@ -617,7 +620,7 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
         if (z->n_elements == 0)
             continue;
         const wff_force_totals t = z->pass;
-        for (int s = 0; s < 3; s++) /* (order-free: the zones' sums are one sum) */
+        for (int s = 0; s < WFF_BLOCK_SUMS; s++) /* (order-free: the zones' sums are one sum) */
             wff_fixed_merge(&totals->sums[s], &t.sums[s]);
         totals->amplitude_iterations += t.amplitude_iterations;
         if (t.bad_element >= 0 && totals->bad_element < 0) {
@@ -631,24 +634,27 @@ void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, d
     totals->internal_energy = wff_fixed_value(&totals->sums[0]);
     totals->dissipated = wff_fixed_value(&totals->sums[1]);
     totals->failure_dissipated = wff_fixed_value(&totals->sums[2]);
-    wff_fixed *zone_sums = wff_dist_fixed_scratch(m, 3 * Z->n); /* (NULL on one rank) */
+    totals->slip_dissipated = wff_fixed_value(&totals->sums[3]);
+    const int ns = WFF_BLOCK_SUMS;
+    wff_fixed *zone_sums = wff_dist_fixed_scratch(m, ns * Z->n); /* (NULL on one rank) */
     if (!zone_sums)
         return;
     /* over ranks: the forces, the pass's sums and each zone's (a pack's per-ply
      * accounts) in one exchange (plugin/distribute.c) */
     for (int k = 0; k < Z->n; k++)
-        for (int s = 0; s < 3; s++)
-            zone_sums[3 * k + s] = Z->zone[k].n_elements ? Z->zone[k].pass.sums[s] : wff_fixed_zero();
-    wff_dist_forces(m, f, totals, zone_sums, 3 * Z->n);
+        for (int s = 0; s < ns; s++)
+            zone_sums[ns * k + s] = Z->zone[k].n_elements ? Z->zone[k].pass.sums[s] : wff_fixed_zero();
+    wff_dist_forces(m, f, totals, zone_sums, ns * Z->n);
     for (int k = 0; k < Z->n; k++) {
         wff_zone *z = &Z->zone[k];
         if (z->n_elements == 0)
             continue;
-        for (int s = 0; s < 3; s++)
-            z->pass.sums[s] = zone_sums[3 * k + s];
+        for (int s = 0; s < ns; s++)
+            z->pass.sums[s] = zone_sums[ns * k + s];
         z->pass.internal_energy = wff_fixed_value(&z->pass.sums[0]);
         z->pass.dissipated = wff_fixed_value(&z->pass.sums[1]);
         z->pass.failure_dissipated = wff_fixed_value(&z->pass.sums[2]);
+        z->pass.slip_dissipated = wff_fixed_value(&z->pass.sums[3]);
     }
 }
 

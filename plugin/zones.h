@@ -56,9 +56,10 @@ uint64_t wff_zones_fingerprint(const wff_model *m, uint64_t g);
 /* pack_build.c: a pack of several plies gets one zone per ply (zone 0, the model's material,
  * left empty), each of the model's material; -1 (err set) if the model has zones. */
 int wff_zones_pack(wff_model *m, wff_error *err);
-/* The last force pass's stored energy, shear and failure dissipation of each ply
- * (model part, J; the model's wff_pack_plies entries); zeros without zones. */
-void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, double *failure);
+/* The last force pass's stored energy, shear, failure and slip dissipation of each
+ * ply (model part, J; the model's wff_pack_plies entries); zeros without zones. */
+void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, double *failure,
+                          double *slip);
 /* The masses changed (a zone's material or preload, the model's preload): the
  * zones' masses, the fabric mass, the clamp's shares (clamp.c) and the stored
  * energy before the run again; -1 (err set) if the clamp's shares fail. */

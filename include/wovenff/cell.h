@@ -99,8 +99,8 @@ extern "C" {
 #define WFF_MECH_MAX 8
 /* Most amplitude degrees of freedom per node (the two crimp amplitudes). */
 #define WFF_AMPLITUDES_MAX 2
-/* Most internal state variables per material point (γᶠ, damage, ...). */
-#define WFF_STATE_MAX 6
+/* Most internal state variables per material point (γᶠ, damage, yarn slip, ...). */
+#define WFF_STATE_MAX 8
 
 typedef struct wff_cell_type wff_cell_type;
 typedef struct wff_kv wff_kv; /* parsed material file, see material.h */
@@ -124,6 +124,8 @@ typedef struct wff_tri_block {
     double dissipated[WFF_BLOCK];           /* out: mean shear dissipation, J/m² */
     double failure_dissipated[WFF_BLOCK];   /* out: mean energy released by yarn damage,
                                                J/m² */
+    double slip_dissipated[WFF_BLOCK];      /* out: mean energy dissipated by yarn slip at
+                                               the crossovers, J/m² */
     int degenerate[WFF_BLOCK];              /* out: 1 where a yarn collapsed or the yarns
                                                are parallel (outputs then meaningless) */
 } wff_tri_block;
@@ -143,6 +145,8 @@ typedef struct wff_point_block {
     double energy[WFF_BLOCK];               /* out: W, J/m² */
     double dissipated[WFF_BLOCK];           /* out: shear dissipation of this update, J/m² */
     double failure_dissipated[WFF_BLOCK];   /* out: energy released by yarn damage in this
+                                               update, J/m² */
+    double slip_dissipated[WFF_BLOCK];      /* out: energy dissipated by yarn slip in this
                                                update, J/m² */
     int degenerate[WFF_BLOCK];              /* out: 1 where a yarn collapsed or the yarns
                                                are parallel (outputs then meaningless) */
@@ -194,6 +198,9 @@ typedef struct wff_point_result {
                                      J/m^2 (>= 0) */
     double failure_dissipated;    /* stored energy released by yarn damage in this update,
                                      J/m^2 (>= 0; 0 for cells without failure) */
+    double slip_dissipated;       /* energy dissipated by yarn slip at the crossovers in this
+                                     update, J/m^2 (>= 0; 0 for cells or materials without
+                                     slip) */
     double diag[WFF_DIAG_MAX];    /* cell-specific, named by diag_names */
 } wff_point_result;
 
@@ -266,14 +273,16 @@ struct wff_cell_type {
      * state[q n_state .. q n_state + n_state − 1] (n_state the material's;
      * updated in place with step dt). Adds Σ_q weight[q] P_q into stress_sum,
      * writes residual[2q + k] = R_k at point q (unweighted), and adds
-     * Σ weight[q] W_q to *energy, Σ weight[q] × dissipated_q to *dissipated
-     * and Σ weight[q] × failure_dissipated_q to *failure_dissipated. Must
-     * agree with evaluate() to round-off (tested). Returns WFF_POINT_OK, or
-     * the status of the first failing point, whose index goes to *bad_point. */
+     * Σ weight[q] W_q to *energy, Σ weight[q] × dissipated_q to *dissipated,
+     * Σ weight[q] × failure_dissipated_q to *failure_dissipated and
+     * Σ weight[q] × slip_dissipated_q to *slip_dissipated. Must agree with
+     * evaluate() to round-off (tested). Returns WFF_POINT_OK, or the status of
+     * the first failing point, whose index goes to *bad_point. */
     int (*evaluate_shared)(const void *params, const double F[6], int n_points,
                            const double *dA, const double *weight, double *state, double dt,
                            double stress_sum[6], double *residual, double *energy,
-                           double *dissipated, double *failure_dissipated, int *bad_point);
+                           double *dissipated, double *failure_dissipated,
+                           double *slip_dissipated, int *bad_point);
 
     /* Optional, faster still: a whole block of triangles at once, written so
      * the compiler vectorises across the lanes. Returns 0 when it handled the

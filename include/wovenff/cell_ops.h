@@ -59,7 +59,8 @@ int wff_cell_has_shared(const wff_material *mat);
 int wff_cell_evaluate_shared(const wff_material *mat, const double F[6], int n_points,
                              const double *dA, const double *weight, double *state, double dt,
                              double stress_sum[6], double *residual, double *energy,
-                             double *dissipated, double *failure_dissipated, int *bad_point);
+                             double *dissipated, double *failure_dissipated,
+                             double *slip_dissipated, int *bad_point);
 /* R_k and ∂R_k/∂ΔA_m (tangent[2k + m]) at one point, state held: the cell's
  * amplitude_tangent, or for a cell without it forward differences of
  * evaluate() with a 1 nm step (the static path's Jacobian before the op).

@@ -45,6 +45,10 @@ extern "C" {
 #define WFF_QUAD_POINTS 4
 
 /* Reference geometry of a mesh, precomputed once. */
+/* The sums a force pass keeps per block of elements: stored energy, shear,
+ * failure and slip dissipation. */
+#define WFF_BLOCK_SUMS 4
+
 typedef struct wff_elements {
     int n_tris, n_quads;
     const int *tri;       /* 3 per triangle */
@@ -73,9 +77,10 @@ typedef struct wff_elements {
                              ascending element order (triangles, then quads) */
     int *node_list;       /* the nodes the elements reference, ascending, n_gather */
     int n_gather;
-    double *block_sums;   /* the force pass's stored, shear and failure energies per block
-                             of WFF_BLOCK elements (triangles' blocks, then quads'), added
-                             in block order after it (the same bits for any threads) */
+    double *block_sums;   /* the force pass's stored, shear, failure and slip energies per
+                             block of WFF_BLOCK elements (WFF_BLOCK_SUMS each; triangles'
+                             blocks, then quads'), added in block order after it (the same
+                             bits for any threads) */
     double *point_dA;     /* static amplitudes: 2 per quadrature point (6 per triangle,
                              then 8 per quad), or NULL while amplitudes are dynamic */
     unsigned char *eroded; /* per element (tris, then quads): 1 once eroded (no force, no
@@ -196,6 +201,8 @@ typedef struct wff_force_totals {
     double internal_energy;  /* Σ ∫ W dA, J */
     double dissipated;       /* shear-flow dissipation in this pass, J */
     double failure_dissipated; /* stored energy released by yarn damage in this pass, J */
+    double slip_dissipated;  /* energy dissipated by yarn slip at the crossovers in this pass,
+                                J */
     int bad_element;         /* −1, or the first element whose point failed */
     int bad_point;           /* quadrature point of bad_element */
     int bad_status;          /* WFF_POINT_DEGENERATE, WFF_POINT_NONFINITE or
@@ -204,9 +211,9 @@ typedef struct wff_force_totals {
     int bad_iterations;      /* WFF_POINT_UNBALANCED: the Newton iterations spent */
     long amplitude_iterations; /* static amplitudes: Newton iterations (tangents) over all
                                   points of the pass */
-    wff_fixed sums[3];       /* the three energies above as order-free sums of the blocks'
-                                (fixed_sum.h): the doubles are their values; a model over
-                                ranks adds the ranks' before taking them */
+    wff_fixed sums[WFF_BLOCK_SUMS]; /* the four energies above as order-free sums of the
+                                blocks' (fixed_sum.h): the doubles are their values; a model
+                                over ranks adds the ranks' before taking them */
 } wff_force_totals;
 
 /* The threads a pass over el's elements (or the model's DOFs) uses: n_threads,

@@ -94,6 +94,8 @@ typedef struct wff_energies {
     double dissipated_friction;  /* clamp friction, projectile friction and the inelastic
                                     normal contact */
     double dissipated_failure;   /* stored energy released by yarn damage */
+    double dissipated_slip;      /* dissipated by yarn slip at the crossovers (docs/model.md
+                                    §24) */
     double eroded;               /* stored energy of eroded elements at their erosion */
     double external_work;     /* work done on the model by prescribed-velocity DOFs */
     double transfer;          /* stored + kinetic energy changed by mesh transfers
@@ -194,6 +196,7 @@ struct wff_model {
     double internal_energy;   /* at the last force pass, J (model part) */
     double dissipated_shear, dissipated_friction, external_work;
     double dissipated_failure; /* stored energy released by yarn damage, J (model part) */
+    double dissipated_slip;   /* dissipated by yarn slip at the crossovers, J (model part) */
     double eroded_energy;     /* stored energy of eroded elements at erosion, J (model part) */
     int n_eroded;             /* elements eroded so far */
     int *eroded_now;          /* the elements the last force pass eroded (plugin/erosion.c;
@@ -490,7 +493,7 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 9 /* 2: the projectile's impulse_total added; 3: the points'
+#define WFF_CHECKPOINT_VERSION 10 /* 2: the projectile's impulse_total added; 3: the points'
                                     generic state (n_state and names in the header, every
                                     state saved), failure and eroded energies; 4: the
                                     erosion rule (header) and the eroded flags; 5: the
@@ -498,7 +501,8 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
                                     count; 7: the initial kinetic energy the staggered one,
                                     its stagger kept (stagger_reference); 8: the stagger's
                                     shift with the step (stagger_shift); 9: the contact
-                                    forces (contact_force) and the last Δt_mid */
+                                    forces (contact_force) and the last Δt_mid; 10: the
+                                    yarn slip's dissipation (dissipated_slip) */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 

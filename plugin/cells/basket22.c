@@ -299,6 +299,7 @@ WFF_INLINE int basket_evaluate(const void *params, const double F[6], const doub
     out->state[STATE_GAMMA_F] = gamma_f_new;
     out->dissipated = CROSSOVERS * shear_moment * (gamma_f_new - gamma_f) / k->cell_area;
     out->failure_dissipated = pt.failure_released / k->cell_area;
+    out->slip_dissipated = 0; /* (no slip in this cell) */
     for (int i = STATE_DAMAGE1; k->failure.enabled != 0 && i < k->n_state; i++)
         out->state[i] = pt.failure_state[i - STATE_DAMAGE1];
     out->diag[DIAG_T1] = pt.yarn[0].tension;

@@ -165,6 +165,7 @@ WFF_INLINE void wff_lanes_nothing_after(const void *k, const void *ctx,
         (void)flag;                                                                        \
         const double F[6] = WFF_LANE_F(blk, b);                                            \
         double stress[6] = {0, 0, 0, 0, 0, 0}, energy = 0, dissipated = 0, released = 0;   \
+        double slipped = 0;                                                                \
         int bad = 0;                                                                       \
         for (int p = 0; p < 3; p++) {                                                      \
             const double dA[2] = {blk->dA[p][0][b], blk->dA[p][1][b]};                     \
@@ -180,6 +181,7 @@ WFF_INLINE void wff_lanes_nothing_after(const void *k, const void *ctx,
             energy += r.energy / 3;                                                        \
             dissipated += r.dissipated / 3;                                                \
             released += r.failure_dissipated / 3;                                          \
+            slipped += r.slip_dissipated / 3;                                              \
             for (int i = 0; i < WFF_STATE_MAX; i++)                                        \
                 if (i < k->n_state)                                                        \
                     blk->state[p][i][b] = r.state[i];                                      \
@@ -189,6 +191,7 @@ WFF_INLINE void wff_lanes_nothing_after(const void *k, const void *ctx,
         blk->energy[b] = energy;                                                           \
         blk->dissipated[b] = dissipated;                                                   \
         blk->failure_dissipated[b] = released;                                             \
+        blk->slip_dissipated[b] = slipped;                                                 \
         blk->degenerate[b] = bad;                                                          \
     }
 
@@ -212,6 +215,7 @@ WFF_INLINE void wff_lanes_nothing_after(const void *k, const void *ctx,
         blk->energy[b] = r.energy;                                                         \
         blk->dissipated[b] = r.dissipated;                                                 \
         blk->failure_dissipated[b] = r.failure_dissipated;                                 \
+        blk->slip_dissipated[b] = r.slip_dissipated;                                       \
         for (int i = 0; i < WFF_STATE_MAX; i++)                                            \
             if (i < k->n_state)                                                            \
                 blk->state[i][b] = r.state[i];                                             \

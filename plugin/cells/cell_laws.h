@@ -233,7 +233,7 @@ static inline void wff_point_result_nan(wff_point_result *out, int n_diag)
     for (int i = 0; i < 6; i++)
         out->stress[i] = NAN;
     out->residual[0] = out->residual[1] = NAN;
-    out->energy = out->dissipated = out->failure_dissipated = NAN;
+    out->energy = out->dissipated = out->failure_dissipated = out->slip_dissipated = NAN;
     for (int i = 0; i < WFF_STATE_MAX; i++)
         out->state[i] = NAN;
     for (int i = 0; i < n_diag; i++)

@@ -48,8 +48,22 @@
  * (yarn_failure.h). Bending, compaction, locking and shear are not damaged.
  * States: γᶠ, then d_1, d_2 with failure, then ε_1, ε_2 of the last update
  * with the rate law or the crack band, then the element length h with the
- * band (set by the element code, never changed here; n_state 1, 3, 5 or 6). The blocked kernels decline a
+ * band (set by the element code, never changed here; n_state 1, 3, 5 or 6; 8 with yarn
+ * slip, below). The blocked kernels decline a
  * material with failure on; the wave speeds stay the undamaged bounds.
+ *
+ * Yarn slip at the crossovers (docs/model.md §24, optional: material key
+ * yarn_friction = μ_yy > 0 with slip_crossovers = n_c): a slip strain s_k per
+ * family, in series with the yarn's elastic stretch, moves yarn through the
+ * crossovers, the truss's rest length L_k⁰(1 + s_k):
+ *
+ *   T_k = k_k (L_k − L_k⁰(1 + s_k)),   energy k_k (L_k − L_k⁰(1 + s_k))²,
+ *
+ * and Coulomb friction caps the tension: |T_k| ≤ T_slip = n_c μ_yy ⟨F_I⟩, the
+ * friction of n_c crossovers each pressed by the crossover force F_I; a step
+ * that would exceed it slips (the return map, king_family_slip), dissipating
+ * the friction's work T_slip × 2 L_k⁰ |Δs_k|. States s_1, s_2 after
+ * the others (n_state 8 with slip). The blocked kernels decline slip.
  *
  * The model is written once: king_family_at (one yarn family at a point),
  * king_point_at (a point: compaction, both families, shear flow, residuals,
@@ -90,8 +104,15 @@ typedef struct king_params {
     double spar_length0[FAMILIES];       /* d_k⁰, m */
     double cell_area;                    /* 4 p1⁰ p2⁰, m² */
     wff_yarn_failure failure;            /* yarn failure (docs/model.md §20); off: enabled 0 */
+    double yarn_friction;                /* μ_yy, yarn-on-yarn Coulomb friction at the
+                                            crossovers, -; 0: no slip (docs/model.md §24) */
+    double slip_crossovers;              /* n_c, crossovers whose friction anchors a family's
+                                            tension, - */
+    double slip_capacity;                /* n_c μ_yy: the slip tension per newton of
+                                            crossover force, -; 0 without slip */
     int n_state;                         /* states per point (mat->n_state): γᶠ [, d_1, d_2
-                                            [, ε_1, ε_2 [, h]]] */
+                                            [, ε_1, ε_2 [, h]]]; with slip all eight (the
+                                            slips s_1, s_2 last) */
 } king_params;
 
 _Static_assert(sizeof(king_params) <= sizeof(((wff_material *)0)->params),
@@ -109,13 +130,16 @@ enum { MECH_YARN, MECH_BENDING, MECH_COMPACTION, MECH_LOCKING, MECH_SHEAR, MECH_
 /* The internal state of a point: γᶠ, the dissipative shear angle; with yarn
  * failure the damages d_1, d_2; with its rate law (or the crack band) the yarn
  * strains of the last update (for the strain rate); with the crack band the
- * element length (the element code's). */
+ * element length (the element code's); with yarn slip (docs/model.md §24) the
+ * slip strains s_1, s_2, after all the others (a material's states are a
+ * prefix of these: with slip a point carries all eight, those of a law that is
+ * off held at 0). */
 static const char *const king_state_names[] = {"gamma_f", "damage1", "damage2",
                                                "yarn_strain1", "yarn_strain2",
-                                               "element_length"};
-static const char *const king_state_units[] = {"rad", "-", "-", "-", "-", "m"};
+                                               "element_length", "slip_1", "slip_2"};
+static const char *const king_state_units[] = {"rad", "-", "-", "-", "-", "m", "-", "-"};
 enum { STATE_GAMMA_F, STATE_DAMAGE1, STATE_DAMAGE2, STATE_STRAIN1, STATE_STRAIN2,
-       STATE_LENGTH, STATE_COUNT };
+       STATE_LENGTH, STATE_SLIP1, STATE_SLIP2, STATE_COUNT };
 _Static_assert(STATE_LENGTH - STATE_DAMAGE1 == WFF_YARN_STATE_LENGTH,
                "king_plain: the failure states are yarn_failure.h's");
 _Static_assert(STATE_COUNT <= WFF_STATE_MAX, "king_plain carries too many states");
@@ -127,6 +151,8 @@ typedef struct king_family {
     double length;         /* L_k, m */
     double inv_length;     /* 1/L_k */
     double sin_b, cos_b;   /* sinβ_k, cosβ_k */
+    double stretch;        /* L_k − L_k⁰ (1 + s_k), the truss's elastic stretch before any
+                              tension_only floor, m (s_k the slip, 0 without it) */
     double tension;        /* T_k, N (times 1 − d_k once king_family_fail has run) */
     double tension_factor; /* ∂T_k/∂(k_k ΔL_k): 1, or 1 − d_k for a damaged stretched truss */
     double bend;           /* β_k − β_k⁰, rad */
@@ -161,6 +187,7 @@ WFF_INLINE king_family king_family_at(const king_params *k, const wff_yarn_frame
     y.sin_b = A * y.inv_length;
     y.cos_b = p * y.inv_length;
     double stretch = y.length - k->length0[f];
+    y.stretch = stretch;
     stretch = stretch > stretch_floor ? stretch : stretch_floor; /* (fmax would not vectorise) */
     y.tension = k->yarn_stiffness[f] * stretch;
     y.tension_factor = 1.0;
@@ -180,20 +207,72 @@ WFF_INLINE king_family king_family_at(const king_params *k, const wff_yarn_frame
 }
 
 /* docs/model.md §20, yarn failure on family f's truss at engineering strain
- * ε_k = (L_k − L_k⁰)/L_k⁰ (the crimped path's own length): the damage update of
- * yarn_failure.h from state d_k (and ε_k of the last update for the rate law),
- * then T_k and k_k (L_k − L_k⁰)² times 1 − d_k where stretched. */
+ * ε_k = (L_k − L_k⁰)/L_k⁰ (the crimped path's own length; with slip the elastic
+ * strain (L_k − L_k⁰(1 + s_k))/L_k⁰, §24): the damage update of yarn_failure.h
+ * from state d_k (and ε_k of the last update for the rate law), then T_k and
+ * k_k (L_k − L_k⁰)² times 1 − d_k where stretched. */
 WFF_INLINE wff_yarn_damage king_family_fail(const king_params *k, int f, king_family *y,
                                             double damage, double strain_prev,
                                             double element_length, double dt)
 {
-    double strain = (y->length - k->length0[f]) / k->length0[f];
+    double strain = y->stretch / k->length0[f];
     wff_yarn_damage d = wff_yarn_damage_step(&k->failure, f, strain, y->energy_yarn, damage,
                                              strain_prev, element_length, dt);
     y->tension *= d.factor;
     y->energy_yarn *= d.factor;
     y->tension_factor = d.factor;
     return d;
+}
+
+/* What yarn slip does to one family in one update (king_family_slip). */
+typedef struct king_slip {
+    double slip;     /* s_k after the update, - */
+    double released; /* the friction's work, T_slip × the slip, J per cell (>= 0) */
+} king_slip;
+
+/* docs/model.md §24, yarn slip at the crossovers on family f: the slip strain
+ * s_k (state `slip`) moves yarn through the crossovers into the cell, the truss's
+ * rest length becoming L_k⁰(1 + s_k):
+ *   x_k = L_k − L_k⁰(1 + s_k)   (y->stretch; the tension_only floor as for the yarn)
+ *   T_k = k_k x_k,  energy k_k x_k²            (the stored energy with s_k held)
+ * With dt > 0, Coulomb friction at the crossovers caps the tension the truss
+ * carries, c_k x_k with c_k = (1 − d_k) k_k where stretched (d_k the damage before
+ * this update, 0 without failure) and k_k elsewhere, at the slip tension
+ *   T_slip = n_c μ_yy ⟨F_I⟩                    (slip_tension, N)
+ * by the return map of rate-independent friction (the yarn's own elasticity is
+ * the stick's): where |c_k x_k| > T_slip (s_k held) the truss slips to
+ *   x_k ← sign(x_k) T_slip / c_k,   s_k ← s_k + (x_k,trial − x_k)/L_k⁰
+ * dissipating the friction's work, the slip tension times the yarn slid through
+ * the crossovers, 2 T_slip L_k⁰ |Δs_k| ≥ 0 (two trusses per cell). That is what
+ * the explicit step's work measure needs: in steady slip the force is T_slip and
+ * the stored energy does not change, so the kinetic energy lost is T_slip times
+ * the slip. (The stored energy the update releases at this geometry,
+ * c_k (x_trial² − x_k²), is larger by c_k (L_k⁰ Δs_k)²: booked instead, it put the
+ * balance of a slipping run off by a fifth of the slip's dissipation.) dt = 0 holds
+ * s_k (then T_k and the energy are the exact derivatives' pair). Sets y->stretch,
+ * y->tension (undamaged: king_family_fail applies 1 − d_k) and y->energy_yarn. */
+WFF_INLINE king_slip king_family_slip(const king_params *k, int f, king_family *y, double slip,
+                                      double damage, double slip_tension, double dt)
+{
+    const double rest0 = k->length0[f], stiffness = k->yarn_stiffness[f];
+    const double stretch_floor = k->tension_only != 0 ? 0.0 : -INFINITY;
+    king_slip out = {slip, 0.0};
+    double stretch = (y->length - rest0) - rest0 * slip; /* x_k with s_k held */
+    double carried = stretch > stretch_floor ? stretch : stretch_floor;
+    if (dt > 0) {
+        const double carrying = carried > 0 ? (1 - damage) * stiffness : stiffness; /* c_k */
+        const double trial = carrying * carried; /* the tension with s_k held, N */
+        if (fabs(trial) > slip_tension) {
+            const double held = copysign(slip_tension, trial) / carrying; /* x_k at T_slip */
+            out.slip = slip + (stretch - held) / rest0;
+            out.released = 2 * slip_tension * fabs(stretch - held);
+            stretch = carried = held;
+        }
+    }
+    y->stretch = stretch;
+    y->tension = stiffness * carried;
+    y->energy_yarn = stiffness * carried * carried;
+    return out;
 }
 
 /* docs/model.md §5–6, what family k's laws push with, l the other family:
@@ -222,7 +301,16 @@ typedef struct king_point {
     double failure_state[WFF_YARN_STATES_MAX]; /* d_1, d_2, ε_1, ε_2, h after the step
                                                   (with failure) */
     double failure_released;   /* Σ_k Δd_k W_k⁺, J per cell */
+    double slip[FAMILIES];     /* s_k after the step (with slip) */
+    double slip_released;      /* Σ_k the slip's dissipation, J per cell (with slip) */
 } king_point;
+
+/* The slip tension T_slip = n_c μ_yy ⟨F_I⟩ (docs/model.md §24), N: no friction
+ * where the crossover is open (F_I ≤ 0). */
+WFF_INLINE double king_slip_tension(const king_params *k, double crossover_force)
+{
+    return k->slip_capacity * (crossover_force > 0 ? crossover_force : 0.0);
+}
 
 /* docs/model.md §3, §5–7 at one point of the frame fr, amplitudes dA, state γᶠ:
  *   R_k = (F_I − F_k^N)/(4 p1⁰ p2⁰)
@@ -234,11 +322,13 @@ typedef struct king_point {
  * locking_exponent and flow_exponent are c and n (constants 2 and 1 in the
  * blocked kernel, which leaves it branch-free). failure_state: NULL without
  * yarn failure (the blocked kernels), else d_1, d_2 [, ε_1, ε_2 [, h]] of the
- * point, advanced over dt (§20; h held). */
+ * point, advanced over dt (§20; h held). slip_state: NULL without yarn slip
+ * (the blocked kernels), else s_1, s_2, advanced over dt (§24: slip first, at
+ * the damage before the step, then the damage at the slipped strain). */
 WFF_INLINE void king_point_at(const king_params *k, const wff_yarn_frame *fr, const double dA[2],
-                              double gamma_f, const double *failure_state, double dt,
-                              const wff_shear_flow *flow, double locking_exponent,
-                              double flow_exponent, king_point *pt)
+                              double gamma_f, const double *failure_state,
+                              const double *slip_state, double dt, const wff_shear_flow *flow,
+                              double locking_exponent, double flow_exponent, king_point *pt)
 {
     const double inv_cell = 1 / k->cell_area;
     pt->compaction = wff_compaction_law(k->compaction_force, k->compaction_rate, dA);
@@ -246,6 +336,17 @@ WFF_INLINE void king_point_at(const king_params *k, const wff_yarn_frame *fr, co
     for (int f = 0; f < FAMILIES; f++)
         pt->yarn[f] = king_family_at(k, fr, f, dA[f], locking_exponent);
     pt->failure_released = 0;
+    pt->slip_released = 0;
+    if (slip_state) {
+        const double slip_tension = king_slip_tension(k, pt->compaction.force);
+        for (int f = 0; f < FAMILIES; f++) {
+            king_slip s = king_family_slip(k, f, &pt->yarn[f], slip_state[f],
+                                           failure_state ? failure_state[f] : 0.0,
+                                           slip_tension, dt);
+            pt->slip[f] = s.slip;
+            pt->slip_released += s.released;
+        }
+    }
     if (failure_state) {
         const int kept = wff_yarn_failure_keeps_strain(&k->failure); /* ε_k of the last update */
         const double length = wff_yarn_failure_length(&k->failure, failure_state);
@@ -297,7 +398,7 @@ WFF_INLINE double king_normal_slope(const king_params *k, const wff_yarn_frame *
 {
     const double sb = y->sin_b, cb = y->cos_b, inv_L = y->inv_length;
     const double stretch_floor = k->tension_only != 0 ? 0.0 : -INFINITY;
-    double stretch = y->length - k->length0[f];
+    double stretch = y->stretch; /* (with slip held: §24) */
     double tension_slope =
         (stretch > stretch_floor ? k->yarn_stiffness[f] : 0.0) * y->tension_factor * sb;
     double arm = k->lever * fr->p[1 - f] * fabs(fr->cos_t); /* λ p_l |cosθ| */
@@ -315,11 +416,12 @@ WFF_INLINE double king_normal_slope(const king_params *k, const wff_yarn_frame *
 /* docs/model.md §5: R_k = (F_I − F_k^N)/(4 p1⁰ p2⁰) (as king_point_at computes it) and
  *   ∂R_k/∂ΔA_m = (−∂F_I/∂I − δ_km ∂F_k^N/∂ΔA_k)/(4 p1⁰ p2⁰)   (I = −ΔA_1 − ΔA_2)
  * into tangent[2k + m]. locking_exponent is c (the blocked kernel passes 2).
- * damage: NULL without failure, else d_1, d_2, held (§20). */
+ * damage: NULL without failure, else d_1, d_2, held (§20); slip: NULL without
+ * slip, else s_1, s_2, held (§24). */
 WFF_INLINE void king_residual_tangent_at(const king_params *k, const wff_yarn_frame *fr,
                                          const double dA[2], double locking_exponent,
-                                         const double *damage, double residual[2],
-                                         double tangent[4])
+                                         const double *damage, const double *slip,
+                                         double residual[2], double tangent[4])
 {
     const double inv_cell = 1 / k->cell_area;
     const wff_compaction c = wff_compaction_law(k->compaction_force, k->compaction_rate, dA);
@@ -327,6 +429,9 @@ WFF_INLINE void king_residual_tangent_at(const king_params *k, const wff_yarn_fr
 #pragma GCC unroll 2
     for (int f = 0; f < FAMILIES; f++)
         y[f] = king_family_at(k, fr, f, dA[f], locking_exponent);
+    if (slip)
+        for (int f = 0; f < FAMILIES; f++)
+            (void)king_family_slip(k, f, &y[f], slip[f], 0, 0, 0); /* (held) */
     if (damage)
         for (int f = 0; f < FAMILIES; f++)
             (void)king_family_fail(k, f, &y[f], damage[f], 0, 0, 0); /* (held) */
@@ -351,8 +456,30 @@ static inline const double *king_failure_state(const king_params *k, const doubl
     return k->failure.enabled != 0 ? state + STATE_DAMAGE1 : NULL;
 }
 
-/* docs/model.md §1–7, §20: one material point. P = (1/(4 p1⁰ p2⁰)) Σ_k Q_k ⊗ G_k,
- * R_k, W = W_cell/(4 p1⁰ p2⁰); dt > 0 advances γᶠ and the damages. */
+/* A point's slip states (s_1, s_2), or NULL when the material has no yarn slip. */
+static inline const double *king_slip_state(const king_params *k, const double *state)
+{
+    return k->slip_capacity > 0 ? state + STATE_SLIP1 : NULL;
+}
+
+/* A point's updated states into out (n_state values): γᶠ, the failure law's
+ * (with failure), the slips (with slip); a state of a law that is off held
+ * (the input's). */
+static inline void king_state_out(const king_params *k, const double *state,
+                                  const king_point *pt, double *out)
+{
+    out[STATE_GAMMA_F] = pt->gamma_f;
+    const int failing = k->failure.enabled != 0 ? wff_yarn_failure_states(&k->failure) : 0;
+    for (int i = STATE_DAMAGE1; i < k->n_state && i < STATE_SLIP1; i++)
+        out[i] = i - STATE_DAMAGE1 < failing ? pt->failure_state[i - STATE_DAMAGE1] : state[i];
+    if (k->slip_capacity > 0) {
+        out[STATE_SLIP1] = pt->slip[0];
+        out[STATE_SLIP2] = pt->slip[1];
+    }
+}
+
+/* docs/model.md §1–7, §20, §24: one material point. P = (1/(4 p1⁰ p2⁰)) Σ_k Q_k ⊗ G_k,
+ * R_k, W = W_cell/(4 p1⁰ p2⁰); dt > 0 advances γᶠ, the damages and the slips. */
 static int king_evaluate(const void *params, const double F[6], const double dA[2],
                          const double *state, double dt, wff_point_result *out)
 {
@@ -365,19 +492,18 @@ static int king_evaluate(const void *params, const double F[6], const double dA[
     const wff_shear_flow flow = king_flow(k, dt);
     king_point pt;
     const double *failure_state = king_failure_state(k, state);
-    king_point_at(k, &fr, dA, state[STATE_GAMMA_F], failure_state, dt, &flow,
-                  k->locking_exponent, k->flow_exponent, &pt);
+    king_point_at(k, &fr, dA, state[STATE_GAMMA_F], failure_state, king_slip_state(k, state),
+                  dt, &flow, k->locking_exponent, k->flow_exponent, &pt);
     const double inv_cell = 1 / k->cell_area;
     const double scale[FAMILIES] = {k->pitch0[0] * inv_cell, k->pitch0[1] * inv_cell};
     wff_stress_from_q(&fr, pt.q, scale, out->stress);
     out->residual[0] = pt.residual[0];
     out->residual[1] = pt.residual[1];
     out->energy = pt.energy * inv_cell;
-    out->state[STATE_GAMMA_F] = pt.gamma_f;
     out->dissipated = pt.dissipated * inv_cell;
     out->failure_dissipated = pt.failure_released * inv_cell;
-    for (int i = STATE_DAMAGE1; failure_state && i < k->n_state; i++)
-        out->state[i] = pt.failure_state[i - STATE_DAMAGE1];
+    out->slip_dissipated = pt.slip_released * inv_cell;
+    king_state_out(k, state, &pt, out->state);
     out->diag[DIAG_T1] = pt.yarn[0].tension;
     out->diag[DIAG_T2] = pt.yarn[1].tension;
     out->diag[DIAG_BETA1] = k->crimp_angle0[0] + pt.yarn[0].bend;
@@ -402,8 +528,9 @@ static void king_energy_split(const void *params, const double F[6], const doubl
     }
     const wff_shear_flow held = king_flow(k, 0);
     king_point pt;
-    king_point_at(k, &fr, dA, state[STATE_GAMMA_F], king_failure_state(k, state), 0, &held,
-                  k->locking_exponent, k->flow_exponent, &pt);
+    king_point_at(k, &fr, dA, state[STATE_GAMMA_F], king_failure_state(k, state),
+                  king_slip_state(k, state), 0, &held, k->locking_exponent, k->flow_exponent,
+                  &pt);
     const double inv_cell = 1 / k->cell_area;
     mech[MECH_YARN] = (pt.yarn[0].energy_yarn + pt.yarn[1].energy_yarn) * inv_cell;
     mech[MECH_BENDING] = (pt.yarn[0].energy_bending + pt.yarn[1].energy_bending) * inv_cell;
@@ -416,18 +543,28 @@ static void king_energy_split(const void *params, const double F[6], const doubl
  * stiffness per unit width k_k p_k⁰/(2 p_l⁰) (crimp only lowers it) plus
  * geometric, shear and locking terms; speed = sqrt(S/ρ_A). Amplitudes:
  * Gershgorin bound of the 2×2 Hessian ∂²W_cell/∂A_k∂A_m over the lumped mass
- * ρ_A/6 per unit area. */
+ * ρ_A/6 per unit area. With yarn slip (slip_capacity = n_c μ_yy > 0; the blocked
+ * lane passes the constant 0, §24) the state is not known here: the tension of a
+ * point a force pass has updated is at most T_slip, of one it has not the
+ * unslipped T_k, so the geometric terms take the larger. While a yarn slips its
+ * tension follows T_slip(ΔA) instead of its stretch: its axial term k_k sin²β_k
+ * goes and ∂R_k/∂ΔA_m gains +2 n_c μ_yy sinβ_k ∂F_I/∂I, which lowers the
+ * stiffness (below zero when 2 n_c μ_yy sinβ_k > 1: a growth the step does not
+ * govern), so the stick's bound holds for it too (tests/c/test_stable_bound.c
+ * runs slipping states through the integrator). */
 WFF_INLINE void king_wave_speeds_at(const king_params *k, double areal_density,
                                     const double F[6], const double dA[2],
                                     double locking_exponent, double flow_exponent,
-                                    double *membrane_speed, double *amplitude_omega)
+                                    double slip_capacity, double *membrane_speed,
+                                    double *amplitude_omega)
 {
     wff_yarn_frame fr;
     const int degenerate = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
     const wff_shear_flow held = king_flow(k, 0);
     king_point pt;
-    /* undamaged (§20): damage only lowers the yarn terms, so these stay upper bounds */
-    king_point_at(k, &fr, dA, 0, NULL, 0, &held, locking_exponent, flow_exponent, &pt);
+    /* undamaged (§20): damage only lowers the yarn terms, so these stay upper bounds;
+     * unslipped (§24: the tension bound below) */
+    king_point_at(k, &fr, dA, 0, NULL, NULL, 0, &held, locking_exponent, flow_exponent, &pt);
     const double compaction_stiffness = pt.compaction.stiffness; /* ∂F_I/∂I */
     /* maxima as comparisons (fmax would not vectorise; the same value here: the
      * first operand is never NaN) */
@@ -442,15 +579,20 @@ WFF_INLINE void king_wave_speeds_at(const king_params *k, double areal_density,
         /* a slack yarn (tension_only) keeps its stiffness in the bound: it can pull
          * tight within one step, and a step sized for slack yarns is ~20x too long */
         double lock_stiff = y->lock.stiffness; /* ∂F_L/∂d */
-        double axial = k->yarn_stiffness[f] + fabs(y->tension) / L +
-                       k->bending_stiffness[f] / (L * L);
+        double tension = fabs(y->tension); /* |T_k| */
+        if (slip_capacity > 0) {
+            const double slip_tension =
+                slip_capacity * (pt.compaction.force > 0 ? pt.compaction.force : 0.0);
+            tension = slip_tension > tension ? slip_tension : tension;
+        }
+        double axial = k->yarn_stiffness[f] + tension / L + k->bending_stiffness[f] / (L * L);
         /* stiffness per unit width when family f is stretched: two trusses per
          * cell (2 k p_f⁰² / 4p1⁰p2⁰ = k p_f⁰/2p_l⁰), the spars across, shear */
         double s_f = (2 * axial * k->pitch0[f] * k->pitch0[f] +
                       4 * lock_stiff * k->pitch0[l] * k->pitch0[l] + shear) / k->cell_area;
         membrane = s_f > membrane ? s_f : membrane;
         double a_diag = 2 * (k->yarn_stiffness[f] * y->sin_b * y->sin_b +
-                             fabs(y->tension) * y->cos_b * y->cos_b / L) +
+                             tension * y->cos_b * y->cos_b / L) +
                         2 * k->bending_stiffness[f] * y->cos_b * y->cos_b / (L * L) +
                         4 * fabs(y->moment) / (L * L) + compaction_stiffness +
                         2 * (lock_stiff + y->lock.force / y->spar_length) * (1 + k->lever);
@@ -469,26 +611,27 @@ static void king_wave_speeds(const void *params, double areal_density, const dou
 {
     const king_params *k = params;
     king_wave_speeds_at(k, areal_density, F, dA, k->locking_exponent, k->flow_exponent,
-                        membrane_speed, amplitude_omega);
+                        k->slip_capacity, membrane_speed, amplitude_omega);
 }
 
 /* The blocked kernels run king_point_at with c = 2 and n = 1 as constants
- * (branch-free, vectorised); other exponents, and yarn failure, go back to the
- * general path (the wave speeds keep the undamaged bounds, so failure does
- * not matter to them; the tangent has no flow). */
+ * (branch-free, vectorised); other exponents, yarn failure and yarn slip go
+ * back to the general path (the wave speeds keep the undamaged bounds, so
+ * failure does not matter to them, slip does: §24; the tangent has no flow). */
 WFF_INLINE int king_blocks_accept(const king_params *k)
 {
-    return k->locking_exponent == 2 && k->flow_exponent == 1 && k->failure.enabled == 0;
+    return k->locking_exponent == 2 && k->flow_exponent == 1 && k->failure.enabled == 0 &&
+           k->slip_capacity == 0;
 }
 
 WFF_INLINE int king_wave_accepts(const king_params *k)
 {
-    return k->locking_exponent == 2 && k->flow_exponent == 1;
+    return k->locking_exponent == 2 && k->flow_exponent == 1 && k->slip_capacity == 0;
 }
 
 WFF_INLINE int king_tangent_accepts(const king_params *k)
 {
-    return k->locking_exponent == 2 && k->failure.enabled == 0;
+    return k->locking_exponent == 2 && k->failure.enabled == 0 && k->slip_capacity == 0;
 }
 
 /* Lane b of a wave-speed block (king_wave_speeds_at, c = 2 and n = 1); ctx
@@ -501,7 +644,7 @@ WFF_INLINE void king_wave_lane(const king_params *k, const wff_lane_arg *ctx, wf
                          blk->F[3][b], blk->F[4][b], blk->F[5][b]};
     const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
     double speed, omega;
-    king_wave_speeds_at(k, ctx->value, F, dA, 2.0, 1.0, &speed, &omega);
+    king_wave_speeds_at(k, ctx->value, F, dA, 2.0, 1.0, 0.0, &speed, &omega);
     blk->membrane_speed[b] = speed;
     blk->amplitude_omega[b] = omega;
 }
@@ -514,7 +657,8 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
                                 const double *dA, const double *weight, double *state,
                                 double dt, double stress_sum[6], double *residual,
                                 double *energy, double *dissipated,
-                                double *failure_dissipated, int *bad_point)
+                                double *failure_dissipated, double *slip_dissipated,
+                                int *bad_point)
 {
     const king_params *k = params;
     wff_yarn_frame fr;
@@ -523,13 +667,14 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
         return WFF_POINT_DEGENERATE;
     const wff_shear_flow flow = king_flow(k, dt);
     double q[FAMILIES][FAMILIES] = {{0, 0}, {0, 0}};
-    double energy_sum = 0, dissipated_sum = 0, released_sum = 0;
+    double energy_sum = 0, dissipated_sum = 0, released_sum = 0, slipped_sum = 0;
     for (int i = 0; i < n_points; i++) {
         king_point pt;
         double *point_state = state + i * k->n_state;
         const double *failure_state = king_failure_state(k, point_state);
-        king_point_at(k, &fr, dA + 2 * i, point_state[STATE_GAMMA_F], failure_state, dt, &flow,
-                      k->locking_exponent, k->flow_exponent, &pt);
+        king_point_at(k, &fr, dA + 2 * i, point_state[STATE_GAMMA_F], failure_state,
+                      king_slip_state(k, point_state), dt, &flow, k->locking_exponent,
+                      k->flow_exponent, &pt);
         const double w = weight[i];
         for (int f = 0; f < FAMILIES; f++) {
             residual[2 * i + f] = pt.residual[f];
@@ -539,9 +684,9 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
         energy_sum += w * pt.energy;
         dissipated_sum += w * pt.dissipated;
         released_sum += w * pt.failure_released;
-        point_state[STATE_GAMMA_F] = pt.gamma_f;
-        for (int j = STATE_DAMAGE1; failure_state && j < k->n_state; j++)
-            point_state[j] = pt.failure_state[j - STATE_DAMAGE1];
+        if (k->slip_capacity > 0)
+            slipped_sum += w * pt.slip_released;
+        king_state_out(k, point_state, &pt, point_state);
     }
     const double inv_cell = 1 / k->cell_area;
     const double scale[FAMILIES] = {k->pitch0[0] * inv_cell, k->pitch0[1] * inv_cell};
@@ -552,6 +697,8 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
     *energy += energy_sum * inv_cell;
     *dissipated += dissipated_sum * inv_cell;
     *failure_dissipated += released_sum * inv_cell;
+    if (k->slip_capacity > 0)
+        *slip_dissipated += slipped_sum * inv_cell;
     return WFF_POINT_OK;
 }
 
@@ -589,8 +736,8 @@ WFF_INLINE void king_tri_lane(const king_params *k, const king_tri_ctx *ctx, wff
     for (int p = 0; p < 3; p++) {
         const double dA[2] = {blk->dA[p][0][b], blk->dA[p][1][b]};
         king_point pt;
-        king_point_at(k, &fr, dA, blk->state[p][STATE_GAMMA_F][b], NULL, 0, &ctx->flow, 2.0,
-                      1.0, &pt);
+        king_point_at(k, &fr, dA, blk->state[p][STATE_GAMMA_F][b], NULL, NULL, 0, &ctx->flow,
+                      2.0, 1.0, &pt);
         blk->residual[p][0][b] = pt.residual[0];
         blk->residual[p][1][b] = pt.residual[1];
         blk->state[p][STATE_GAMMA_F][b] = pt.gamma_f;
@@ -611,6 +758,7 @@ WFF_INLINE void king_tri_lane(const king_params *k, const king_tri_ctx *ctx, wff
     blk->energy[b] = energy * third * inv_cell;
     blk->dissipated[b] = dissipated * third * inv_cell;
     blk->failure_dissipated[b] = 0;
+    blk->slip_dissipated[b] = 0;
 }
 
 WFF_INLINE void king_tri_finish(const king_params *k, const king_tri_ctx *ctx,
@@ -651,7 +799,8 @@ WFF_INLINE void king_point_lane(const king_params *k, const king_point_ctx *ctx,
     blk->degenerate[b] = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
     const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
     king_point pt;
-    king_point_at(k, &fr, dA, blk->state[STATE_GAMMA_F][b], NULL, 0, &ctx->flow, 2.0, 1.0, &pt);
+    king_point_at(k, &fr, dA, blk->state[STATE_GAMMA_F][b], NULL, NULL, 0, &ctx->flow, 2.0, 1.0,
+                  &pt);
     blk->residual[0][b] = pt.residual[0];
     blk->residual[1][b] = pt.residual[1];
     blk->state[STATE_GAMMA_F][b] = pt.gamma_f;
@@ -664,6 +813,7 @@ WFF_INLINE void king_point_lane(const king_params *k, const king_point_ctx *ctx,
     blk->energy[b] = pt.energy * inv_cell;
     blk->dissipated[b] = pt.dissipated * inv_cell;
     blk->failure_dissipated[b] = 0;
+    blk->slip_dissipated[b] = 0;
 }
 
 /* The amplitude residual and its exact tangent at one point (king_residual_tangent_at);
@@ -680,6 +830,7 @@ static int king_amplitude_tangent(const void *params, const double F[6], const d
         return WFF_POINT_DEGENERATE;
     }
     king_residual_tangent_at(k, &fr, dA, k->locking_exponent, king_failure_state(k, state),
+                             king_slip_state(k, state),
                              residual, tangent);
     return WFF_POINT_OK;
 }
@@ -696,7 +847,7 @@ WFF_INLINE void king_tangent_lane(const king_params *k, const wff_lane_arg *ctx,
     wff_yarn_frame fr;
     blk->degenerate[b] = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
     double residual[2], tangent[4];
-    king_residual_tangent_at(k, &fr, dA, 2.0, NULL, residual, tangent);
+    king_residual_tangent_at(k, &fr, dA, 2.0, NULL, NULL, residual, tangent);
     blk->residual[0][b] = residual[0];
     blk->residual[1][b] = residual[1];
 #pragma GCC unroll 4
@@ -716,9 +867,34 @@ WFF_CELL_TANGENT_BLOCK(king, king_params, king_tangent_accepts, wff_lane_arg,
 WFF_CELL_WAVE_BLOCK(king, king_params, king_wave_accepts, wff_lane_arg, wff_lanes_keep_arg,
                     king_wave_lane, wff_lanes_nothing_after)
 
+/* docs/model.md §24: the yarn slip's keys, yarn_friction (μ_yy, default 0: no
+ * slip) and slip_crossovers (n_c, required with μ_yy > 0; present with 0 it is
+ * checked and kept, unused, so that a file can carry it and a scene set μ_yy). */
+static int king_slip_parse(wff_kv *kv, king_params *k, wff_error *err)
+{
+    double crossovers;
+    if (wff_kv_number_or(kv, "yarn_friction", 0.0, &k->yarn_friction, err) ||
+        wff_kv_number_or(kv, "slip_crossovers", NAN, &crossovers, err))
+        return -1;
+    if (!(k->yarn_friction >= 0))
+        return wff_kv_reject(kv, "yarn_friction", err, "must be >= 0 (the yarn-on-yarn "
+                             "Coulomb friction coefficient at the crossovers; 0: no slip)");
+    if (!isnan(crossovers) && !(crossovers >= 1))
+        return wff_kv_reject(kv, "slip_crossovers", err, "must be >= 1 (the crossovers "
+                             "whose friction anchors a family's tension)");
+    if (k->yarn_friction > 0 && isnan(crossovers))
+        return wff_kv_reject(kv, "yarn_friction", err, "yarn slip (yarn_friction > 0) needs "
+                             "slip_crossovers, the crossovers whose friction anchors a "
+                             "family's tension (docs/model.md §24)");
+    k->slip_crossovers = isnan(crossovers) ? 0 : crossovers;
+    k->slip_capacity = k->yarn_friction > 0 ? k->yarn_friction * k->slip_crossovers : 0;
+    return 0;
+}
+
 /* docs/model.md §9: the material file's keys, checked; derived reference
  * quantities L_k⁰, β_k⁰, d_k⁰ (at θ⁰ = 90°) and the cell area; the yarn
- * failure keys (§20, yarn_failure.h) and the states they add. */
+ * failure keys (§20, yarn_failure.h), the yarn slip keys (§24) and the states
+ * they add. */
 static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
 {
     king_params *k = (king_params *)mat->params;
@@ -731,7 +907,7 @@ static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
     };
     if (wff_weave_parse(kv, &shared, err) ||
         wff_kv_number_or(kv, "lever", 0.0, &k->lever, err) ||
-        wff_yarn_failure_parse(kv, &k->failure, err))
+        wff_yarn_failure_parse(kv, &k->failure, err) || king_slip_parse(kv, k, err))
         return -1;
     if (k->lever != 0 && k->lever != 1)
         return wff_kv_reject(kv, "lever", err, "must be 0 (energy-consistent) or 1 "
@@ -751,7 +927,8 @@ static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         mat->yarn_spacing[f] = 2 * k->pitch0[l];
     }
     k->cell_area = 4 * k->pitch0[0] * k->pitch0[1];
-    mat->n_state = k->n_state = 1 + wff_yarn_failure_states(&k->failure);
+    mat->n_state = k->n_state =
+        k->slip_capacity > 0 ? STATE_COUNT : 1 + wff_yarn_failure_states(&k->failure);
     return 0;
 }
 

@@ -170,6 +170,7 @@ WFF_INLINE int linear_evaluate(const void *params, const double F[6], const doub
     out->energy = pt.energy_yarn + pt.energy_shear;
     out->dissipated = 0;
     out->failure_dissipated = pt.failure_released;
+    out->slip_dissipated = 0; /* (no slip in this cell) */
     for (int i = 0; i < c->n_state; i++)
         out->state[i] = pt.failure_state[i];
     out->diag[DIAG_T1] = pt.force[0] * c->yarn_spacing[0];
@@ -186,10 +187,12 @@ static int linear_evaluate_shared(const void *params, const double F[6], int n_p
                                   const double *dA, const double *weight, double *state,
                                   double dt, double stress_sum[6], double *residual,
                                   double *energy, double *dissipated,
-                                  double *failure_dissipated, int *bad_point)
+                                  double *failure_dissipated, double *slip_dissipated,
+                                  int *bad_point)
 {
     (void)dA;
     (void)dissipated; /* += 0 */
+    (void)slip_dissipated; /* += 0 */
     wff_point_result r;
     *bad_point = 0;
     const linear_params *c = params;
@@ -245,6 +248,7 @@ WFF_INLINE void linear_tri_setup(const linear_params *c, double dt, linear_tri_c
                                                      gcc makes a memset stops it vectorising) */
     memset(blk->dissipated, 0, sizeof blk->dissipated);
     memset(blk->failure_dissipated, 0, sizeof blk->failure_dissipated);
+    memset(blk->slip_dissipated, 0, sizeof blk->slip_dissipated);
 }
 
 /* Lane b of a block: linear_evaluate's formulas for one triangle. */

@@ -46,12 +46,14 @@ static void shared_fallback(check_state *st, const wff_material *mat)
     double state[3 * WFF_STATE_MAX] = {0}, state_ref[3 * WFF_STATE_MAX] = {0};
     for (int q = 0; q < 3 && ns > 0; q++)
         state[ns * q] = state_ref[ns * q] = 0.01 * (q + 1); /* γᶠ */
-    double stress[6] = {0}, residual[6], energy = 0, dissipated = 0, failure = 0;
+    double stress[6] = {0}, residual[6], energy = 0, dissipated = 0, failure = 0, slip = 0;
     int bad = -1;
     int status = wff_cell_evaluate_shared(mat, F_test, 3, dA_test, weight, state, dt, stress,
-                                          residual, &energy, &dissipated, &failure, &bad);
+                                          residual, &energy, &dissipated, &failure, &slip,
+                                          &bad);
     CHECK(st, status == WFF_POINT_OK && bad == 0, "fallback status %d, bad point %d", status, bad);
     double stress_ref[6] = {0}, energy_ref = 0, dissipated_ref = 0, failure_ref = 0;
+    double slip_ref = 0;
     int same_residual = 1, same_state = 1;
     for (int q = 0; q < 3; q++) {
         wff_point_result r;
@@ -61,6 +63,7 @@ static void shared_fallback(check_state *st, const wff_material *mat)
         energy_ref += weight[q] * r.energy;
         dissipated_ref += weight[q] * r.dissipated;
         failure_ref += weight[q] * r.failure_dissipated;
+        slip_ref += weight[q] * r.slip_dissipated;
         same_residual &= residual[2 * q] == r.residual[0] && residual[2 * q + 1] == r.residual[1];
         for (int i = 0; i < ns; i++)
             same_state &= state[ns * q + i] == r.state[i];
@@ -69,7 +72,7 @@ static void shared_fallback(check_state *st, const wff_material *mat)
     for (int i = 0; i < 6; i++)
         same_stress &= stress[i] == stress_ref[i];
     CHECK(st, same_stress && energy == energy_ref && dissipated == dissipated_ref &&
-                  failure == failure_ref,
+                  failure == failure_ref && slip == slip_ref,
           "%s: evaluate_shared's fallback is evaluate() weighted, bit for bit",
           wff_cell_name(mat->cell));
     CHECK(st, same_residual && same_state, "%s: residuals and states as evaluate() gives them",

@@ -24,6 +24,14 @@
  * their difference grows 1000-fold (M-norm) within 400 steps or the run stops;
  * bisected on dtfactor to 2e-4.
  *
+ * Yarn slip (docs/model.md §24): a King material that slips
+ * (tests/data/king_slip.txt, T_slip = 5 F_I) through both, apart from the draws
+ * above (which keep their sequence): drawn states whose points were given random
+ * slips (±2 %) and then one force pass with dt > 0, so that every yarn carries at
+ * most its slip tension as in a run, through the eigenvalue; and equilibrium
+ * states so slipped, through the growth bisection, where the yarns slip as the
+ * runs go on (counted).
+ *
  * Required: critical / estimate >= 1 at every state. Printed: the number of
  * states and the worst ratio overall, per cell and per element kind; a state
  * where it fails is named with its cell, material, element kind and draw. */
@@ -55,14 +63,20 @@
 #define DTFACTOR_MAX 1.99     /* (dtfactor is at most 2) */
 #define CELLS_MAX 16          /* registered cells tallied */
 
-/* Materials: at least one for every registered cell (checked). */
+/* Materials: at least one for every registered cell (checked); the draws take the
+ * first N_MATERIALS, the slip states the last. */
 static const char *const materials[] = {
     "freefem_scripts/materials/kevlar_s706.txt",
     "tests/data/king_tension_only.txt",
     "freefem_scripts/materials/kevlar_basket.txt",
     "freefem_scripts/materials/kevlar_linear.txt",
+    "tests/data/king_slip.txt",
 };
-#define N_MATERIALS ((int)(sizeof materials / sizeof materials[0]))
+#define N_MATERIALS ((int)(sizeof materials / sizeof materials[0]) - 1)
+#define SLIP_MATERIAL N_MATERIALS
+#define N_SLIP_STATES 48      /* drawn slip states measured by the eigenvalue */
+#define SLIP_RANGE 0.02       /* the points' random slips before the projecting pass, - */
+#define SLIP_PASS_DT 1e-9     /* s: that pass's step */
 /* the amplitudes: balanced at the cell's F; that +-5 um node to node; that + a
  * change uniform over the mesh; that + a change from node to node */
 enum { AMP_BALANCED, AMP_NOISY, AMP_UNIFORM, AMP_ROUGH, AMP_MODES };
@@ -91,6 +105,8 @@ typedef struct draw {
     double amp_uniform[2];  /* AMP_UNIFORM: ΔA, m */
     int held_edges;         /* u_x, u_y of the edges fixed (the equilibrium states) */
     int unbalanced;         /* (set by build) the balance failed: the preload's amplitudes */
+    double slip_range;      /* > 0: the points' slips drawn in ±slip_range, then one force
+                               pass with dt > 0 (a slipping material) */
     uint64_t seed;
 } draw;
 
@@ -116,7 +132,7 @@ static void describe(const draw *d, char *out, size_t size)
                  d->gap_fraction);
     snprintf(out, size, "state %d: cell %s (%s), %s %dx%d%s%s, %.3g x %.3g mm, jitter %.2f, "
              "%s, stretch %.4f %.4f, shear %.3f rad, warp at %.3f rad, bump %.3g mm, "
-             "curvatures %.3g %.3g %.3g 1/m, roughness %.3g um, amplitudes %s%s%s, seed %llu%s",
+             "curvatures %.3g %.3g %.3g 1/m, roughness %.3g um, amplitudes %s%s%s, seed %llu%s%s",
              d->index, cell_name_of(d->material), materials[d->material],
              d->kind == TEST_MESH_QUAD ? "quads" : "triangles", d->nx, d->ny,
              d->kind == TEST_MESH_TRI && d->alternate ? " alternating" : "", plies,
@@ -125,7 +141,31 @@ static void describe(const draw *d, char *out, size_t size)
              d->curvature[1], d->curvature[2], 1e6 * d->roughness,
              amplitude_mode_name[d->amplitudes],
              d->unbalanced ? " (from the preload's: no balance)" : "",
-             d->held_edges ? ", edges held in-plane" : "", (unsigned long long)d->seed, zone);
+             d->held_edges ? ", edges held in-plane" : "", (unsigned long long)d->seed, zone,
+             d->slip_range > 0 ? ", slips drawn then projected by a force pass" : "");
+}
+
+/* A slipping material's points given slips in ±d->slip_range (both families),
+ * then one force pass with dt > 0: the tensions are brought to at most the slip
+ * tension, as a run leaves them (docs/model.md §24). 0, or -1 with err set. */
+static int slip_points(const draw *d, wff_model *m, wff_error *err)
+{
+    const int j = wff_material_state_index(&m->mat, "slip_1");
+    if (j < 0)
+        return wff_fail(err, "%s does not slip", materials[d->material]);
+    const int ns = m->n_state;
+    const size_t points = 3 * (size_t)m->el.n_tris + 4 * (size_t)m->el.n_quads;
+    wff_rng g = {d->seed + 4242};
+    for (size_t q = 0; q < points; q++)
+        for (int k = 0; k < 2; k++)
+            m->state[ns * q + j + k] = wff_rng_uniform(&g, -d->slip_range, d->slip_range);
+    double *f = malloc(sizeof(double) * (size_t)m->n_dofs);
+    int rc = f ? wff_model_forces(m, m->u, f, SLIP_PASS_DT, NULL, err) : -1;
+    free(f);
+    /* a run starts from this state: what the pass dissipated is not the run's (its
+     * balance starts from the stored energy now) */
+    m->dissipated_slip = m->dissipated_shear = 0;
+    return rc;
 }
 
 /* A random state: every combination of material, element kind and preload
@@ -283,6 +323,8 @@ static int build(draw *d, wff_model *m, wff_error *err)
                 u[3 + a] = fmax(dA, floor_dA[a]);
             }
         }
+    if (d->slip_range > 0 && slip_points(d, m, err))
+        goto fail;
     return 0;
 fail:
     wff_model_free(m);
@@ -687,6 +729,62 @@ static void growth_states(check_state *st, tally *t)
     printf("    (%.1f s)\n", seconds_now() - start);
 }
 
+/* Yarn slip (the header comment): drawn states of the slipping material with
+ * slipped points through the eigenvalue, then equilibrium states of it through
+ * the growth bisection (the yarns slip as the runs go). */
+static void slip_states(check_state *st, tally *t)
+{
+    wff_rng g = {20260711};
+    double start = seconds_now(), worst_share = 0;
+    for (int s = 0; s < N_SLIP_STATES; s++) {
+        draw d = draw_state(&g, 10000 + s);
+        d.material = SLIP_MATERIAL;
+        d.zone_material = -1;
+        d.slip_range = SLIP_RANGE;
+        double share = 0, ratio = eigen_ratio(st, &d, &share, NULL);
+        if (!isfinite(ratio))
+            continue;
+        if (t->states == 0 || ratio < t->overall)
+            worst_share = share;
+        tally_add(t, &d, ratio);
+    }
+    tally_print(t, "slipped states, critical step by the eigenvalue");
+    char text[1024];
+    describe(&t->overall_draw, text, sizeof text);
+    printf("    worst: %s; its fastest mode %.0f %% amplitudes\n", text, 100 * worst_share);
+    for (int kind = 0; kind < 2; kind++)
+        for (int preload = 0; preload < 2; preload++) {
+            draw d = equilibrium(&g, 20000 + 2 * kind + preload, SLIP_MATERIAL,
+                                 kind ? TEST_MESH_QUAD : TEST_MESH_TRI, preload, 1);
+            d.slip_range = SLIP_RANGE;
+            wff_error err;
+            describe(&d, text, sizeof text);
+            double factor = critical_factor(&d, &err);
+            CHECK(st, isfinite(factor), "%s: %s", text, err.message);
+            if (!isfinite(factor))
+                continue;
+            /* the yarns do slip in these runs: the dissipation at the estimate */
+            wff_model m;
+            double slipped = 0;
+            if (build(&d, &m, &err) == 0) {
+                if (wff_model_set_option(&m, "dtinterval", 1e6, &err) == 0 &&
+                    wff_model_advance(&m, 1e9, GROWTH_STEPS, &err) == 0)
+                    wff_model_value(&m, "dissipated_slip", &slipped, &err);
+
+                wff_model_free(&m);
+            }
+            printf("    slipping, %-9s %-10s: growth bisection %.4f%s; %.3g J dissipated by slip "
+                   "in %d steps at the estimate\n", kind ? "quads" : "triangles",
+                   preload ? "preload" : "no preload", factor,
+                   factor >= DTFACTOR_MAX ? " (the largest dtfactor tried)" : "", slipped,
+                   GROWTH_STEPS);
+            CHECK(st, factor >= 1, "%s: grows at dtfactor %.5f of the estimate", text, factor);
+            CHECK(st, slipped > 0, "%s: the yarns do not slip in the run (%.3g J)", text, slipped);
+            tally_add(t, &d, factor);
+        }
+    printf("    (%.1f s)\n", seconds_now() - start);
+}
+
 int main(void)
 {
     check_state st = {0, 0};
@@ -697,8 +795,11 @@ int main(void)
     memset(&grown, 0, sizeof grown);
     drawn_states(&st, &drawn);
     growth_states(&st, &grown);
-    double worst = fmin(drawn.overall, grown.overall);
+    tally slipped;
+    memset(&slipped, 0, sizeof slipped);
+    slip_states(&st, &slipped);
+    double worst = fmin(fmin(drawn.overall, grown.overall), slipped.overall);
     printf("  stable-step bound over %d states: worst critical/estimate %.4f (%.1f s)\n",
-           drawn.states + grown.states, worst, seconds_now() - start);
+           drawn.states + grown.states + slipped.states, worst, seconds_now() - start);
     return check_summary(&st, "test_stable_bound");
 }

@@ -390,7 +390,8 @@ static void check_fast_paths(check_state *st, const cell_case *c, const wff_mate
         if (cell->evaluate_shared) {
             for (int j = 0; j < WFF_BLOCK; j++) {
                 double da[6], w[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3}, st3[3 * WFF_STATE_MAX];
-                double P[6] = {0}, R[6], W = 0, Dis = 0, Fail = 0, Pref[6] = {0}, Wref = 0;
+                double P[6] = {0}, R[6], W = 0, Dis = 0, Fail = 0, Slip = 0, Pref[6] = {0};
+                double Wref = 0;
                 double Fref = 0;
                 int bad;
                 for (int q = 0; q < 3; q++) {
@@ -399,7 +400,7 @@ static void check_fast_paths(check_state *st, const cell_case *c, const wff_mate
                     memcpy(st3 + q * ns, state0[j][q], sizeof(double) * (size_t)ns);
                 }
                 cell->evaluate_shared(mat->params, F[j], 3, da, w, st3, dt, P, R, &W, &Dis,
-                                      &Fail, &bad);
+                                      &Fail, &Slip, &bad);
                 double e = 0;
                 for (int q = 0; q < 3; q++) {
                     for (int i = 0; i < 6; i++)
