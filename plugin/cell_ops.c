@@ -43,6 +43,7 @@ int wff_cell_parse(wff_kv *kv, wff_material *mat, wff_error *err)
 int wff_material_evaluate(const wff_material *mat, const double F[6], const double dA[2],
                           const double *state, double dt, wff_point_result *out)
 {
+    out->slip_dissipated = 0; /* (a cell without yarn slip leaves it: none) */
     return mat->cell->evaluate(mat->params, F, dA, state, dt, out);
 }
 
@@ -89,6 +90,7 @@ int wff_cell_evaluate_shared(const wff_material *mat, const double F[6], int n_p
     const int ns = mat->n_state;
     for (int q = 0; q < n_points; q++) {
         wff_point_result r;
+        r.slip_dissipated = 0; /* (a cell without yarn slip leaves it: none) */
         double *ps = state + ns * q;
         int status = cell->evaluate(mat->params, F, dA + 2 * q, ps, dt, &r);
         if (status != WFF_POINT_OK) {
@@ -144,6 +146,8 @@ int wff_cell_tri_block(const wff_material *mat, double dt, wff_tri_block *blk)
 {
     if (!mat->cell->evaluate_tri_block)
         return -1;
+    for (int j = 0; j < WFF_BLOCK; j++) /* (a cell without yarn slip leaves it: none) */
+        blk->slip_dissipated[j] = 0;
     return mat->cell->evaluate_tri_block(mat->params, dt, blk) == 0 ? 0 : -1;
 }
 
@@ -156,6 +160,8 @@ int wff_cell_point_block(const wff_material *mat, double dt, wff_point_block *bl
 {
     if (!mat->cell->evaluate_point_block)
         return -1;
+    for (int j = 0; j < WFF_BLOCK; j++) /* (a cell without yarn slip leaves it: none) */
+        blk->slip_dissipated[j] = 0;
     return mat->cell->evaluate_point_block(mat->params, dt, blk) == 0 ? 0 : -1;
 }
 

@@ -200,7 +200,8 @@ typedef struct wff_point_result {
                                      J/m^2 (>= 0; 0 for cells without failure) */
     double slip_dissipated;       /* energy dissipated by yarn slip at the crossovers in this
                                      update, J/m^2 (>= 0; 0 for cells or materials without
-                                     slip) */
+                                     slip) (0 on entry: the caller sets it; a cell
+                                     without yarn slip leaves it) */
     double diag[WFF_DIAG_MAX];    /* cell-specific, named by diag_names */
 } wff_point_result;
 
