@@ -56,6 +56,15 @@ static int has_zones(const wff_model *m, char *what, size_t size)
     return 1;
 }
 
+/* One model over MPI ranks (distribute.c): its part refuses a mesh transfer. */
+static int has_ranks(const wff_model *m, char *what, size_t size)
+{
+    if (m->comm.size <= 1)
+        return 0;
+    snprintf(what, size, "the model runs over %d MPI ranks", m->comm.size);
+    return 1;
+}
+
 static int has_no_amplitudes(const wff_model *m, char *what, size_t size)
 {
     if (wff_cell_amplitudes(m->mat.cell) > 0)
@@ -88,6 +97,9 @@ static const combine_rule rules[] = {
      "remesh.c wff_model_remesh (a pack's zones)"},
     {"remesh", has_zones, NULL, transfer_no_zones, "remesh.c wff_model_remesh"},
     {"remesh", NULL, "zones", transfer_no_zones, "remesh.c wff_model_remesh"},
+    {"remesh", has_ranks, NULL,
+     "a mesh transfer over ranks is not built (the points' states would have to be gathered "
+     "first); run -adapt on one rank", "distribute.c distributed_refuses_remesh (wff_model_remesh)"},
     {"remesh", NULL, "checkpoint", checkpoint_no_transfer, NULL},
     {"remesh", NULL, "restart", checkpoint_no_transfer, NULL},
     {"checkpoint", parts_refuse_checkpoint, NULL, checkpoint_no_part,

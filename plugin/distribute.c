@@ -17,6 +17,10 @@
  *    node;
  *  - a block's energies are added by one rank (the rank of its first element)
  *    into the order-free sums (fixed_sum.h), reduced over the ranks;
+ *  - static amplitudes: the points' own balanced amplitudes (el->point_dA,
+ *    what each pass's Newton starts from) are read by the replicated stable
+ *    step at every element; a rank's own elements' ride along in the pass's
+ *    exchange, so they are whole on every rank after every pass;
  *  - erosion: each rank judges its own elements, the lists are gathered in
  *    rank order (element order), every rank erodes them all;
  *  - the points' states of other ranks' elements go stale on a rank; they are
@@ -242,26 +246,53 @@ typedef struct pass_extras {
     long amplitude_iterations, bad;
 } pass_extras;
 
+/* The points' static amplitudes the pass updates (m->el.point_dA: 2 a point),
+ * NULL with dynamic amplitudes (zones keep them dynamic: model.c). The
+ * replicated stable step reads them at every element (membrane_centre.c), and
+ * outputs, snapshots and checkpoints do: each rank's own elements' go with its
+ * forces. */
+static double *pass_amplitudes(const wff_model *m)
+{
+    return m->em.static_amplitudes && !m->zones ? m->el.point_dA : NULL;
+}
+
+/* Bytes of rank r's elements' static amplitudes (0 without), from double
+ * *first (into dA). */
+static size_t amplitude_bytes(const wff_model *m, const struct wff_dist *d, int r, size_t *first)
+{
+    const size_t a = wff_element_first_point(m->el.n_tris, d->element_lo[r]);
+    const size_t b = wff_element_first_point(m->el.n_tris, d->element_lo[r + 1]);
+    *first = 2 * a;
+    return pass_amplitudes(m) ? sizeof(double) * 2 * (b - a) : 0;
+}
+
 int wff_dist_forces(wff_model *m, double *f, wff_force_totals *t, wff_fixed *more, int n_more)
 {
     struct wff_dist *d = m->dist;
     if (!d)
         return 0;
     const double start = wff_wall_seconds();
-    /* one exchange a pass: each rank's message its nodes' forces, then its sums
-     * and counts; every rank gets every rank's */
+    /* one exchange a pass: each rank's message its nodes' forces (then its
+     * elements' static amplitudes, if any), then its sums and counts; every
+     * rank gets every rank's */
     const size_t extra = sizeof(wff_fixed) * (size_t)(WFF_BLOCK_SUMS + n_more) + sizeof(pass_extras);
-    size_t total = 0;
+    double *dA = pass_amplitudes(m);
+    size_t total = 0, first;
     for (int r = 0; r < d->size; r++) {
         d->offsets[r] = (long)total;
-        d->counts[r] = (long)(sizeof(double) * D * (size_t)(d->node_lo[r + 1] - d->node_lo[r]) + extra);
+        d->counts[r] = (long)(sizeof(double) * D * (size_t)(d->node_lo[r + 1] - d->node_lo[r]) +
+                              amplitude_bytes(m, d, r, &first) + extra);
         total += (size_t)d->counts[r];
     }
     char *all = scratch(d, total);
     {   /* this rank's message */
         char *mine = all + d->offsets[d->rank];
-        const size_t forces = sizeof(double) * D * (size_t)(d->node_lo[d->rank + 1] - d->node_lo[d->rank]);
+        size_t forces = sizeof(double) * D * (size_t)(d->node_lo[d->rank + 1] - d->node_lo[d->rank]);
         memcpy(mine, f + D * (size_t)d->node_lo[d->rank], forces);
+        const size_t amplitudes = amplitude_bytes(m, d, d->rank, &first);
+        if (amplitudes)
+            memcpy(mine + forces, dA + first, amplitudes);
+        forces += amplitudes; /* (what comes before the sums) */
         memcpy(mine + forces, t->sums, sizeof(wff_fixed) * WFF_BLOCK_SUMS);
         if (n_more > 0)
             memcpy(mine + forces + sizeof(wff_fixed) * WFF_BLOCK_SUMS, more, sizeof(wff_fixed) * (size_t)n_more);
@@ -278,9 +309,14 @@ int wff_dist_forces(wff_model *m, double *f, wff_force_totals *t, wff_fixed *mor
     long iterations = 0, bad = 0;
     for (int r = 0; r < d->size; r++) {
         const char *msg = all + d->offsets[r];
-        const size_t forces = sizeof(double) * D * (size_t)(d->node_lo[r + 1] - d->node_lo[r]);
-        if (r != d->rank)
+        size_t forces = sizeof(double) * D * (size_t)(d->node_lo[r + 1] - d->node_lo[r]);
+        const size_t amplitudes = amplitude_bytes(m, d, r, &first);
+        if (r != d->rank) {
             memcpy(f + D * (size_t)d->node_lo[r], msg, forces);
+            if (amplitudes)
+                memcpy(dA + first, msg + forces, amplitudes);
+        }
+        forces += amplitudes;
         for (int k = 0; k < WFF_BLOCK_SUMS + n_more; k++) {
             wff_fixed x;
             memcpy(&x, msg + forces + sizeof(wff_fixed) * (size_t)k, sizeof x);

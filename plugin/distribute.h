@@ -19,7 +19,8 @@ int wff_dist_elements(const wff_model *m, wff_elements *el, const int *global, w
  * the run cannot go on, and stops with a message). */
 void wff_dist_prepare(wff_model *m, wff_elements *el, const int *global);
 /* After a force pass's gather into f, one exchange: every rank's nodes'
- * forces to every rank; the pass's sums t->sums and more[0..n_more) (a zone's,
+ * forces to every rank (with static amplitudes, its elements' points'
+ * amplitudes el->point_dA too: whole on every rank after every pass); the pass's sums t->sums and more[0..n_more) (a zone's,
  * NULL: none) reduced over the ranks, order-free; the Newton count summed; the
  * lowest bad element over the ranks (a second exchange, only then). */
 int wff_dist_forces(wff_model *m, double *f, wff_force_totals *t, wff_fixed *more, int n_more);

@@ -202,6 +202,9 @@ unsigned long long wff_model_state_hash(const wff_model *m)
     const int n_el = m->el.n_tris + m->el.n_quads;
     h = hash_bytes(h, m->state, sizeof(double) * (size_t)m->n_state *
                                     wff_element_first_point(m->el.n_tris, n_el));
+    if (m->em.static_amplitudes && m->el.point_dA) /* (the points' own amplitudes: state) */
+        h = hash_bytes(h, m->el.point_dA, sizeof(double) * 2 *
+                                              wff_element_first_point(m->el.n_tris, n_el));
     if (m->el.eroded)
         h = hash_bytes(h, m->el.eroded, (size_t)n_el);
     return h;

@@ -89,7 +89,7 @@ int wff_model_element_field(const wff_model *m, const char *name, double *out,
 /* Absolute crimp amplitude A_k = A_k⁰ + ΔA_k (k = 0, 1; m) at every node into
  * out (n_nodes); -1 naming the cell if it has no reference geometry. */
 /* A 64-bit hash (FNV-1a) of the bits of the model's state: time, step, step
- * size, u, v, f, every point's internal state, the erosion flags, the
+ * size, u, v, f, every point's internal state (with static amplitudes, its own amplitudes), the erosion flags, the
  * projectile's tip, velocity and force, the energy accounts. Equal hashes: the
  * same state bit for bit (a run over MPI ranks against one rank, tests). */
 unsigned long long wff_model_state_hash(const wff_model *m);

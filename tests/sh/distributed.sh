@@ -16,6 +16,14 @@
 #  - a single ply struck within 1 % of its ballistic limit (coarse, fixed clamp: V50
 #    16.50 m/s, docs/ballistic_limit.md; struck at 16.6 m/s) gets the same verdict and
 #    state at 1, 2 and 4 ranks as on one.
+#  - static amplitudes (the points' own amplitudes: state the force pass updates and the
+#    replicated stable step reads at every element) at 2 and 3 ranks, and on quads at 2
+#    ranks with its checkpoints the serial run's byte for byte; yarn slip at 2 ranks;
+#  - -adapt over ranks is refused before the run (exit 2, naming it);
+#  - a script's own loop: explicit_loop.edp's history at 2 ranks, and
+#    tests/edp/scenes/api_ranks.edp (wovenffStep, wovenffForces with and without dt,
+#    wovenffStableStep, wovenffSetVector "u", element fields, the energy split, each
+#    state's hash) printing the same at 2 ranks as on one.
 # Skipped, saying why, where the MPI module or mpirun is missing (make deps installs
 # OpenMPI's libopenmpi-dev; make builds the module where mpicc is).
 set -u
@@ -115,4 +123,39 @@ for np in 2 4; do
     [ "$(verdict "$tmp/limit_$np")" = "$v0" ] || { echo "16.6 m/s at $np ranks: '$(verdict "$tmp/limit_$np")', serial '$v0'"; fail=1; }
 done
 echo "16.6 m/s (V50 16.50 m/s on this mesh): $v0 at 1 (the serial module), 2 and 4 ranks"
+
+# static amplitudes (triangles, then quads with checkpoints), yarn slip
+case_at static "2 3" -mesh coarse -tend 3e-4 -amplitudes static
+case_at staticquad "2" -mesh coarse -tend 3e-4 -amplitudes static -elements quad -checkpoint 10
+n=0
+for f in "$tmp/staticquad_0/checkpoint/"model_*.bin; do
+    [ -f "$f" ] || continue
+    n=$((n + 1))
+    cmp -s "$f" "$tmp/staticquad_2/checkpoint/$(basename "$f")" \
+        || { echo "static amplitudes on quads: checkpoint $(basename "$f") at 2 ranks differs from the serial one"; fail=1; }
+done
+[ "$n" -gt 0 ] || { echo "static amplitudes on quads: no checkpoint written"; fail=1; }
+case_at slip "2" -mesh coarse -tend 3e-4 -set yarn_friction=0.2
+
+# -adapt over ranks: refused before the run, naming it
+run adapt 2 -mesh coarse -tend 3e-4 -adapt 1
+rc=$?
+{ [ $rc -eq 2 ] && grep -q "error: ballistic_impact: -adapt 1: the model runs over 2 MPI ranks" "$tmp/adapt_2.log"; } \
+    || { echo "-adapt at 2 ranks: exit $rc, want 2 with the refusal"; tail -3 "$tmp/adapt_2.log"; fail=1; }
+echo "-adapt at 2 ranks: refused (exit $rc)"
+
+# a script's own loop: explicit_loop.edp, and the API's calls one by one
+for np in 0 2; do
+    if [ "$np" = 0 ]; then set -- sh tools/ff.sh; else set -- sh tools/ff.sh -np "$np"; fi
+    timeout -k 5 300 "$@" freefem_scripts/explicit_loop.edp -n 12 -tend 1e-4 -plots 0 \
+        -out "$tmp/loop_$np" > "$tmp/loop_$np.log" 2>&1 || { echo "explicit_loop at $np ranks: exit $?"; tail -3 "$tmp/loop_$np.log"; fail=1; }
+    timeout -k 5 300 "$@" tests/edp/scenes/api_ranks.edp > "$tmp/api_$np.txt" 2>&1 \
+        || { echo "api_ranks.edp at $np ranks: exit $?"; tail -3 "$tmp/api_$np.txt"; fail=1; }
+done
+cmp -s "$tmp/loop_0/history.csv" "$tmp/loop_2/history.csv" \
+    || { echo "explicit_loop at 2 ranks: history.csv differs from the serial run's"; fail=1; }
+grep -q '^steps ' "$tmp/api_0.txt" || { echo "api_ranks.edp printed no state"; fail=1; }
+diff "$tmp/api_0.txt" "$tmp/api_2.txt" > "$tmp/api.diff" \
+    || { echo "api_ranks.edp at 2 ranks differs from one rank:"; head -6 "$tmp/api.diff"; fail=1; }
+echo "a script's own loop at 2 ranks: explicit_loop.edp's history and api_ranks.edp's $(grep -c . "$tmp/api_0.txt") lines as on one rank"
 exit $fail
