@@ -81,7 +81,7 @@ static int element_nodes(const wff_model *m, int e, int n[4])
     return 4;
 }
 
-int wff_dist_setup(wff_model *m, wff_error *err)
+static int dist_setup(wff_model *m, wff_error *err)
 {
     if (m->comm.size <= 1 || m->dist)
         return 0;
@@ -186,7 +186,7 @@ static int elements_masks(const wff_model *m, wff_elements *el, const int *globa
     return 0;
 }
 
-int wff_dist_elements(const wff_model *m, wff_elements *el, const int *global, wff_error *err)
+static int dist_elements(const wff_model *m, wff_elements *el, const int *global, wff_error *err)
 {
     if (!m->dist || el->block_run)
         return 0;
@@ -198,7 +198,7 @@ void wff_dist_prepare(wff_model *m, wff_elements *el, const int *global)
     if (m->comm.size <= 1 || (m->dist && el->block_run))
         return;
     wff_error err = {0};
-    if (wff_dist_setup(m, &err) || wff_dist_elements(m, el, global, &err)) {
+    if (dist_setup(m, &err) || dist_elements(m, el, global, &err)) {
         /* (a few bytes an element: a machine out of memory here cannot step) */
         fprintf(stderr, "wovenff: rank %d: %s\n", m->comm.rank, err.message);
         abort();
@@ -407,11 +407,6 @@ void wff_dist_states_whole(wff_model *m)
     const double spent = wff_wall_seconds() - start;
     m->dist->exchange_seconds += spent;
     m->dist->gather_seconds += spent;
-}
-
-int wff_dist_rank_count(const wff_model *m)
-{
-    return m->dist ? m->dist->size : 1;
 }
 
 /* The part (part.h): the model's ranks and the timers of the pass it splits

@@ -6,14 +6,7 @@
 
 #include "solver_internal.h"
 
-/* The ranks' elements and nodes (m->dist), once per model: -1 (err set) out
- * of memory. Collective: no exchange, every rank computes the same split. */
-int wff_dist_setup(wff_model *m, wff_error *err);
 void wff_dist_free(wff_model *m);
-/* el's masks for this rank (the blocks it computes and counts, its nodes'
- * gather), if not made yet (a set of elements made anew has none); `global`
- * maps el's elements to the model's (NULL: the same). */
-int wff_dist_elements(const wff_model *m, wff_elements *el, const int *global, wff_error *err);
 /* Before a force pass over el (a model's, or a zone's: `global` its elements'
  * model indices): the model's split and el's masks, made once (out of memory:
  * the run cannot go on, and stops with a message). */
@@ -34,8 +27,6 @@ int wff_dist_owns_element(const wff_model *m, int e);
 int wff_dist_eroded_gather(wff_model *m, int n_mine);
 /* The points' states (m->state) whole on every rank: each rank's own. */
 void wff_dist_states_whole(wff_model *m);
-/* The model's rank count (1 without ranks). */
-int wff_dist_rank_count(const wff_model *m);
 
 /* The part (part.h): its values mpi_ranks and exchange_seconds. */
 extern const struct wff_part_ops wff_distributed_part;
