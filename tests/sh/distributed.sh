@@ -116,10 +116,11 @@ cmp -s "$tmp/ck_2/history.csv" "$tmp/paper_0/history.csv" \
 echo "checkpoint at 2 ranks, restarted at 3: state $(hash_of "$tmp/ck_2")"
 
 # a pack's checkpoint at 2 ranks (the 8 plies at frame 10 of 20), restarted at 3
-run packck 2 -mesh coarse -plies 8 -tend 2e-4 -checkpoint 10 -stopafter 12
+packck="-mesh coarse -plies 8 -tend 2e-4 -checkpoint 10"
+run packck 2 $packck -stopafter 12
 rc=$?
 [ $rc -eq 9 ] || { echo "the pack checkpointed at 2 ranks: exit $rc, want 9 (-stopafter)"; tail -3 "$tmp/packck_2.log"; fail=1; }
-timeout -k 5 300 sh tools/ff.sh -np 3 "$scene" -restart "$tmp/packck_2" -threads 1 -plots 0 -vtkdt 1 \
+timeout -k 5 300 sh tools/ff.sh -np 3 "$scene" $packck -restart "$tmp/packck_2" -threads 1 -plots 0 -vtkdt 1 \
     > "$tmp/packck_3.log" 2>&1 || { echo "the pack's restart at 3 ranks: exit $?"; tail -5 "$tmp/packck_3.log"; fail=1; }
 cmp -s "$tmp/packck_2/history.csv" "$tmp/pack_0/history.csv" && [ "$(hash_of "$tmp/packck_2")" = "$(hash_of "$tmp/pack_0")" ] \
     || { echo "the pack checkpointed at 2 ranks, restarted at 3: state $(hash_of "$tmp/packck_2"), serial $(hash_of "$tmp/pack_0")"; fail=1; }
