@@ -103,6 +103,12 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
         g = wff_fnv1a(g, &p->edge_radius, sizeof(double));
         g = wff_fnv1a(g, p->axis, sizeof p->axis);
     }
+    if (p->nose == WFF_NOSE_CHISEL) { /* (new shapes: older checkpoints have none) */
+        g = wff_fnv1a(g, &p->chisel_flat, sizeof(double));
+        g = wff_fnv1a(g, &p->chisel_bevel, sizeof(double));
+    }
+    if (p->oblique)
+        g = wff_fnv1a(g, p->path, sizeof p->path);
     h->settings_hash = g;
     h->dt_factor = m->dt_factor;
     h->symmetry_factor = m->symmetry_factor;
