@@ -1,8 +1,8 @@
 /* pack.c: a multi-ply pack's part of the step (part.h, pack.h): the per-ply
  * energies after each force pass (from the zones' per-pass totals and the
  * elements erosion took), the settings ply_mu and ply_thickness, every ply
- * following the model-wide orientation, checkpoints refused, and the per-ply
- * and pack values (include/wovenff/pack.h). The stacked model is built by
+ * following the model-wide orientation, its state and settings for checkpoints,
+ * and the per-ply and pack values (include/wovenff/pack.h). The stacked model is built by
  * pack_build.c, the ply-to-ply contact is ply_contact.c's. Knows the model's
  * arrays, zones and erosion; nothing of FreeFEM. */
 #include "pack.h"
@@ -11,6 +11,7 @@
 #include "ply_contact.h"
 #include "zones.h"
 #include "wovenff/renumber.h"
+#include "wovenff/text_io.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -290,14 +291,35 @@ int wff_model_pack_value(const wff_model *m, const char *key, double *value, wff
     return 0;
 }
 
-/* Checkpoints do not hold the ply contact's state. */
-static int pack_refuses_checkpoint(const wff_model *m, char *why, size_t size)
+/* Its state for checkpoints and the adaptive step: each ply's energy
+ * accounts (the stored energy too: a value read before the first pass after a
+ * load is the checkpointed one). The ply contact's are its own part's. */
+static int pack_state_fields(wff_model *m, wff_state_field *f)
 {
-    if (!m->pack || m->pack->n < 2)
+    struct wff_pack *P = m->pack;
+    if (!P || P->n < 2)
         return 0;
-    snprintf(why, size, "the model is a pack of %d plies: its ply contact state is not in the "
-             "checkpoint format", m->pack->n);
-    return 1;
+    const size_t n = (size_t)P->n;
+    f[0] = (wff_state_field){P->stored, sizeof(double), n};
+    f[1] = (wff_state_field){P->shear, sizeof(double), n};
+    f[2] = (wff_state_field){P->failure, sizeof(double), n};
+    f[3] = (wff_state_field){P->slip, sizeof(double), n};
+    f[4] = (wff_state_field){P->eroded, sizeof(double), n};
+    return 5;
+}
+
+/* What a checkpoint of a pack must match beyond the stacked mesh: the plies'
+ * spacing, each ply's warp direction, the contact's friction and thickness. */
+static uint64_t pack_fingerprint(const wff_model *m, uint64_t g)
+{
+    const struct wff_pack *P = m->pack;
+    if (!P || P->n < 2)
+        return g;
+    g = wff_fnv1a(g, &P->n, sizeof P->n);
+    g = wff_fnv1a(g, &P->gap, sizeof P->gap);
+    g = wff_fnv1a(g, P->orientation, sizeof(double) * (size_t)P->n);
+    g = wff_fnv1a(g, &P->mu, sizeof P->mu);
+    return wff_fnv1a(g, &P->thickness, sizeof P->thickness);
 }
 
 /* The pack's values by name, in wovenffState's order (include/wovenff/pack.h). */
@@ -320,6 +342,7 @@ const wff_part_ops wff_pack_part = {
     .settings = pack_settings,
     .value_names = pack_value_names,
     .value = pack_value,
-    .refuses_checkpoint = pack_refuses_checkpoint,
+    .state_fields = pack_state_fields,
+    .fingerprint = pack_fingerprint,
     .free = pack_free,
 };

@@ -18,6 +18,7 @@
 #include "solver_internal.h"
 
 #include <stddef.h>
+#include <stdint.h>
 
 /* A setting by name (wff_model_set_option): check (NULL: none) refuses a value
  * with a message naming it and changes nothing; apply sets it (after check),
@@ -27,6 +28,11 @@ typedef struct wff_setting {
     int (*check)(const wff_model *m, double value, wff_error *err);
     int (*apply)(wff_model *m, double value, wff_error *err);
 } wff_setting;
+
+/* One field of the evolving state: data, element size, count (the
+ * checkpoint's file order; state_fields.h). */
+typedef struct wff_state_field { void *data; size_t size, count; } wff_state_field;
+#define WFF_PART_FIELDS_MAX 16 /* a part's own fields at most (state_fields below) */
 
 typedef struct wff_part_ops {
     const char *name;   /* for messages and docs: "projectile_contact", ... */
@@ -84,6 +90,18 @@ typedef struct wff_part_ops {
     int (*refuses_checkpoint)(const wff_model *m, char *why, size_t size);
     int (*refuses_remesh)(const wff_model *m, char *why, size_t size);
 
+    /* Its evolving state, what a checkpoint saves and the adaptive step keeps
+     * beyond the model's own (state_fields.c): its fields (pointer, element
+     * size, count) into f, returning how many (at most WFF_PART_FIELDS_MAX); 0
+     * when it has none for this model. A value the part recomputes from the
+     * model's state every step is not state. */
+    int (*state_fields)(wff_model *m, wff_state_field *f);
+
+    /* Its settings that change the numbers, hashed into g (64-bit FNV-1a,
+     * wff_fnv1a) for a checkpoint's fingerprint: a checkpoint loads only into a
+     * model whose parts hash alike. g unchanged when the part is off. */
+    uint64_t (*fingerprint)(const wff_model *m, uint64_t g);
+
     /* A mesh transfer (remesh.c) that no part refused: carry the part onto the
      * new model `to`, whose elements are set up (its arrays of the part are
      * NULL); -1 (err set) on failure. */
@@ -114,6 +132,9 @@ void wff_parts_setting_names(char *out, size_t size, int comma);
  * carries over. */
 int wff_parts_refuse_checkpoint(const wff_model *m, char *why, size_t size);
 int wff_parts_refuse_remesh(const wff_model *m, char *why, size_t size);
+/* Every part's state fields, in the list's order, into f; returns their number. */
+int wff_parts_state_fields(wff_model *m, wff_state_field *f);
+uint64_t wff_parts_fingerprint(const wff_model *m, uint64_t g);
 int wff_parts_carry(const wff_model *from, wff_model *to, wff_error *err);
 void wff_parts_free(wff_model *m);
 

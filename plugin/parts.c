@@ -128,6 +128,23 @@ int wff_parts_refuse_remesh(const wff_model *m, char *why, size_t size)
     return 0;
 }
 
+int wff_parts_state_fields(wff_model *m, wff_state_field *f)
+{
+    int k = 0;
+    EACH_PART(p)
+        if ((*p)->state_fields)
+            k += (*p)->state_fields(m, f + k);
+    return k;
+}
+
+uint64_t wff_parts_fingerprint(const wff_model *m, uint64_t g)
+{
+    EACH_PART(p)
+        if ((*p)->fingerprint)
+            g = (*p)->fingerprint(m, g);
+    return g;
+}
+
 int wff_parts_carry(const wff_model *from, wff_model *to, wff_error *err)
 {
     EACH_PART(p)

@@ -1386,9 +1386,27 @@ static double ply_contact_dissipated(const wff_model *m)
     return m->pack ? m->pack->dissipated : 0;
 }
 
+/* Its state for checkpoints and the adaptive step: the energy its pairs
+ * removed, and the last step's measures (the values a load gives back before
+ * the next step recomputes them). The rest it rebuilds every step from the
+ * positions and the erosion flags. */
+static int ply_contact_state_fields(wff_model *m, wff_state_field *f)
+{
+    struct wff_pack *P = m->pack;
+    if (!P || P->n < 2)
+        return 0;
+    f[0] = (wff_state_field){&P->dissipated, sizeof P->dissipated, 1};
+    f[1] = (wff_state_field){&P->penetration, sizeof P->penetration, 1};
+    f[2] = (wff_state_field){&P->contacts, sizeof P->contacts, 1};
+    f[3] = (wff_state_field){&P->left_out, sizeof P->left_out, 1};
+    f[4] = (wff_state_field){&P->sweeps, sizeof P->sweeps, 1};
+    return 5;
+}
+
 const wff_part_ops wff_ply_contact_part = {
     .name = "ply_contact",
     .correct = wff_ply_contact_correct,
     .book = ply_contact_book,
     .dissipated = ply_contact_dissipated,
+    .state_fields = ply_contact_state_fields,
 };

@@ -3,6 +3,7 @@
  * snapshots of it in memory (plugin/integrator.c). Knows the model's arrays;
  * nothing of how they evolve. */
 #include "state_fields.h"
+#include "part.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -62,7 +63,7 @@ int wff_state_fields(wff_model *m, int n_candidates, wff_state_field *f)
     if (m->el.eroded) /* erosion on: every element's flag */
         FIELD(m->el.eroded, m->el.n_tris + m->el.n_quads);
 #undef FIELD
-    return k;
+    return k + wff_parts_state_fields(m, f + k); /* the parts' own (a pack's accounts) */
 }
 /* The adaptive step's snapshots: the state fields, the contact candidates at
  * their capacity. */

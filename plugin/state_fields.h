@@ -3,10 +3,11 @@
 #ifndef WFF_STATE_FIELDS_H
 #define WFF_STATE_FIELDS_H
 
+#include "part.h" /* (wff_state_field, a part's fields) */
 #include "solver_internal.h"
 
-typedef struct wff_state_field { void *data; size_t size, count; } wff_state_field;
-#define WFF_STATE_FIELDS_MAX 48 /* room for what wff_state_fields gives: 42 at most now */
+#define WFF_STATE_FIELDS_MAX 64 /* room for what wff_state_fields gives: the model's 42 at
+                                   most now, then the parts' */
 
 /* The fields in file order (pointer, element size, count) into f, with
  * n_candidates contact candidates; returns their number. */

@@ -12,7 +12,8 @@
 #    flags, the projectile and the energy accounts) the serial run's;
 #  - 2 ranks of 2 threads each: the pack's serial one-thread state and history;
 #  - a checkpoint written at 2 ranks is the serial run's checkpoint byte for byte, and
-#    restarted at 3 ranks ends on the serial run's state, history and summary;
+#    restarted at 3 ranks ends on the serial run's state, history and summary (the
+#    paper's scene and the 8-ply pack);
 #  - a single ply struck within 1 % of its ballistic limit (coarse, fixed clamp: V50
 #    16.50 m/s, docs/ballistic_limit.md; struck at 16.6 m/s) gets the same verdict and
 #    state at 1, 2 and 4 ranks as on one.
@@ -113,6 +114,17 @@ cmp -s "$tmp/ck_2/history.csv" "$tmp/paper_0/history.csv" \
 [ "$(hash_of "$tmp/ck_2")" = "$(hash_of "$tmp/paper_0")" ] \
     || { echo "checkpoint at 2 ranks, restart at 3: state $(hash_of "$tmp/ck_2"), serial $(hash_of "$tmp/paper_0")"; fail=1; }
 echo "checkpoint at 2 ranks, restarted at 3: state $(hash_of "$tmp/ck_2")"
+
+# a pack's checkpoint at 2 ranks (the 8 plies at frame 10 of 20), restarted at 3
+packck="-mesh coarse -plies 8 -tend 2e-4 -checkpoint 10"
+run packck 2 $packck -stopafter 12
+rc=$?
+[ $rc -eq 9 ] || { echo "the pack checkpointed at 2 ranks: exit $rc, want 9 (-stopafter)"; tail -3 "$tmp/packck_2.log"; fail=1; }
+timeout -k 5 300 sh tools/ff.sh -np 3 "$scene" $packck -restart "$tmp/packck_2" -threads 1 -plots 0 -vtkdt 1 \
+    > "$tmp/packck_3.log" 2>&1 || { echo "the pack's restart at 3 ranks: exit $?"; tail -5 "$tmp/packck_3.log"; fail=1; }
+cmp -s "$tmp/packck_2/history.csv" "$tmp/pack_0/history.csv" && [ "$(hash_of "$tmp/packck_2")" = "$(hash_of "$tmp/pack_0")" ] \
+    || { echo "the pack checkpointed at 2 ranks, restarted at 3: state $(hash_of "$tmp/packck_2"), serial $(hash_of "$tmp/pack_0")"; fail=1; }
+echo "the 8-ply pack checkpointed at 2 ranks, restarted at 3: state $(hash_of "$tmp/packck_2")"
 
 # the verdict within 1 % of the ballistic limit
 case_at limit "2 4" -mesh coarse -clamp fixed -failure on -velocity 16.6

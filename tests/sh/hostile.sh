@@ -100,9 +100,9 @@ mkfifo "$tmp/m.fifo"
 probe plymaterial_pipe 2 "$tmp/plymat_fifo" "-plymaterial $tmp/m.fifo is a pipe" \
     -- $ballistic $short -out "$tmp/plymat_fifo" -plies 2 -plymaterial "$kevlar,$tmp/m.fifo"
 probe gap_negative 2 "$tmp/gap" "-gap -1: must be >= 0" -- $ballistic $short -out "$tmp/gap" -plies 2 -gap -1
-probe pack_checkpoint 2 - "-checkpoint 1: the model is a pack of 2 plies" \
-    -- $ballistic $short -out "$tmp/pack_ckpt" -plies 2 -checkpoint 1
-check pack_checkpoint_empty "the refused pack's folder is left empty" test -z "$(ls -A "$tmp/pack_ckpt" 2>/dev/null)"
+probe pack_adapt 2 - "-adapt 5: the model is a pack of 2 plies" \
+    -- $ballistic $short -out "$tmp/pack_adapt" -plies 2 -adapt 5
+check pack_adapt_empty "the refused pack's folder is left empty" test -z "$(ls -A "$tmp/pack_adapt" 2>/dev/null)"
 # 2 plies at 3000 m/s: perforated (the nose through both), never "not perforated"
 probe pack_3000 0 - "perforated, the projectile's nose is through a hole in every ply" \
     -- $ballistic -mesh coarse -tend 3e-4 -plots 0 -out "$tmp/pack_3000" -plies 2 -failure on -velocity 3000 &&

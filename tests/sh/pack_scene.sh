@@ -263,7 +263,6 @@ bad "-plymaterial 'no_such.txt': entry 1 'no_such.txt': no such file" -plies 2 -
 bad "-plymaterial 'README.md': entry 1 README.md cannot be read" -plies 2 -plymaterial README.md
 bad "-layup 45 (ply 0 at 45 deg) with -mesh meshes/ballistic_quarter.geo" -plies 2 -layup 45 -mesh meshes/ballistic_quarter.geo
 bad "-plymu -1: must be >= 0" -plies 2 -plymu -1
-bad "-checkpoint 5: the model is a pack of 2 plies" -plies 2 -checkpoint 5
 grep -v -E '^(failure|fail_strain|rupture_strain)' freefem_scripts/materials/kevlar_s706.txt > "$tmp/pack_nofailure.txt"
 bad "-failure on: -plymaterial $tmp/pack_nofailure.txt holds no failure data" -plies 2 -failure on -plymaterial "$tmp/pack_nofailure.txt"
 bad "-adapt 5: the model is a pack of 2 plies" -plies 2 -adapt 5

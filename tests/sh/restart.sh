@@ -9,7 +9,8 @@
 #   C     as B with another default thread count (OMP_NUM_THREADS=1, no -threads).
 # B's history.csv and profiles.csv must equal ref's row for row (bitwise here:
 # the explicit scheme is deterministic and the checkpoint holds all of its
-# state; numbers are also compared to 1e-12 relative), and A keeps its files.
+# state; numbers are also compared to 1e-12 relative), and A keeps its files. A pack
+# with erosion is restarted likewise (the last case).
 # Then what a restart refuses: another -velocity (exit 2), a folder without a
 # checkpoint (exit 2), a damaged checkpoint of every kind (a record or the model
 # cut in half, a byte flipped, a NUL, longer, `latest` cut, garbled or naming
@@ -139,4 +140,24 @@ for key in peak_displacement peak_time steps final_projectile_velocity; do
     [ "$a" = "$b" ] || { echo "L: summary $key: '$a' vs '$b'"; fail=1; }
 done
 echo "killed after the last checkpoint (t = $at s = -tend): the restart finished, history equal"
+# a pack (2 plies, failure on, 150 m/s: elements erode from 0.11 ms, perforated at 0.3 ms):
+# checkpointed every 5 frames, stopped after frame 22 (the checkpoint at 0.2 ms holds eroded
+# elements and each ply's accounts), restarted to the end: the uninterrupted run's files and
+# state byte for byte (the pack's and the ply contact's state in the checkpoint, part.h)
+pack="-mesh coarse -tend 0.4e-3 -plots 0 -vtkdt 1 -plies 2 -failure on -velocity 150 -threads 1"
+run pack_ref 0 $pack -out "$tmp/pack_ref"
+run pack_first 9 $pack -out "$tmp/P" -checkpoint 5 -stopafter 22
+at=$(sed -n 's/^loop time //p' "$tmp/P/checkpoint/scene_20.txt" 2>/dev/null)
+eroded_at=$(awk -F, -v t="$at" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "eroded_energy") c = i; next }
+    $1 + 0 <= t + 0 && $c > 0 { n++ } END { print n + 0 }' "$tmp/P/history.csv")
+[ "$eroded_at" -gt 0 ] || { echo "pack: no element eroded before the checkpoint at '$at' s: the case tests no erosion"; fail=1; }
+run pack_restart 0 $pack -restart "$tmp/P" -out "$tmp/PB"
+for f in history.csv profiles.csv; do
+    cmp -s "$tmp/pack_ref/$f" "$tmp/PB/$f" || { echo "pack: $f differs from the uninterrupted run's"; fail=1; }
+done
+hash() { sed -n 's/.*"state_hash": "\([0-9a-f]*\)".*/\1/p' "$1/summary.json"; }
+[ -n "$(hash "$tmp/PB")" ] && [ "$(hash "$tmp/PB")" = "$(hash "$tmp/pack_ref")" ] \
+    || { echo "pack: state $(hash "$tmp/PB") after the restart, $(hash "$tmp/pack_ref") uninterrupted"; fail=1; }
+grep -q '"perforated": true' "$tmp/PB/summary.json" || { echo "pack: the restarted run did not perforate"; fail=1; }
+echo "a 2-ply pack with erosion (eroded before the checkpoint at $at s): restarted, the same state $(hash "$tmp/PB")"
 exit $fail

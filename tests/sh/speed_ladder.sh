@@ -75,4 +75,15 @@ echo "  300 m/s at 0.8, -travel 0 -adaptive 1: exit $rc, step_cuts $cuts, larges
 [ $rc -eq 0 ] || { echo "300 m/s adaptive: exit $rc"; tail -3 "$out.log"; fail=1; }
 awk -v c="$cuts" -v e="$err" 'BEGIN { exit !(c >= 1 && c <= 8 && e < 1e-5 && e > -1e-5) }' \
     || { echo "300 m/s adaptive: step_cuts '$cuts', energy error '$err'"; fail=1; }
+# a pack (3 plies) at 300 m/s: the same back-and-halve, the pack's accounts in the snapshot
+out="$tmp/v300_pack_adaptive"
+sh tools/ff.sh "$scene" -mesh coarse -tend 0.2e-3 -plots 0 -vtkdt 1 -velocity 300 -travel 0 \
+    -adaptive 1 -plies 3 -out "$out" > "$out.log" 2>&1
+rc=$?
+cuts=$(sed -n 's/.*"step_cuts": \([^,]*\),.*/\1/p' "$out/summary.json")
+err=$(sed -n 's/.*"max_energy_error": \([^,]*\),.*/\1/p' "$out/summary.json")
+echo "  3 plies at 300 m/s, -travel 0 -adaptive 1: exit $rc, step_cuts $cuts, largest energy error $err"
+[ $rc -eq 0 ] || { echo "3 plies at 300 m/s adaptive: exit $rc"; tail -3 "$out.log"; fail=1; }
+awk -v c="$cuts" -v e="$err" 'BEGIN { exit !(c >= 1 && c <= 8 && e < 1e-4 && e > -1e-4) }' \
+    || { echo "3 plies at 300 m/s adaptive: step_cuts '$cuts', energy error '$err'"; fail=1; }
 exit $fail
