@@ -164,8 +164,8 @@ static const char *hash_mismatch(const checkpoint_header *a, const checkpoint_he
         return "the boundary conditions differ (fixed or prescribed DOFs, friction clamp)";
     if (a->settings_hash != b->settings_hash)
         return "the solver settings differ (preload F_pre, amplitude mass factor, static "
-               "amplitudes, contact search, threads, the projectile's nose, chisel, obliquity or impact point, or "
-               "a pack's gap, layup, ply_mu or ply_thickness)";
+               "amplitudes, contact search, threads, the projectile's nose, chisel, obliquity or "
+               "impact point, or a pack's gap, layup, ply_mu or ply_thickness)";
     return NULL;
 }
 
