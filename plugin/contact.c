@@ -85,41 +85,6 @@ static double penetration_flat(const wff_projectile *p, const double x[3], doubl
     return re - dist;
 }
 
-/* The chisel (WFF_NOSE_CHISEL): the intersection of four half-spaces, each
- * with its signed depth (> 0 inside) and outward normal: the flat's plane
- * z <= tip, the shank ρ <= r and the two bevels through the flat's long
- * edges (ξ = ±w/2, z = tip), tilted by β from the end face. A point is inside
- * when every depth is > 0; the distance to the surface of a convex
- * intersection from inside is the least depth (exact), the normal its face's.
- * Outside, the largest of the signed distances (−depth) is a lower bound of
- * the distance (exact off the edges): what the ply contact's gap takes. */
-static double chisel_depths(const wff_projectile *p, const double x[3], double normal[3])
-{
-    const double sb = sin(p->chisel_bevel), cb = cos(p->chisel_bevel), half = 0.5 * p->chisel_flat;
-    const double dx = x[0] - p->axis[0], dy = x[1] - p->axis[1], dz = x[2] - p->tip;
-    const double rho = hypot(dx, dy);
-    const double depth[4] = {-dz, -((dx - half) * sb + dz * cb), -((-dx - half) * sb + dz * cb),
-                             p->radius - rho};
-    int k = 0;
-    for (int i = 1; i < 4; i++)
-        if (depth[i] < depth[k] && !(i == 3 && rho == 0))
-            k = i;
-    const double n[4][3] = {{0, 0, 1}, {sb, 0, cb}, {-sb, 0, cb},
-                            {rho > 0 ? dx / rho : 0, rho > 0 ? dy / rho : 0, 0}};
-    for (int i = 0; i < 3; i++)
-        normal[i] = n[k][i];
-    return depth[k];
-}
-
-static double penetration_chisel(const wff_projectile *p, const double x[3], double normal[3])
-{
-    double nrm[3], depth = chisel_depths(p, x, nrm);
-    if (depth <= 0)
-        return 0;
-    memcpy(normal, nrm, sizeof nrm);
-    return depth;
-}
-
 static double penetration_straight(const wff_projectile *p, const double x[3], double normal[3])
 {
     switch (p->nose) {
@@ -128,34 +93,10 @@ static double penetration_straight(const wff_projectile *p, const double x[3], d
     case WFF_NOSE_SPHERE:
         return penetration_sphere(p, x, normal);
     case WFF_NOSE_CHISEL:
-        return penetration_chisel(p, x, normal);
+        return wff_chisel_penetration(p, x, normal);
     default:
         return penetration_hemisphere(p, x, normal);
     }
-}
-
-/* An oblique projectile (path d = (sin θ, 0, cos θ)): the point in its own
- * frame, ξ along e_ξ = (cos θ, 0, −sin θ), η along y, ζ along d, from
- * (axis, 0); `local` is the projectile as a normal shot at the frame's origin. */
-static void to_frame(const wff_projectile *p, const double x[3], double y[3], wff_projectile *local)
-{
-    const double s = p->path[0], c = p->path[2];
-    const double r[3] = {x[0] - p->axis[0], x[1] - p->axis[1], x[2]};
-    y[0] = c * r[0] - s * r[2];
-    y[1] = r[1];
-    y[2] = s * r[0] + c * r[2];
-    *local = *p;
-    local->axis[0] = local->axis[1] = 0;
-    local->oblique = 0;
-}
-
-/* A normal of the projectile's frame back in the fabric's: n_ξ e_ξ + n_η y + n_ζ d. */
-static void from_frame(const wff_projectile *p, double normal[3])
-{
-    const double s = p->path[0], c = p->path[2], n[3] = {normal[0], normal[1], normal[2]};
-    normal[0] = c * n[0] + s * n[2];
-    normal[1] = n[1];
-    normal[2] = -s * n[0] + c * n[2];
 }
 
 double wff_projectile_penetration(const wff_projectile *p, const double x[3], double normal[3])
@@ -164,10 +105,10 @@ double wff_projectile_penetration(const wff_projectile *p, const double x[3], do
         return penetration_straight(p, x, normal);
     wff_projectile local;
     double y[3];
-    to_frame(p, x, y, &local);
+    wff_projectile_to_frame(p, x, y, &local);
     const double delta = penetration_straight(&local, y, normal);
     if (delta > 0)
-        from_frame(p, normal);
+        wff_projectile_from_frame(p, normal);
     return delta;
 }
 
@@ -183,16 +124,16 @@ double wff_projectile_gap(const wff_projectile *p, const double x[3], double nor
         return gap_straight(p, x, normal);
     wff_projectile local;
     double y[3];
-    to_frame(p, x, y, &local);
+    wff_projectile_to_frame(p, x, y, &local);
     const double gap = gap_straight(&local, y, normal);
-    from_frame(p, normal);
+    wff_projectile_from_frame(p, normal);
     return gap;
 }
 
 static double gap_straight(const wff_projectile *p, const double x[3], double normal[3])
 {
     if (p->nose == WFF_NOSE_CHISEL)
-        return -chisel_depths(p, x, normal);
+        return -wff_chisel_depth(p, x, normal);
     if (p->nose == WFF_NOSE_FLAT) {
         const double re = p->edge_radius, a = p->radius - re, zc = p->tip - re;
         const double dx = x[0] - p->axis[0], dy = x[1] - p->axis[1], dz = x[2] - zc;
@@ -240,43 +181,9 @@ double wff_projectile_nose_length(const wff_projectile *p)
     }
 }
 
-double wff_projectile_lead(const wff_projectile *p)
-{
-    if (!p->oblique)
-        return 0;
-    const double s = p->path[0], c = p->path[2], r = p->radius;
-    switch (p->nose) {
-    case WFF_NOSE_FLAT:
-        return p->edge_radius * (1 - c) + (r - p->edge_radius) * s;
-    case WFF_NOSE_CHISEL: {
-        const double half = 0.5 * p->chisel_flat;
-        return fmax(half * s, r * s - (r - half) * tan(p->chisel_bevel) * c);
-    }
-    default: /* the hemisphere and the sphere: a sphere of radius r a radius behind the tip */
-        return r * (1 - c);
-    }
-}
-
-void wff_projectile_momentum(const wff_projectile *p, double momentum[3])
-{
-    const double d[3] = {p->oblique ? p->path[0] : 0, 0, p->oblique ? p->path[2] : 1};
-    for (int i = 0; i < 3; i++)
-        momentum[i] = p->active ? p->mass_whole * p->velocity * d[i] : 0;
-}
-
 static double penetration(const wff_projectile *p, const double x[3], double normal[3])
 {
     return wff_projectile_penetration(p, x, normal);
-}
-
-double wff_model_projectile_lead(const wff_model *m)
-{
-    return m->projectile.active ? wff_projectile_lead(&m->projectile) : 0;
-}
-
-void wff_model_projectile_momentum(const wff_model *m, double momentum[3])
-{
-    wff_projectile_momentum(&m->projectile, momentum);
 }
 
 static const char *const nose_names[WFF_NOSE_COUNT] = {"hemisphere", "flat", "sphere", "chisel"};
@@ -317,20 +224,10 @@ static int axis_check(double symmetry, const double axis[2], wff_error *err)
     return 0;
 }
 
-/* An oblique path breaks every mirror plane of a symmetric model. */
-static int oblique_check(double symmetry, const wff_projectile *p, wff_error *err)
-{
-    if (p->oblique && symmetry != 1)
-        return wff_fail(err, "obliquity %g deg with a symmetric model (symmetry %g): an oblique "
-                        "path breaks its mirror planes; model the full specimen (symmetry 1)",
-                        atan2(p->path[0], p->path[2]) * 180 / M_PI, symmetry);
-    return 0;
-}
-
 int wff_contact_symmetry_changed(wff_model *m, wff_error *err)
 {
     wff_projectile *p = &m->projectile;
-    if (axis_check(m->symmetry_factor, p->axis, err) || oblique_check(m->symmetry_factor, p, err))
+    if (axis_check(m->symmetry_factor, p->axis, err) || wff_contact_oblique_check(m->symmetry_factor, p, err))
         return -1;
     if (p->active)
         p->mass = p->mass_whole / m->symmetry_factor;
@@ -417,58 +314,6 @@ int wff_model_set_projectile_shape(wff_model *m, int nose, double edge_radius, w
     if (p->active && wff_model_place_projectile(m, p->tip, err)) {
         p->nose = old_nose;
         p->edge_radius = old_edge;
-        return -1;
-    }
-    return 0;
-}
-
-int wff_model_set_projectile_chisel(wff_model *m, double flat_width, double bevel_degrees,
-                                    wff_error *err)
-{
-    wff_projectile *p = &m->projectile;
-    if (started(m))
-        return wff_fail(err, "projectile shape: the run has started (step %ld); set the nose "
-                        "before the first step", m->step);
-    if (!(flat_width >= 0) || !isfinite(flat_width))
-        return wff_fail(err, "chisel nose: flat width %g m must be >= 0", flat_width);
-    if (!(bevel_degrees > 0 && bevel_degrees < 90))
-        return wff_fail(err, "chisel nose: bevel angle %g deg must be in (0, 90) (from the end "
-                        "face)", bevel_degrees);
-    if (p->active && flat_width > 2 * p->radius)
-        return wff_fail(err, "chisel nose: flat width %g m is wider than the projectile (radius "
-                        "%g m)", flat_width, p->radius);
-    const wff_projectile old = *p;
-    p->nose = WFF_NOSE_CHISEL;
-    p->edge_radius = 0;
-    p->chisel_flat = flat_width;
-    p->chisel_bevel = bevel_degrees * M_PI / 180;
-    if (p->active && wff_model_place_projectile(m, p->tip, err)) {
-        *p = old;
-        return -1;
-    }
-    return 0;
-}
-
-int wff_model_set_obliquity(wff_model *m, double degrees, wff_error *err)
-{
-    wff_projectile *p = &m->projectile;
-    if (started(m))
-        return wff_fail(err, "obliquity: the run has started (step %ld); set it before the "
-                        "first step", m->step);
-    if (!(degrees >= 0 && degrees < 90))
-        return wff_fail(err, "obliquity %g deg: must be in [0, 90) (from the fabric's normal)",
-                        degrees);
-    const wff_projectile old = *p;
-    p->oblique = degrees != 0;
-    p->path[0] = p->oblique ? sin(degrees * M_PI / 180) : 0;
-    p->path[1] = 0;
-    p->path[2] = p->oblique ? cos(degrees * M_PI / 180) : 1;
-    if (oblique_check(m->symmetry_factor, p, err)) {
-        *p = old;
-        return -1;
-    }
-    if (p->active && wff_model_place_projectile(m, -wff_projectile_lead(p) / p->path[2], err)) {
-        *p = old;
         return -1;
     }
     return 0;
