@@ -227,7 +227,8 @@ static int axis_check(double symmetry, const double axis[2], wff_error *err)
 int wff_contact_symmetry_changed(wff_model *m, wff_error *err)
 {
     wff_projectile *p = &m->projectile;
-    if (axis_check(m->symmetry_factor, p->axis, err) || wff_contact_oblique_check(m->symmetry_factor, p, err))
+    if (axis_check(m->symmetry_factor, p->axis, err) ||
+        wff_contact_oblique_check(m->symmetry_factor, p, err))
         return -1;
     if (p->active)
         p->mass = p->mass_whole / m->symmetry_factor;
