@@ -6,7 +6,9 @@
 # -mass and -nose given win over the threat's; a 17-grain FSP at 400 m/s on
 # the coarse mesh runs with the energy balance closed and slows; the
 # projectile's momentum at 0 and 30 degrees of obliquity points along its path
-# (30 degrees: the whole square); refusals (exit 2, naming the option).
+# (30 degrees: the whole square); an oblique chisel run restarted from a
+# checkpoint gives the uninterrupted run's history; refusals (exit 2, naming
+# the option).
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/threats"
 rm -rf "$tmp"; mkdir -p "$tmp"
@@ -64,6 +66,14 @@ for theta in 0 30; do
     want=4; [ "$theta" = 0 ] || want=1
     [ "$sym" = "$want" ] || { echo "obliquity $theta: symmetry $sym, want $want"; fail=1; }
 done
+# an oblique FSP shot stopped after a checkpoint and restarted: the uninterrupted run's history
+o="-threat fsp17 -velocity 300 -obliquity 20 -tend 4e-5"
+run $o -checkpoint 2 -stopafter 2 -out "$tmp/ob_cut" > "$tmp/ob_cut.log" 2>&1
+[ $? -eq 9 ] || { echo "oblique restart: the first part did not stop after frame 2"; fail=1; }
+run $o -checkpoint 2 -restart "$tmp/ob_cut" > "$tmp/ob_rest.log" 2>&1 || { echo "oblique restart: exit $?"; tail -3 "$tmp/ob_rest.log"; fail=1; }
+run $o -out "$tmp/ob_whole" > "$tmp/ob_whole.log" 2>&1 || { echo "oblique whole run: exit $?"; fail=1; }
+cmp -s "$tmp/ob_cut/history.csv" "$tmp/ob_whole/history.csv" && echo "oblique chisel restarted: the same history.csv" \
+    || { echo "oblique restart: history.csv differs from the uninterrupted run's"; fail=1; }
 # refusals
 bad() {
     want=$1; shift
