@@ -86,7 +86,7 @@ bad() {
     grep -m1 '^error' "$tmp/bad.log" | cut -c1-160
 }
 bad "-threat" -threat fsp64
-bad "-obliquity" -obliquity 90
+bad "-obliquity 61: must be in [0, 60]" -obliquity 61
 bad "-obliquity 30: the model is a pack of 2 plies" -obliquity 30 -plies 2
 bad "-obliquity 30: the model has yarn failure" -obliquity 30 -failure on
 [ $fail -eq 0 ] && echo "threats: ok"
