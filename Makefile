@@ -48,7 +48,7 @@ DEB_TEST_PACKAGES := slurm-wlm munge
 # skip, saying why; the serial build and `make run` never need it.
 DEB_MPI_PACKAGES := libopenmpi-dev openmpi-bin
 
-CORE_SRC := $(sort $(wildcard plugin/*.c plugin/cells/*.c))
+CORE_SRC := $(sort $(wildcard plugin/*.c plugin/cells/*.c plugin/solids/*.c))
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
 # The per-element kernels, built once per variant (docs/architecture.md, "Kernel
 # variants"): build/kernel/VARIANT/plugin/... for -march KERNEL_ARCH_VARIANT

@@ -103,6 +103,12 @@ static void fingerprint(const wff_model *m, checkpoint_header *h)
         g = wff_fnv1a(g, &p->edge_radius, sizeof(double));
         g = wff_fnv1a(g, p->axis, sizeof p->axis);
     }
+    if (p->nose == WFF_NOSE_CHISEL) { /* (new shapes: older checkpoints have none) */
+        g = wff_fnv1a(g, &p->chisel_flat, sizeof(double));
+        g = wff_fnv1a(g, &p->chisel_bevel, sizeof(double));
+    }
+    if (p->oblique)
+        g = wff_fnv1a(g, p->path, sizeof p->path);
     g = wff_parts_fingerprint(m, g); /* the parts' (a pack's; unchanged without) */
     h->settings_hash = g;
     h->dt_factor = m->dt_factor;
@@ -158,8 +164,8 @@ static const char *hash_mismatch(const checkpoint_header *a, const checkpoint_he
         return "the boundary conditions differ (fixed or prescribed DOFs, friction clamp)";
     if (a->settings_hash != b->settings_hash)
         return "the solver settings differ (preload F_pre, amplitude mass factor, static "
-               "amplitudes, contact search, threads, the projectile's nose or impact point, or "
-               "a pack's gap, layup, ply_mu or ply_thickness)";
+               "amplitudes, contact search, threads, the projectile's nose, chisel, obliquity or "
+               "impact point, or a pack's gap, layup, ply_mu or ply_thickness)";
     return NULL;
 }
 

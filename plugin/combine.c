@@ -121,13 +121,19 @@ static const combine_rule rules[] = {
      "break; use one or the other", "erosion.c wff_erosion_set (a zone's cell without failure)"},
     {"zones", has_pack, NULL, "the far field's zone is a single ply's; use one or the other",
      NULL},
+    {"obliquity", has_pack, NULL,
+     "the ply contact holds the strike face on the nose along z (docs/threats.md); an oblique "
+     "shot on a single ply", NULL},
+    {"obliquity", has_erosion, NULL,
+     "the perforation verdict is judged along z (docs/threats.md); an oblique shot without "
+     "yarn failure", NULL},
     {"adaptive_step", parts_refuse_checkpoint, NULL,
      "the adaptive step goes back to a state the checkpoint's fields hold; run it at a smaller "
      "-dtfactor", "integrator.c start_adaptive (the same parts' answer)"},
 };
 
 static const char *const known =
-    "remesh checkpoint restart static_amplitudes zones adaptive_step";
+    "remesh checkpoint restart static_amplitudes zones adaptive_step obliquity";
 
 const char *wff_combine_features(void) { return known; }
 

@@ -1,6 +1,7 @@
-/* contact.c: the rigid projectile (moving along +z with its axis at (x, y):
- * a cylinder with a hemispherical nose, a flat-faced cylinder with an edge
- * radius, or a sphere; docs/model.md §16): its shapes, set-up and placement,
+/* contact.c: the rigid projectile (moving along +z with its axis at (x, y),
+ * or along a path tilted by an obliquity: a cylinder with a hemispherical
+ * nose, a flat-faced cylinder with an edge radius, a sphere, or an FSP's
+ * chisel; docs/model.md §16): its shapes, set-up and placement,
  * the whole-specimen mass against the symmetry factor, the search
  * for nodes that may touch it, and the kinematic (hard, inelastic) contact
  * with Coulomb friction as velocity impulses each step. Knows the model's
@@ -84,24 +85,55 @@ static double penetration_flat(const wff_projectile *p, const double x[3], doubl
     return re - dist;
 }
 
-double wff_projectile_penetration(const wff_projectile *p, const double x[3], double normal[3])
+static double penetration_straight(const wff_projectile *p, const double x[3], double normal[3])
 {
     switch (p->nose) {
     case WFF_NOSE_FLAT:
         return penetration_flat(p, x, normal);
     case WFF_NOSE_SPHERE:
         return penetration_sphere(p, x, normal);
+    case WFF_NOSE_CHISEL:
+        return wff_chisel_penetration(p, x, normal);
     default:
         return penetration_hemisphere(p, x, normal);
     }
+}
+
+double wff_projectile_penetration(const wff_projectile *p, const double x[3], double normal[3])
+{
+    if (!p->oblique)
+        return penetration_straight(p, x, normal);
+    wff_projectile local;
+    double y[3];
+    wff_projectile_to_frame(p, x, y, &local);
+    const double delta = penetration_straight(&local, y, normal);
+    if (delta > 0)
+        wff_projectile_from_frame(p, normal);
+    return delta;
 }
 
 /* The signed distance of a point from the projectile's surface (> 0 outside,
  * −δ inside: −wff_projectile_penetration's δ there) and the outward normal at
  * the nearest surface point (for the ply contact's solve, which holds a node
  * on the nose with the plies behind it, inside or just outside). */
+static double gap_straight(const wff_projectile *p, const double x[3], double normal[3]);
+
 double wff_projectile_gap(const wff_projectile *p, const double x[3], double normal[3])
 {
+    if (!p->oblique)
+        return gap_straight(p, x, normal);
+    wff_projectile local;
+    double y[3];
+    wff_projectile_to_frame(p, x, y, &local);
+    const double gap = gap_straight(&local, y, normal);
+    wff_projectile_from_frame(p, normal);
+    return gap;
+}
+
+static double gap_straight(const wff_projectile *p, const double x[3], double normal[3])
+{
+    if (p->nose == WFF_NOSE_CHISEL)
+        return -wff_chisel_depth(p, x, normal);
     if (p->nose == WFF_NOSE_FLAT) {
         const double re = p->edge_radius, a = p->radius - re, zc = p->tip - re;
         const double dx = x[0] - p->axis[0], dy = x[1] - p->axis[1], dz = x[2] - zc;
@@ -142,6 +174,8 @@ double wff_projectile_nose_length(const wff_projectile *p)
         return p->edge_radius;
     case WFF_NOSE_SPHERE:
         return 2 * p->radius;
+    case WFF_NOSE_CHISEL:
+        return (p->radius - 0.5 * p->chisel_flat) * tan(p->chisel_bevel);
     default:
         return p->radius;
     }
@@ -152,19 +186,19 @@ static double penetration(const wff_projectile *p, const double x[3], double nor
     return wff_projectile_penetration(p, x, normal);
 }
 
-static const char *const nose_names[] = {"hemisphere", "flat", "sphere"};
+static const char *const nose_names[WFF_NOSE_COUNT] = {"hemisphere", "flat", "sphere", "chisel"};
 
 const char *wff_nose_name(int nose)
 {
-    return nose >= 0 && nose < 3 ? nose_names[nose] : "unknown";
+    return nose >= 0 && nose < WFF_NOSE_COUNT ? nose_names[nose] : "unknown";
 }
 
 int wff_nose_from_name(const char *name, wff_error *err)
 {
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < WFF_NOSE_COUNT; k++)
         if (strcmp(name, nose_names[k]) == 0)
             return k;
-    return wff_fail(err, "unknown nose shape '%s' (known: hemisphere, flat, sphere)", name);
+    return wff_fail(err, "unknown nose shape '%s' (known: hemisphere, flat, sphere, chisel)", name);
 }
 
 static int started(const wff_model *m)
@@ -193,7 +227,8 @@ static int axis_check(double symmetry, const double axis[2], wff_error *err)
 int wff_contact_symmetry_changed(wff_model *m, wff_error *err)
 {
     wff_projectile *p = &m->projectile;
-    if (axis_check(m->symmetry_factor, p->axis, err))
+    if (axis_check(m->symmetry_factor, p->axis, err) ||
+        wff_contact_oblique_check(m->symmetry_factor, p, err))
         return -1;
     if (p->active)
         p->mass = p->mass_whole / m->symmetry_factor;
@@ -239,9 +274,14 @@ int wff_model_set_projectile(wff_model *m, double radius, double mass, double ve
     p->max_penetration = 0;
     p->force = 0;
     p->impulse_total = 0;
-    /* nose tip touching the fabric plane z = 0 */
+    /* nose tip touching the fabric plane z = 0 (oblique: its foremost point) */
     p->active = 1;
-    if (wff_model_place_projectile(m, 0, err)) {
+    if (p->nose == WFF_NOSE_CHISEL && p->chisel_flat > 2 * radius) {
+        p->active = 0;
+        return wff_fail(err, "projectile radius %g m is smaller than half the chisel's flat "
+                        "(%g m wide)", radius, p->chisel_flat);
+    }
+    if (wff_model_place_projectile(m, p->oblique ? -wff_projectile_lead(p) / p->path[2] : 0, err)) {
         p->active = 0;
         return -1;
     }
@@ -254,9 +294,13 @@ int wff_model_set_projectile_shape(wff_model *m, int nose, double edge_radius, w
     if (started(m))
         return wff_fail(err, "projectile shape: the run has started (step %ld); set the nose "
                         "before the first step", m->step);
-    if (nose < 0 || nose > 2)
-        return wff_fail(err, "nose shape %d: must be %d (hemisphere), %d (flat) or %d (sphere)",
-                        nose, WFF_NOSE_HEMISPHERE, WFF_NOSE_FLAT, WFF_NOSE_SPHERE);
+    if (nose < 0 || nose >= WFF_NOSE_COUNT)
+        return wff_fail(err, "nose shape %d: must be %d (hemisphere), %d (flat), %d (sphere) or "
+                        "%d (chisel)", nose, WFF_NOSE_HEMISPHERE, WFF_NOSE_FLAT, WFF_NOSE_SPHERE,
+                        WFF_NOSE_CHISEL);
+    if (nose == WFF_NOSE_CHISEL && !(p->chisel_bevel > 0))
+        return wff_fail(err, "the chisel nose needs its flat's width and bevel angle: set it with "
+                        "wff_model_set_projectile_chisel");
     if (nose != WFF_NOSE_FLAT)
         edge_radius = 0;
     if (!(edge_radius >= 0) || !isfinite(edge_radius))
@@ -345,8 +389,9 @@ double wff_contact_retract(wff_model *m)
             const double *un = m->u + D * n;
             double x[3] = {m->mesh.xy[2 * n] + un[0], m->mesh.xy[2 * n + 1] + un[1], un[2]};
             double nrm[3], delta = penetration(p, x, nrm);
+            const double along = p->oblique ? nrm[0] * p->path[0] + nrm[2] * p->path[2] : nrm[2];
             if (delta > 0)
-                shift = fmax(shift, delta / fmax(nrm[2], 0.2));
+                shift = fmax(shift, delta / fmax(along, 0.2));
         }
         if (shift <= 1e-12 * p->radius)
             break;
@@ -362,6 +407,9 @@ void wff_contact_refresh_candidates(wff_model *m)
 {
     wff_projectile *p = &m->projectile;
     double reach = p->search_all ? INFINITY : 1.2 * p->radius + 2e-3;
+    if (p->oblique && !p->search_all) /* round (axis, 0): the path drifts along x as it goes */
+        reach = reach / p->path[2] + (fabs(p->tip) + 2 * p->radius) * p->path[0] +
+                wff_projectile_lead(p);
     p->n_candidates = wff_step_candidates(m, reach, p->candidates); /* in the user's node order */
 }
 
@@ -409,15 +457,22 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
             if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
                 w_node += nrm[i] * nrm[i];
         w_node /= mass;
-        double w_total = w_node + nrm[2] * nrm[2] / p->mass;
+        /* the projectile moves along its path d only ((0, 0, 1) for a normal shot) */
+        const double d[3] = {p->oblique ? p->path[0] : 0, 0, p->oblique ? p->path[2] : 1};
+        const double nd = p->oblique ? nrm[0] * d[0] + nrm[2] * d[2] : nrm[2];
+        double w_total = w_node + nd * nd / p->mass;
         if (w_total == 0)
             continue; /* neither side can move along the normal */
         double jn = delta / dt / w_total; /* N·s */
         double j[3] = {jn * nrm[0], jn * nrm[1], jn * nrm[2]};
         /* friction against the tangential relative velocity left after jn */
         if (p->mu > 0) {
+            const double jd = p->oblique ? j[0] * d[0] + j[2] * d[2] : j[2];
             double rel[3] = {vn[0] + j[0] / mass, vn[1] + j[1] / mass,
                              vn[2] + j[2] / mass - (p->velocity - j[2] / p->mass)};
+            if (p->oblique)
+                for (int i = 0; i < 3; i++)
+                    rel[i] = vn[i] + j[i] / mass - d[i] * (p->velocity - jd / p->mass);
             double along = rel[0] * nrm[0] + rel[1] * nrm[1] + rel[2] * nrm[2];
             double vt[3], speed = 0;
             for (int i = 0; i < 3; i++) {
@@ -431,7 +486,8 @@ int wff_contact_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
                     j[i] -= jt * vt[i] / speed;
             }
         }
-        const double j_projectile = j[2]; /* the projectile takes all of it */
+        /* the projectile takes all of it along its path (its guide the rest) */
+        const double j_projectile = p->oblique ? j[0] * d[0] + j[2] * d[2] : j[2];
         for (int i = 0; i < 3; i++) {
             if (m->dof_kind[D * n + i] != WFF_DOF_FREE) {
                 /* a held component: its support takes the contact force */

@@ -28,6 +28,19 @@ void wff_contact_book(wff_model *m, double dt_before, double dt_mid);
  * normal at the nearest surface point (always set). */
 double wff_projectile_gap(const wff_projectile *p, const double x[3], double normal[3]);
 
+/* projectile_shape.c: the chisel's depth of point x (> 0 inside: the least of
+ * its four faces', the normal that face's; <= 0 outside, a lower bound of the
+ * distance) and its penetration (0 outside); the oblique projectile's frame:
+ * x in it (y; `local` the projectile as a normal shot at the frame's origin)
+ * and a normal of it turned back into the fabric's frame; -1 (err set) for an
+ * oblique path with a symmetric model. */
+double wff_chisel_depth(const wff_projectile *p, const double x[3], double normal[3]);
+double wff_chisel_penetration(const wff_projectile *p, const double x[3], double normal[3]);
+void wff_projectile_to_frame(const wff_projectile *p, const double x[3], double y[3],
+                             wff_projectile *local);
+void wff_projectile_from_frame(const wff_projectile *p, double normal[3]);
+int wff_contact_oblique_check(double symmetry, const wff_projectile *p, wff_error *err);
+
 /* The symmetry factor changed (or the axis did): the projectile's
  * modelled mass follows; -1 (err set) if its axis is off the symmetry
  * planes. */

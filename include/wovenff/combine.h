@@ -13,6 +13,7 @@
  *   static_amplitudes  balanced amplitudes at every point (-amplitudes static)
  *   zones              zonal materials given after this check (-zonal R)
  *   erosion            erosion of failed elements (-failure on)
+ *   obliquity          a projectile path tilted from the normal (-obliquity DEG)
  * The rules are one table in plugin/combine.c, each with its reason and
  * where the core also enforces it (the core's own refusals stay: they guard
  * the state reached, this check the configuration before a step). */

@@ -38,19 +38,31 @@ enum { WFF_DOF_FREE = 0, WFF_DOF_FIXED = 1, WFF_DOF_PRESCRIBED = 2 };
 enum { WFF_UX = 0, WFF_UY = 1, WFF_UZ = 2, WFF_DA1 = 3, WFF_DA2 = 4 };
 /* Nose shapes (docs/model.md §16): a cylinder of radius r with a
  * hemispherical nose; a flat-faced cylinder, face of radius r − r_e joined to
- * the shank by a torus of tube radius r_e (the fragment-simulating
- * projectile); a sphere of radius r. */
-enum { WFF_NOSE_HEMISPHERE = 0, WFF_NOSE_FLAT = 1, WFF_NOSE_SPHERE = 2 };
+ * the shank by a torus of tube radius r_e; a sphere of radius r; the chisel of
+ * a fragment-simulating projectile (MIL-DTL-46593B): a cylinder of radius r
+ * whose front is a flat strip |ξ| <= w/2 across the diameter (along y before
+ * any -orientation of the fabric: the strip's length along the projectile's
+ * η = y) with two bevel planes falling back from its long edges at the angle
+ * β from the end face (docs/threats.md). */
+enum { WFF_NOSE_HEMISPHERE = 0, WFF_NOSE_FLAT = 1, WFF_NOSE_SPHERE = 2, WFF_NOSE_CHISEL = 3 };
+#define WFF_NOSE_COUNT 4
 
 typedef struct wff_projectile {
     int active;
     double radius;        /* shank radius r (sphere: its radius), m */
     int nose;             /* WFF_NOSE_* (0, the hemisphere, by default) */
     double edge_radius;   /* flat nose: edge (torus tube) radius r_e, 0 <= r_e <= r, m */
+    double chisel_flat;   /* chisel: width w of the flat strip across the tip, 0 <= w <= 2r, m */
+    double chisel_bevel;  /* chisel: bevel angle β from the end face, 0 < β < π/2, rad */
+    double path[3];       /* unit direction of travel: (sin θ, 0, cos θ) for the obliquity θ
+                             (wff_model_set_obliquity); (0, 0, 1) by default */
+    int oblique;          /* 1 once an obliquity θ != 0 is set: the shapes are evaluated in
+                             the projectile's frame (0: the code of the normal shot, bit for bit) */
     double mass_whole;    /* as given: the whole projectile's, kg */
     double mass;          /* of the modelled part (mass_whole / symmetry_factor), kg */
-    double tip;           /* z of the nose tip, m */
-    double velocity;      /* along +z, m/s */
+    double tip;           /* z of the nose tip, m (oblique: its coordinate along the path
+                             from (axis, 0): the tip point is (axis, 0) + tip path) */
+    double velocity;      /* along +z (oblique: along the path), m/s */
     double mu;            /* Coulomb friction with the fabric */
     double axis[2];       /* x, y of the projectile axis, m */
     int n_candidates;     /* nodes that may touch it, refreshed as it moves */
@@ -352,8 +364,33 @@ int wff_model_set_projectile(wff_model *m, double radius, double mass, double ve
  * first step; with a projectile set, refused (naming the node) if the fabric
  * would be inside the new shape. */
 int wff_model_set_projectile_shape(wff_model *m, int nose, double edge_radius, wff_error *err);
-/* WFF_NOSE_* for "hemisphere", "flat" or "sphere"; -1 (err set, listing them)
- * otherwise. */
+/* The chisel nose (WFF_NOSE_CHISEL) with its flat's width w (m, 0 <= w <= 2r
+ * once the radius is known) and bevel angle β from the end face (degrees, in
+ * (0, 90)). Before the first step; refused like the other shapes if the fabric
+ * would be inside it. */
+int wff_model_set_projectile_chisel(wff_model *m, double flat_width, double bevel_degrees,
+                                    wff_error *err);
+/* Obliquity θ (degrees, 0 <= θ < 90): the path of the projectile tilted by θ
+ * from the fabric's normal toward +x, the nose's axis along the path; the
+ * projectile then moves along the path only (held to its line of flight: the
+ * fabric's push across the path is taken by that guide, which does no work;
+ * docs/limits.md). Before the first step; a symmetric model (symmetry 2 or 4)
+ * is refused (the tilt breaks its mirror planes), here or when the symmetry is
+ * set, whichever comes second. θ = 0 is the normal shot, bit for bit. With a
+ * projectile set, it is put back touching (wff_projectile_lead). */
+int wff_model_set_obliquity(wff_model *m, double degrees, wff_error *err);
+/* How far (along z, m) the projectile's surface reaches ahead of its tip point
+ * (0 for a normal shot): the tip along the path that puts its foremost point
+ * at z = −gap is −(lead + gap) / cos θ. */
+double wff_projectile_lead(const wff_projectile *p);
+/* The whole projectile's momentum (kg m/s): mass_whole × velocity × path. */
+void wff_projectile_momentum(const wff_projectile *p, double momentum[3]);
+/* The same for a model's projectile (0 without one), for callers that do not
+ * see the model's struct (the binding). */
+double wff_model_projectile_lead(const wff_model *m);
+void wff_model_projectile_momentum(const wff_model *m, double momentum[3]);
+/* WFF_NOSE_* for "hemisphere", "flat", "sphere" or "chisel"; -1 (err set,
+ * listing them) otherwise. */
 int wff_nose_from_name(const char *name, wff_error *err);
 const char *wff_nose_name(int nose);
 
@@ -368,7 +405,8 @@ int wff_model_set_impact_point(wff_model *m, double x, double y, wff_error *err)
  * nearest surface point (set only when δ > 0). */
 double wff_projectile_penetration(const wff_projectile *p, const double x[3], double normal[3]);
 /* The length of the nose along the axis, m: its rear is at tip − this
- * (hemisphere r, flat nose its edge radius r_e, sphere 2r). */
+ * (hemisphere r, flat nose its edge radius r_e, sphere 2r, chisel its bevel's
+ * depth (r − w/2) tan β). */
 double wff_projectile_nose_length(const wff_projectile *p);
 
 /* Advance until time >= t_end (or max_steps). t_end must be finite and not

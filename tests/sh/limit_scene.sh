@@ -55,7 +55,7 @@ close() { # what, got, want, relative tolerance
 }
 
 # 1. bracketing downwards, 2 jobs, the files, the fit
-sweep law -base "-law 120,0.9,2.5" -vmin 150 -vmax 300 -jobs 2 -runs 10
+sweep law -base "-law 120,0.9,2.5" -vmin 150 -vmax 300 -jobs 2 -runs 10 -threat fsp17
 rc=$?
 tail -4 "$tmp/law.log"
 [ $rc -eq 0 ] || { echo "sweep exited $rc"; cat "$tmp/law.log"; exit 1; }
@@ -63,6 +63,7 @@ d="$tmp/law"
 for f in limit.csv limit.json limit.png; do [ -s "$d/$f" ] || { echo "missing or empty: $f"; fail=1; }; done
 grep -q 'every run perforated: slower' "$tmp/law.log" || { echo "no downward expansion round"; fail=1; }
 grep -q '\[2/2\]' "$tmp/law.log" || { echo "no progress line [2/2]"; fail=1; }
+grep -q '"threat": "fsp17"' "$d/v150/summary.json" || { echo "-threat fsp17 not passed to the runs"; fail=1; }
 [ "$(field "$d/limit.json" runs_total)" = 10 ] || { echo "runs_total not 10"; fail=1; }
 [ "$(($(wc -l < "$d/limit.csv") - 1))" -eq 10 ] || { echo "limit.csv: not 10 rows"; fail=1; }
 close "V_bl" "$(field "$d/limit.json" v_bl)" 120 1e-4
