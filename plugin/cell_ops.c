@@ -32,11 +32,10 @@ int wff_cell_damage_state(const wff_cell_type *cell, int k) { return cell->damag
 int wff_material_damage_state(const wff_material *mat, int k)
 {
     const wff_cell_type *cell = mat->cell;
-    const int both = cell->damage_state[0] >= 0 && cell->damage_state[0] < mat->n_state &&
-                     cell->damage_state[1] >= 0 && cell->damage_state[1] < mat->n_state;
-    if (!both || (cell->yarns_fail && !cell->yarns_fail(mat->params)))
+    const int i = cell->damage_state[k];
+    if (i < 0 || i >= mat->n_state || (cell->yarns_fail && !cell->yarns_fail(mat->params)))
         return -1;
-    return cell->damage_state[k];
+    return i;
 }
 int wff_cell_has_energy_split(const wff_cell_type *cell) { return cell->energy_split != NULL; }
 int wff_cell_has_reference_geometry(const wff_cell_type *cell)

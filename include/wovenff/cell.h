@@ -342,7 +342,7 @@ struct wff_cell_type {
      * damage states only as slots held at 0 because a later state needs them
      * (states are a prefix of state_names: King with yarn slip and failure off
      * carries d_1, d_2 before s_1, s_2, docs/model.md §24). NULL: failure is on
-     * whenever the material carries both damage states. Read it through
+     * whenever the material carries the damage states. Read it through
      * wff_material_damage_state (cell_ops.h), never mat->n_state alone. */
     int (*yarns_fail)(const void *params);
 };

@@ -21,6 +21,7 @@
 #include "check.h"
 #include "test_meshes.h"
 #include "test_tmp.h"
+#include "wovenff/cell_ops.h"
 #include "wovenff/combine.h"
 #include "wovenff/pack.h"
 #include "wovenff/solver.h"
@@ -98,6 +99,8 @@ int main(void)
     CHECK(&st, test_tmp_copy_replacing(KEVLAR, path, "failure = 0", "failure = 1\n") == 1,
           "failure = 1 copy of %s", KEVLAR);
     if (model(&st, &m, path) == 0) {
+        CHECK(&st, wff_material_damage_state(&m.mat, 0) >= 0 && wff_material_damage_state(&m.mat, 1) >= 0,
+              "failure = 1: no damage state");
         expect(&st, &m, "remesh", 1, "remesh: the model has yarn failure with erosion on");
         expect(&st, &m, "zones", 1, "zones: the model has yarn failure with erosion on");
         expect(&st, &m, "static_amplitudes", 1, "static_amplitudes: the model has yarn failure");
@@ -135,6 +138,10 @@ int main(void)
     if (test_model_struck(&m, 12, path, 0, 0, &err) == 0) {
         expect(&st, &m, "static_amplitudes", 0, "");
         expect(&st, &m, "remesh", 0, "");
+        CHECK(&st, m.mat.n_state == 8 && wff_material_damage_state(&m.mat, 0) == -1 &&
+                   wff_material_damage_state(&m.mat, 1) == -1,
+              "a slip-only material (%d states) has no damage state: %d %d", m.mat.n_state,
+              wff_material_damage_state(&m.mat, 0), wff_material_damage_state(&m.mat, 1));
         CHECK(&st, wff_model_set_option(&m, "erosion", 1, &err) != 0 &&
                    strstr(err.message, "failure = 0") != NULL,
               "erosion on a slip-only material: '%s'", err.message);
