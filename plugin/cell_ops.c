@@ -29,6 +29,14 @@ const char *wff_cell_state_unit(const wff_cell_type *cell, int i)
     return cell->state_units[i];
 }
 int wff_cell_damage_state(const wff_cell_type *cell, int k) { return cell->damage_state[k]; }
+int wff_material_damage_state(const wff_material *mat, int k)
+{
+    const wff_cell_type *cell = mat->cell;
+    const int i = cell->damage_state[k];
+    if (i < 0 || i >= mat->n_state || (cell->yarns_fail && !cell->yarns_fail(mat->params)))
+        return -1;
+    return i;
+}
 int wff_cell_has_energy_split(const wff_cell_type *cell) { return cell->energy_split != NULL; }
 int wff_cell_has_reference_geometry(const wff_cell_type *cell)
 {

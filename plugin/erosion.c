@@ -19,8 +19,7 @@
 /* Index in mat's points of family k's damage, or −1 when they carry none. */
 static int damage_index(const wff_material *mat, int k)
 {
-    int i = wff_cell_damage_state(mat->cell, k);
-    return i >= 0 && i < mat->n_state ? i : -1;
+    return wff_material_damage_state(mat, k); /* −1 unless its yarns fail (not slip alone) */
 }
 
 /* Whether some material of the model carries both damage states; the first

@@ -9,6 +9,8 @@
  *   evaluate_shared          evaluate() at each point, weighted as the op would
  *   reference_geometry       −1, nothing written (wff_cell_has_reference_geometry)
  *   amplitude_tangent        forward differences of evaluate() (wff_amplitude_tangent)
+ *   yarns_fail               failure on where the material carries a damage state
+ *                            (wff_material_damage_state)
  *   the blocked ops          −1 ("declined"): absent, or declined by these
  *                            parameters (params only, never the state); the
  *                            caller then takes its pointwise path, which it
@@ -38,6 +40,11 @@ int wff_cell_n_state_max(const wff_cell_type *cell);
 const char *wff_cell_state_name(const wff_cell_type *cell, int i); /* i < n_state_max */
 const char *wff_cell_state_unit(const wff_cell_type *cell, int i);
 int wff_cell_damage_state(const wff_cell_type *cell, int k); /* state index or −1 */
+/* The state index of family k's damage when this material's yarns fail (the
+ * cell's damage_state[k], within mat->n_state, and the cell's yarns_fail says 1
+ * or it has none), else −1: a material that carries the slots held at 0 (King
+ * with yarn slip, failure off) has no failure. */
+int wff_material_damage_state(const wff_material *mat, int k);
 int wff_cell_has_energy_split(const wff_cell_type *cell);
 int wff_cell_has_reference_geometry(const wff_cell_type *cell);
 

@@ -33,6 +33,9 @@ typedef struct wff_point_state {
     double previous_step; /* the last amplitude step, s (0 before the first: the
                              first velocity update is then a half step) */
     long substeps;        /* amplitude or flow steps taken so far */
+    double dissipated[3]; /* J/m² dissipated along the path so far: by shear flow,
+                             yarn failure (the stored energy damage released) and
+                             yarn slip (docs/model.md §7, §20, §24) */
 } wff_point_state;
 
 typedef struct wff_path_mode {
@@ -49,6 +52,31 @@ typedef struct wff_path_mode {
 int wff_point_path_segment(const wff_material *mat, const double F_a[6], const double F_b[6],
                            double duration, const wff_path_mode *mode, wff_point_state *state,
                            wff_error *err);
+
+/* A static level: the point at F with its amplitudes in balance and its
+ * internal states advanced over dt (> 0) from those of the level before (the
+ * slips' return map, yarn damage; γᶠ by the flow rule when shear_flow, else
+ * held), the two solved in turn until neither moves: the amplitudes balanced
+ * with the states held (wff_balance_amplitudes), then the states advanced
+ * from the level before at those amplitudes, up to WFF_PATH_STATIC_ROUNDS
+ * times. The dissipation of the states' last advance is added to
+ * state->dissipated. Returns the rounds taken (>= 1), or −1 with err set (a
+ * balance that fails, a degenerate point, no agreement within the rounds). */
+#define WFF_PATH_STATIC_ROUNDS 200
+int wff_point_path_static_level(const wff_material *mat, const double F[6], double dt,
+                                int shear_flow, wff_point_state *state, wff_error *err);
+
+/* The pull-out level: family 1 pulled to the stretch stretch1 while family 2
+ * carries the yarn tension tension2 (N, the cell's yarn_tension_diag: the
+ * crossing yarns held at a pretension, as a pull-out test's fixture holds
+ * them), unsheared: F = diag(stretch1, λ_2) with λ_2 solved (secant, from
+ * F[3] on entry as the guess) so that the static level there
+ * (wff_point_path_static_level, from the states in state) gives T_2 =
+ * tension2 to 1e-9 N. F (in: the last level's, out: this one's), state
+ * updated. Returns 0, or −1 with err set (a cell without yarn tensions, no
+ * λ_2 found in 60 trials, a static level that fails). */
+int wff_point_path_pull_level(const wff_material *mat, double stretch1, double tension2,
+                              double dt, wff_point_state *state, double F[6], wff_error *err);
 
 /* What the explorer records at one level of a path. */
 typedef struct wff_point_record {

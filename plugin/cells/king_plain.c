@@ -932,6 +932,13 @@ static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
     return 0;
 }
 
+/* cell.h yarns_fail: the damage states evolve only with failure = 1 (with yarn
+ * slip and failure off they are slots held at 0 before s_1, s_2, §24). */
+static int king_yarns_fail(const void *params)
+{
+    return ((const king_params *)params)->failure.enabled != 0;
+}
+
 static void king_reference_geometry(const void *params, double pitch0[2], double amplitude0[2])
 {
     const king_params *k = params;
@@ -968,6 +975,7 @@ static const wff_cell_type king_plain = {
     .evaluate_shared = king_evaluate_shared,
     .evaluate_tri_block = king_evaluate_tri_block,
     .reference_geometry = king_reference_geometry,
+    .yarns_fail = king_yarns_fail,
     .evaluate_point_block = king_evaluate_point_block,
     .amplitude_tangent = king_amplitude_tangent,
     .amplitude_tangent_block = king_amplitude_tangent_block,

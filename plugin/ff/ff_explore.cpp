@@ -11,6 +11,19 @@
 //       previous step] in and out (m, m/s, rad, s), then optionally the cell's
 //       other internal states in order (absent: 0); n: steps taken. gamma_f is
 //       the cell's state of that name (ignored by a cell without one)
+//   int n = wovenffPathSegment(mat, Fa, Fb, duration, dynamicAmplitudes, shearFlow, state,
+//                              dissipated);
+//       the same, and what the segment dissipated added to dissipated = [shear flow, yarn
+//       failure, yarn slip] (J/m^2, 3 entries)
+//   int r = wovenffPathStatic(mat, F, duration, shearFlow, state, dissipated);
+//       a static level at F: the amplitudes in balance and the internal states (slip,
+//       damage; gamma_f by the flow rule when shearFlow, else held) advanced over duration
+//       from those in state, solved in turn until they agree (C: wff_point_path_static_level);
+//       r: the rounds taken; dissipated as above
+//   wovenffPathPull(mat, stretch1, tension2, duration, state, dissipated, F);
+//       the pull-out level: family 1 at stretch1, family 2 carrying the yarn tension
+//       tension2 (N), unsheared, the static level there (F in: the last level's, its
+//       lambda2 the guess; out: this level's; C: wff_point_path_pull_level)
 //   string cols = wovenffExploreColumns(mat);   // "lambda1,lambda2,...,E_shear"
 //   string units = wovenffExploreUnits(mat);    // their units, space-separated
 //   int i = wovenffExploreColumn(mat, "F_L1");  // index of a column, -1 if none
@@ -77,7 +90,7 @@ wff_point_state take_state(const char *fn, const KN<double> *v, const wff_materi
         require_finite(fn, "state", v, v->N(), kStateLayout);
     else
         require_finite(fn, "state", v, kStateSize, kStateLayout);
-    wff_point_state s = {{(*v)[0], (*v)[1]}, {(*v)[2], (*v)[3]}, {0}, (*v)[5], 0};
+    wff_point_state s = {{(*v)[0], (*v)[1]}, {(*v)[2], (*v)[3]}, {0}, (*v)[5], 0, {0, 0, 0}};
     for (int i = 0; i < mat.n_state; i++) {
         long slot = state_slot(mat, i);
         s.state[i] = slot < v->N() ? (*v)[slot] : 0;
@@ -190,6 +203,91 @@ long ffPathSegment(const M &material, KN<double> *const &Fa, KN<double> *const &
     return s.substeps;
 }
 
+// dissipated: 3 finite entries the path's dissipation is added to (J/m^2).
+void take_dissipated(const char *fn, KN<double> *v, wff_point_state *s)
+{
+    require_finite(fn, "dissipated", v, 3, "shear flow, yarn failure, yarn slip (J/m^2)");
+    for (int i = 0; i < 3; i++)
+        s->dissipated[i] = (*v)[i];
+}
+void give_dissipated(const wff_point_state &s, KN<double> *v)
+{
+    for (int i = 0; i < 3; i++)
+        (*v)[i] = s.dissipated[i];
+}
+
+template <class M>
+long ffPathSegmentDissipated(const M &material, KN<double> *const &Fa, KN<double> *const &Fb,
+                             const double &duration, const long &dynamic_amplitudes,
+                             const long &shear_flow, KN<double> *const &state,
+                             KN<double> *const &dissipated)
+{
+    const char *fn = "wovenffPathSegment";
+    double F_a[6], F_b[6];
+    take_F(fn, "Fa", Fa, F_a);
+    take_F(fn, "Fb", Fb, F_b);
+    wff_ff_require_finite(fn, "duration", duration, -1);
+    wff_material scratch;
+    const wff_material *mat = wff_ff_material_arg(fn, material, &scratch);
+    wff_point_state s = take_state(fn, state, *mat);
+    take_dissipated(fn, dissipated, &s);
+    wff_path_mode mode = {dynamic_amplitudes != 0, shear_flow != 0, WFF_PATH_STEP_SAFETY,
+                          WFF_PATH_FLOW_SUBSTEPS};
+    wff_error err;
+    if (wff_point_path_segment(mat, F_a, F_b, duration, &mode, &s, &err))
+        wff_ff_fail(fn, err);
+    give_state(s, *mat, state);
+    give_dissipated(s, dissipated);
+    return s.substeps;
+}
+
+template <class M>
+long ffPathStatic(const M &material, KN<double> *const &Fv, const double &duration,
+                  const long &shear_flow, KN<double> *const &state,
+                  KN<double> *const &dissipated)
+{
+    const char *fn = "wovenffPathStatic";
+    double F[6];
+    take_F(fn, "F", Fv, F);
+    wff_ff_require_finite(fn, "duration", duration, -1);
+    wff_material scratch;
+    const wff_material *mat = wff_ff_material_arg(fn, material, &scratch);
+    wff_point_state s = take_state(fn, state, *mat);
+    take_dissipated(fn, dissipated, &s);
+    wff_error err;
+    int rounds = wff_point_path_static_level(mat, F, duration, shear_flow != 0, &s, &err);
+    if (rounds < 0)
+        wff_ff_fail(fn, err);
+    give_state(s, *mat, state);
+    give_dissipated(s, dissipated);
+    return rounds;
+}
+
+template <class M>
+long ffPathPull(const M &material, const double &stretch1, const double &tension2,
+                const double &duration, KN<double> *const &state,
+                KN<double> *const &dissipated, KN<double> *const &Fv)
+{
+    const char *fn = "wovenffPathPull";
+    wff_ff_require_finite(fn, "stretch1", stretch1, -1);
+    wff_ff_require_finite(fn, "tension2", tension2, -1);
+    wff_ff_require_finite(fn, "duration", duration, -1);
+    double F[6];
+    take_F(fn, "F", Fv, F);
+    wff_material scratch;
+    const wff_material *mat = wff_ff_material_arg(fn, material, &scratch);
+    wff_point_state s = take_state(fn, state, *mat);
+    take_dissipated(fn, dissipated, &s);
+    wff_error err;
+    if (wff_point_path_pull_level(mat, stretch1, tension2, duration, &s, F, &err))
+        wff_ff_fail(fn, err);
+    give_state(s, *mat, state);
+    give_dissipated(s, dissipated);
+    for (int i = 0; i < 6; i++)
+        (*Fv)[i] = F[i];
+    return 0;
+}
+
 template <class M>
 string *ffExploreColumns(Stack stack, const M &material)
 {
@@ -276,6 +374,15 @@ void register_explore()
     Global.Add("wovenffPathSegment", "(",
                new OneOperator7_<long, M, KN<double> *, KN<double> *, double, long, long,
                                  KN<double> *>(ffPathSegment<M>));
+    Global.Add("wovenffPathSegment", "(",
+               new OneOperator8_<long, M, KN<double> *, KN<double> *, double, long, long,
+                                 KN<double> *, KN<double> *>(ffPathSegmentDissipated<M>));
+    Global.Add("wovenffPathStatic", "(",
+               new OneOperator6_<long, M, KN<double> *, double, long, KN<double> *,
+                                 KN<double> *>(ffPathStatic<M>));
+    Global.Add("wovenffPathPull", "(",
+               new OneOperator7_<long, M, double, double, double, KN<double> *, KN<double> *,
+                                 KN<double> *>(ffPathPull<M>));
     Global.Add("wovenffExploreColumns", "(",
                new OneOperator1s_<string *, M>(ffExploreColumns<M>));
     Global.Add("wovenffExploreUnits", "(", new OneOperator1s_<string *, M>(ffExploreUnits<M>));

@@ -57,7 +57,7 @@ static void free_oscillation(check_state *st, const char *path)
     shear_F(0.3, 1.005, F);
     double balanced[2] = {0, 0};
     CHECK(st, wff_balance_amplitudes(&m, F, wff_rest_state, balanced, &e) == 0, "%s", e.message);
-    wff_point_state s = {{balanced[0] + 2e-6, balanced[1] - 1e-6}, {0, 0}, {0}, 0, 0};
+    wff_point_state s = {{balanced[0] + 2e-6, balanced[1] - 1e-6}, {0, 0}, {0}, 0, 0, {0, 0, 0}};
     double W0 = energy(&m, F, s.dA), Wmin = energy(&m, F, balanced);
     double speed, omega;
     m.cell->wave_speeds(m.params, m.areal_density, F, s.dA, &speed, &omega);
@@ -89,7 +89,7 @@ static void free_oscillation(check_state *st, const char *path)
               "%s: dA%d - balance in [%g, %g]: no oscillation about the balance", path, k + 1,
               lo[k], hi[k]);
     /* one segment: the step count the cell's bound gives */
-    wff_point_state one = {{balanced[0], balanced[1]}, {0, 0}, {0}, 0, 0};
+    wff_point_state one = {{balanced[0], balanced[1]}, {0, 0}, {0}, 0, 0, {0, 0, 0}};
     m.cell->wave_speeds(m.params, m.areal_density, F, one.dA, &speed, &omega);
     double seg = 1e-6;
     CHECK(st, wff_point_path_segment(&m, F, F, seg, &kDynamic, &one, &e) == 0, "%s", e.message);
@@ -144,7 +144,7 @@ static void shear_flow(check_state *st)
     double F0[6], F1[6];
     shear_F(0, 1, F0);
     shear_F(0.4, 1, F1);
-    wff_point_state fast = {{0, 0}, {0, 0}, {0}, 0, 0}, slow = fast;
+    wff_point_state fast = {{0, 0}, {0, 0}, {0}, 0, 0, {0, 0, 0}}, slow = fast;
     CHECK(st, wff_point_path_segment(&m, F0, F1, 1e-5, &kFlow, &fast, &e) == 0, "%s", e.message);
     CHECK(st, wff_point_path_segment(&m, F0, F1, 1e-3, &kFlow, &slow, &e) == 0, "%s", e.message);
     CHECK(st, fast.state[0] > 0 && fast.state[0] < slow.state[0] && slow.state[0] < 0.4,
@@ -160,7 +160,7 @@ static void record(check_state *st, const char *path)
     wff_error e;
     double F[6];
     shear_F(0.5, 1.01, F);
-    wff_point_state s = {{-3e-6, 2e-6}, {0.1, -0.2}, {0.05}, 0, 0};
+    wff_point_state s = {{-3e-6, 2e-6}, {0.1, -0.2}, {0.05}, 0, 0, {0, 0, 0}};
     if (m.cell->n_amplitudes == 0)
         s.dA[0] = s.dA[1] = 0;
     wff_point_record rec;
@@ -183,7 +183,7 @@ static void errors(check_state *st)
     wff_error e;
     double F[6];
     shear_F(0, 1.01, F);
-    wff_point_state s = {{0, 0}, {0, 0}, {0}, 0, 0};
+    wff_point_state s = {{0, 0}, {0, 0}, {0}, 0, 0, {0, 0, 0}};
     CHECK(st, wff_point_path_segment(&m, F, F, 1e-6, &kDynamic, &s, &e) != 0 &&
                   strstr(e.message, "cell 'linear_yarns'") &&
                   strstr(e.message, "has no amplitudes"),
