@@ -2,8 +2,8 @@
 # Every picture a scene draws from its CSVs shows their numbers in their units
 # (issue 27, item 5): a value read off a picture is found in the CSV as it is,
 # in the unit its axis names. Each scene runs briefly with its pictures on
-# (ballistic_impact plain to the first profile time, with -failure on and with
-# -plies 2; strip_tension, explicit_loop, fit_parameters; the unit-cell explorer,
+# (ballistic_impact plain to the first profile time, the same with yarn slip on
+# (slip_0.png), with -failure on and with -plies 2; strip_tension, explicit_loop, fit_parameters; the unit-cell explorer,
 # every path, king_plain and basket_2x2; ballistic_limit against its stand-in
 # scene), through a gnuplot stand-in on PATH that logs each call's script and
 # -e settings. Each logged call is then run again by the real gnuplot with a
@@ -37,6 +37,7 @@ scene() { # NAME SCRIPT ARGS...: a scene run into $tmp/NAME, its gnuplot calls i
 }
 impact=freefem_scripts/ballistic_impact.edp
 scene impact "$impact" -mesh coarse -tend 0.4e-3 -vtkdt 1 -plots 1
+scene slip "$impact" -mesh coarse -tend 0.4e-3 -vtkdt 1 -plots 1 -set yarn_friction=0.2
 scene failure "$impact" -mesh coarse -tend 2e-5 -vtkdt 1 -failure on -plots 1
 scene pack "$impact" -mesh coarse -tend 2e-5 -vtkdt 1 -plies 2 -plots 1
 scene strip freefem_scripts/strip_tension.edp -mesh coarse -strain 0.002 -velocity 25 -ramp 0 -frame 1e-6 -plots 1
@@ -74,7 +75,7 @@ check() {
         "$tmp/trace.txt" || fail=1
     checked=$((checked + 1))
 }
-for name in impact failure pack strip loop fit king basket limit; do
+for name in impact slip failure pack strip loop fit king basket limit; do
     [ -s "$tmp/$name.calls" ] || { echo "$name: no gnuplot call logged"; fail=1; continue; }
     while IFS="$(printf '\t')" read -r script vars; do
         check "$name" "$script" "$vars"
