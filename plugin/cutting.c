@@ -1,0 +1,236 @@
+/* cutting.c: the nose's contact pressure on the fabric, a part of the step
+ * (cutting.h; docs/model.md §25). After every contact's correction of the step
+ * (the projectile's, and a pack's ply solve, which adds its own impulses to
+ * the nodes it holds on the nose), node n's pressure is
+ *
+ *   p_n = |j_n| / (Δt_mid A_n),
+ *
+ * j_n the nose's impulse on the node in the step (normal and friction), A_n
+ * its tributary reference area (a third of each triangle's area, a quarter of
+ * each quad's). The points at such a node get p_n in their contact_pressure
+ * state (triangles: the point at the node, nodal quadrature; quads: the mean
+ * of the element's four nodes), and the points the nose touched in the step
+ * before go back to 0 first: the force pass of the next step reads them
+ * (yarn failure's transverse cutting, yarn_failure.h), one step behind the
+ * contact, as the projectile's contact itself is behind the forces. Pointwise
+ * physics stays in the cell: this file only measures the pressure. Knows the
+ * model's arrays, the projectile and the zones; nothing of FreeFEM. */
+#include "cutting.h"
+#include "plies.h"
+#include "zones.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct wff_cutting {
+    int on;                 /* 1: some element's material carries contact_pressure */
+    double *node_area;      /* per node: its tributary reference area, m² */
+    double *node_pressure;  /* per node: this step's contact pressure, Pa (0 elsewhere) */
+    int *slot;              /* per element: its material's contact_pressure state, -1 none */
+    int *node_elements;     /* per node: its elements, from node_start[n] (CSR) */
+    int *node_start;        /* n_nodes + 1 */
+    int *pressed;           /* elements whose points hold a pressure now */
+    int n_pressed;
+    unsigned char *listed;  /* per element: 1 while in pressed */
+    double max, peak;       /* Pa: the last step's largest nodal pressure, the run's */
+};
+
+static void cutting_free(wff_model *m)
+{
+    struct wff_cutting *c = m->cutting;
+    if (!c)
+        return;
+    free(c->node_area), free(c->node_pressure), free(c->slot), free(c->node_elements);
+    free(c->node_start), free(c->pressed), free(c->listed);
+    free(c);
+    m->cutting = NULL;
+}
+
+static int element_nodes(const wff_model *m, int e, const int **nodes)
+{
+    const int nt = m->el.n_tris;
+    *nodes = e < nt ? m->el.tri + 3 * e : m->el.quad + 4 * (e - nt);
+    return e < nt ? 3 : 4;
+}
+
+/* The set-up at the first correction: areas, each node's elements, each
+ * element's state slot. -1 (err set) if out of memory. */
+static int cutting_init(wff_model *m, wff_error *err)
+{
+    const int nt = m->el.n_tris, n_el = nt + m->el.n_quads, nn = m->n_nodes;
+    struct wff_cutting *c = calloc(1, sizeof *c);
+    if (!c)
+        return wff_fail(err, "contact pressure: out of memory");
+    m->cutting = c;
+    c->node_area = calloc((size_t)nn, sizeof(double));
+    c->node_pressure = calloc((size_t)nn, sizeof(double));
+    c->slot = malloc(sizeof(int) * (size_t)n_el);
+    c->node_start = calloc((size_t)nn + 1, sizeof(int));
+    c->pressed = malloc(sizeof(int) * (size_t)n_el);
+    c->listed = calloc((size_t)n_el, 1);
+    if (!c->node_area || !c->node_pressure || !c->slot || !c->node_start || !c->pressed ||
+        !c->listed)
+        return wff_fail(err, "contact pressure: out of memory");
+    const wff_material *last = NULL;
+    int slot = -1;
+    for (int e = 0; e < n_el; e++) {
+        wff_element_material scratch;
+        const wff_material *mat = wff_zones_element_material(m, e, &scratch)->mat;
+        if (mat != last)
+            slot = wff_material_state_index(mat, WFF_CONTACT_PRESSURE_STATE), last = mat;
+        c->slot[e] = slot;
+        c->on |= slot >= 0;
+        const int *nodes, np = element_nodes(m, e, &nodes);
+        double area = e < nt ? m->el.tri_area[e] : 0;
+        for (int q = 0; e >= nt && q < WFF_QUAD_POINTS; q++)
+            area += m->el.quad_weight[WFF_QUAD_POINTS * (e - nt) + q];
+        for (int a = 0; a < np; a++) {
+            c->node_area[nodes[a]] += area / np;
+            c->node_start[nodes[a] + 1]++;
+        }
+    }
+    for (int n = 0; n < nn; n++)
+        c->node_start[n + 1] += c->node_start[n];
+    c->node_elements = malloc(sizeof(int) * (size_t)(c->node_start[nn] > 0 ? c->node_start[nn] : 1));
+    int *fill = malloc(sizeof(int) * (size_t)nn);
+    if (!c->node_elements || !fill) {
+        free(fill);
+        return wff_fail(err, "contact pressure: out of memory");
+    }
+    memcpy(fill, c->node_start, sizeof(int) * (size_t)nn);
+    for (int e = 0; e < n_el; e++) {
+        const int *nodes, np = element_nodes(m, e, &nodes);
+        for (int a = 0; a < np; a++)
+            c->node_elements[fill[nodes[a]]++] = e; /* (ascending e per node) */
+    }
+    free(fill);
+    /* points holding a pressure already (a state loaded from a checkpoint) */
+    for (int e = 0; e < n_el && c->on; e++) {
+        if (c->slot[e] < 0)
+            continue;
+        const int np = e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
+        const double *state = m->state + (size_t)m->n_state * wff_element_first_point(nt, e);
+        int held = 0;
+        for (int q = 0; q < np; q++)
+            held |= state[m->n_state * q + c->slot[e]] != 0;
+        if (held)
+            c->listed[e] = 1, c->pressed[c->n_pressed++] = e;
+    }
+    return 0;
+}
+
+/* Element e's points' contact_pressure from the nodal pressures. */
+static void press_element(wff_model *m, const struct wff_cutting *c, int e)
+{
+    const int nt = m->el.n_tris, ns = m->n_state, slot = c->slot[e];
+    double *state = m->state + (size_t)ns * wff_element_first_point(nt, e) + slot;
+    const int *nodes, np = element_nodes(m, e, &nodes);
+    if (e < nt) {
+        for (int q = 0; q < WFF_TRI_POINTS; q++)
+            state[ns * q] = c->node_pressure[nodes[q]];
+        return;
+    }
+    double mean = 0;
+    for (int a = 0; a < np; a++)
+        mean += c->node_pressure[nodes[a]];
+    mean /= np;
+    for (int q = 0; q < WFF_QUAD_POINTS; q++)
+        state[ns * q] = mean;
+}
+
+static int cutting_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
+{
+    (void)dt;
+    const wff_projectile *p = &m->projectile;
+    if (!p->active)
+        return 0;
+    if (!m->cutting && cutting_init(m, err))
+        return -1;
+    struct wff_cutting *c = m->cutting;
+    const double *nose = m->pack && m->pack->nose_impulse ? m->pack->nose_impulse : NULL;
+    c->max = 0;
+    for (int k = 0; k < p->n_contact; k++) {
+        const int n = p->contact_node[k];
+        double j2 = 0;
+        for (int i = 0; i < 3; i++) {
+            const double j = p->impulse[3 * k + i] + (nose ? nose[3 * n + i] : 0);
+            j2 += j * j;
+        }
+        const double pressure =
+            c->node_area[n] > 0 && dt_mid > 0 ? sqrt(j2) / (dt_mid * c->node_area[n]) : 0;
+        c->node_pressure[n] = pressure;
+        c->max = fmax(c->max, pressure);
+    }
+    c->peak = fmax(c->peak, c->max);
+    if (c->on) {
+        /* last step's pressed elements back to 0 (or to this step's), then this step's */
+        for (int k = 0; k < p->n_contact; k++) {
+            const int n = p->contact_node[k];
+            for (int s = c->node_start[n]; s < c->node_start[n + 1]; s++) {
+                const int e = c->node_elements[s];
+                if (c->slot[e] >= 0 && !c->listed[e])
+                    c->listed[e] = 1, c->pressed[c->n_pressed++] = e;
+            }
+        }
+        for (int k = 0; k < c->n_pressed; k++)
+            press_element(m, c, c->pressed[k]);
+        /* keep only the elements holding a pressure now */
+        int kept = 0;
+        for (int k = 0; k < c->n_pressed; k++) {
+            const int e = c->pressed[k];
+            const int *nodes, np = element_nodes(m, e, &nodes);
+            int touched = 0;
+            for (int a = 0; a < np; a++)
+                touched |= c->node_pressure[nodes[a]] > 0;
+            if (touched)
+                c->pressed[kept++] = e;
+            else
+                c->listed[e] = 0;
+        }
+        c->n_pressed = kept;
+    }
+    for (int k = 0; k < p->n_contact; k++)
+        c->node_pressure[p->contact_node[k]] = 0;
+    return 0;
+}
+
+/* A mesh transfer does not carry the points' pressures (they would be held at
+ * the old nodes' values where the nose has gone): refused with cutting on. */
+static int cutting_refuses_remesh(const wff_model *m, char *why, size_t size)
+{
+    if (!m->cutting || !m->cutting->on)
+        return 0;
+    snprintf(why, size, "transverse cutting (the material key cutting_pressure) keeps the "
+             "nose's contact pressure at every point, which a mesh transfer does not carry: "
+             "run without -adapt or without cutting_pressure");
+    return 1;
+}
+
+/* The new model sets its own up at its first correction. */
+static int cutting_carry(const wff_model *from, wff_model *to, wff_error *err)
+{
+    (void)from, (void)err;
+    to->cutting = NULL;
+    return 0;
+}
+
+static const char *const cutting_value_names[] = {"contact_pressure_max",
+                                                  "contact_pressure_peak", NULL};
+
+static void cutting_value(const wff_model *m, const char *key, double *value)
+{
+    const struct wff_cutting *c = m->cutting;
+    *value = !c ? 0 : strcmp(key, "contact_pressure_max") == 0 ? c->max : c->peak;
+}
+
+const wff_part_ops wff_cutting_part = {
+    .name = "contact_pressure",
+    .correct = cutting_correct,
+    .value_names = cutting_value_names,
+    .value = cutting_value,
+    .refuses_remesh = cutting_refuses_remesh,
+    .carry = cutting_carry,
+    .free = cutting_free,
+};
