@@ -3,14 +3,20 @@
  * (the projectile's, and a pack's ply solve, which adds its own impulses to
  * the nodes it holds on the nose), node n's pressure is
  *
- *   p_n = |j_n| / (Δt_mid A_n),
+ *   p_n = ⟨−(f_n − j_n/Δt_mid)·ĵ_n⟩ / A_n,
  *
- * j_n the nose's impulse on the node in the step (normal and friction), A_n
- * its tributary reference area (a third of each triangle's area, a quarter of
- * each quad's). The points at such a node get p_n in their contact_pressure
- * state (triangles: the point at the node, nodal quadrature; quads: the mean
- * of the element's four nodes), and the points the nose touched in the step
- * before go back to 0 first: the force pass of the next step reads them
+ * j_n the nose's impulse on the node in the step (normal and friction, ĵ_n its
+ * direction), f_n the node's force (its yarns', the ply contact's), so
+ * f_n − j_n/Δt_mid is what the rest of the model presses the node onto the
+ * nose with, and A_n the node's tributary reference area (a third of each
+ * triangle's area, a quarter of each quad's). Not |j_n|/(Δt_mid A_n): a node
+ * the nose picks up takes at once an impulse ρ_A v A_n, and that spike,
+ * ρ_A v/Δt (25 MPa at 10 m/s on the coarse mesh, for any nose), is the
+ * step's, not a pressure the yarn feels; in steady contact the two agree. On
+ * a flat nose's edge the force is borne by a strip narrower than the node
+ * (edge_share). Every point of an element round such a node gets the largest
+ * of its nodes' p_n in its contact_pressure state (press_element), and the
+ * points the nose touched in the step before go back to 0 first: the force pass of the next step reads them
  * (yarn failure's transverse cutting, yarn_failure.h), one step behind the
  * contact, as the projectile's contact itself is behind the forces. Pointwise
  * physics stays in the cell: this file only measures the pressure. Knows the
@@ -23,6 +29,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* The narrowest contact strip under an edge, m: a KM2 fibre's diameter, ~12 µm
+ * (Cheng, Chen & Weerasooriya 2005), for a sharp edge (r_e = 0). */
+#define WFF_CUTTING_FIBRE 12e-6
 
 struct wff_cutting {
     int on;                 /* 1: some element's material carries contact_pressure */
@@ -121,23 +131,44 @@ static int cutting_init(wff_model *m, wff_error *err)
     return 0;
 }
 
-/* Element e's points' contact_pressure from the nodal pressures. */
+/* The share of node n's area that bears its contact force: 1, except at a flat
+ * nose's rounded edge (the node's patch, √A_n wide, reaching R − r_e from the
+ * axis: on a mesh coarser than the edge the node that takes the membrane's kink
+ * over the edge lies on the face short of it), where the
+ * contact strip across the edge is at most the edge's quarter arc r_e π/2 (at
+ * least WFF_CUTTING_FIBRE wide), narrower than the node's width √A_n on a mesh
+ * that does not resolve the edge: min(1, max(r_e π/2, fibre)/√A_n). Without it
+ * the edge's pressure would be the mesh's (its force over a whole node's area),
+ * a tenth or less of what the edge puts on a yarn (docs/model.md §25). */
+static double edge_share(const wff_model *m, const struct wff_cutting *c, int n)
+{
+    const wff_projectile *p = &m->projectile;
+    if (p->nose != WFF_NOSE_FLAT)
+        return 1;
+    const double x = m->mesh.xy[2 * n] + m->u[D * n] - p->axis[0];
+    const double y = m->mesh.xy[2 * n + 1] + m->u[D * n + 1] - p->axis[1];
+    const double strip = fmax(0.5 * M_PI * p->edge_radius, WFF_CUTTING_FIBRE);
+    const double width = sqrt(c->node_area[n]);
+    if (hypot(x, y) + width < p->radius - p->edge_radius)
+        return 1; /* on the flat face, its patch short of the edge */
+    return strip < width ? strip / width : 1;
+}
+
+/* Element e's points' contact_pressure: the largest of its nodes' pressures, at
+ * every point. The edge's line crosses the patch of the node that carries it,
+ * so the elements round that node; the element is the smallest piece the mesh
+ * can cut (erosion takes an element whose points have all ruptured), and a cut
+ * at the pressed node's point alone would leave the element standing. */
 static void press_element(wff_model *m, const struct wff_cutting *c, int e)
 {
     const int nt = m->el.n_tris, ns = m->n_state, slot = c->slot[e];
     double *state = m->state + (size_t)ns * wff_element_first_point(nt, e) + slot;
     const int *nodes, np = element_nodes(m, e, &nodes);
-    if (e < nt) {
-        for (int q = 0; q < WFF_TRI_POINTS; q++)
-            state[ns * q] = c->node_pressure[nodes[q]];
-        return;
-    }
-    double mean = 0;
+    double most = 0;
     for (int a = 0; a < np; a++)
-        mean += c->node_pressure[nodes[a]];
-    mean /= np;
-    for (int q = 0; q < WFF_QUAD_POINTS; q++)
-        state[ns * q] = mean;
+        most = fmax(most, c->node_pressure[nodes[a]]);
+    for (int q = 0; q < (e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS); q++)
+        state[ns * q] = most;
 }
 
 static int cutting_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
@@ -153,13 +184,19 @@ static int cutting_correct(wff_model *m, double dt, double dt_mid, wff_error *er
     c->max = 0;
     for (int k = 0; k < p->n_contact; k++) {
         const int n = p->contact_node[k];
-        double j2 = 0;
+        double j[3], j2 = 0, along = 0;
         for (int i = 0; i < 3; i++) {
-            const double j = p->impulse[3 * k + i] + (nose ? nose[3 * n + i] : 0);
-            j2 += j * j;
+            j[i] = p->impulse[3 * k + i] + (nose ? nose[3 * n + i] : 0);
+            j2 += j[i] * j[i];
         }
-        const double pressure =
-            c->node_area[n] > 0 && dt_mid > 0 ? sqrt(j2) / (dt_mid * c->node_area[n]) : 0;
+        /* the rest of the model's force on the node (its yarns', the plies' behind),
+         * f less the nose's own impulse over the step, against the nose's push */
+        for (int i = 0; i < 3 && j2 > 0 && dt_mid > 0; i++)
+            if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
+                along += (m->f[D * n + i] - j[i] / dt_mid) * j[i];
+        along = j2 > 0 ? -along / sqrt(j2) : 0; /* N, > 0 pressing the node onto the nose */
+        const double pressure = c->node_area[n] > 0 && along > 0
+                                    ? along / (c->node_area[n] * edge_share(m, c, n)) : 0;
         c->node_pressure[n] = pressure;
         c->max = fmax(c->max, pressure);
     }
