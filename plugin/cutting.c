@@ -154,6 +154,49 @@ static double edge_share(const wff_model *m, const struct wff_cutting *c, int n)
     return strip < width ? strip / width : 1;
 }
 
+/* Node n's yarns' force (the force pass's: f less every part's impulses of the
+ * step) along the unit vector e. Without the parts' record (a caller's own loop,
+ * operators.c), f less the nose's impulse j over dt_mid. */
+static double yarn_force_along(const wff_model *m, int n, const double e[3], const double *j,
+                               double dt_mid)
+{
+    double along = 0;
+    for (int i = 0; i < 3; i++) {
+        const int k = D * n + i;
+        if (m->dof_kind[k] != WFF_DOF_FREE)
+            continue;
+        const double parts = m->contact_force ? m->contact_force[k] : j[i] / dt_mid;
+        along += (m->f[k] - parts) * e[i];
+    }
+    return along;
+}
+
+/* The force pressing node n onto the nose (N, the nose's impulse j on it, |j|
+ * = size): its own yarns' pull against the nose's push, and in a pack the pull
+ * of the same node of each ply behind it as long as the column is held together
+ * by the ply contact (a pair impulse on that node this step): the plies behind
+ * press on the nose through this one. The yarns' forces, not the contacts'
+ * impulses: a node the nose or a ply picks up takes an impulse m v at once, the
+ * spike ρ_A v/Δt of the step, which is not a pressure the yarn feels. */
+static double pressing_force(const wff_model *m, int n, const double j[3], double size,
+                             double dt_mid)
+{
+    const double e[3] = {j[0] / size, j[1] / size, j[2] / size};
+    double force = -yarn_force_along(m, n, e, j, dt_mid);
+    const struct wff_pack *P = m->pack;
+    if (!P || P->n < 2 || !P->impulse)
+        return force;
+    const double none[3] = {0, 0, 0};
+    for (int q = n / P->nodes + 1; q < P->n; q++) {
+        const int b = n + (q - n / P->nodes) * P->nodes; /* the node behind, in ply q */
+        const double *pair = P->impulse + 3 * b;
+        if (pair[0] == 0 && pair[1] == 0 && pair[2] == 0)
+            break; /* the column is open here */
+        force -= yarn_force_along(m, b, e, none, dt_mid);
+    }
+    return force;
+}
+
 /* Element e's points' contact_pressure: the largest of its nodes' pressures, at
  * every point. The edge's line crosses the patch of the node that carries it,
  * so the elements round that node; the element is the smallest piece the mesh
@@ -189,12 +232,8 @@ static int cutting_correct(wff_model *m, double dt, double dt_mid, wff_error *er
             j[i] = p->impulse[3 * k + i] + (nose ? nose[3 * n + i] : 0);
             j2 += j[i] * j[i];
         }
-        /* the rest of the model's force on the node (its yarns', the plies' behind),
-         * f less the nose's own impulse over the step, against the nose's push */
-        for (int i = 0; i < 3 && j2 > 0 && dt_mid > 0; i++)
-            if (m->dof_kind[D * n + i] == WFF_DOF_FREE)
-                along += (m->f[D * n + i] - j[i] / dt_mid) * j[i];
-        along = j2 > 0 ? -along / sqrt(j2) : 0; /* N, > 0 pressing the node onto the nose */
+        if (j2 > 0 && dt_mid > 0)
+            along = pressing_force(m, n, j, sqrt(j2), dt_mid); /* N, > 0 onto the nose */
         const double pressure = c->node_area[n] > 0 && along > 0
                                     ? along / (c->node_area[n] * edge_share(m, c, n)) : 0;
         c->node_pressure[n] = pressure;
