@@ -1,5 +1,5 @@
 # ply_failure.gp — a pack's failure sequence: the energy each ply has absorbed from
-# the impact (absorbed_<p>, J, less its value at t = 0) against time (ms), with a
+# the impact (absorbed_<p>, J, less its value at t = 0) against time (s), with a
 # dashed line in the ply's colour at the time its first yarn was damaged (the
 # module's ply value first_damage_time; -1: the ply stayed intact, no line).
 # gnuplot -e "data='history.csv'; out='ply_failure.png'; plies=4; damaged='7.4e-4 8.2e-4 -1 -1'" freefem_scripts/plots/ply_failure.gp
@@ -8,7 +8,8 @@ set datafile columnheaders
 set terminal pngcairo size 1000,650 font ',11'
 set output out
 set title sprintf('Failure sequence: energy absorbed by each ply, dashed at its first yarn damage (%d plies; ply 0 the strike face)', plies) font ',10'
-set xlabel 'time (ms)'
+set xlabel 'time (s)'
+set format x '%h'
 set ylabel 'energy absorbed by the ply (J)'
 set grid
 set autoscale xfix
@@ -25,11 +26,11 @@ intact = 0
 do for [p = 0:plies - 1] {
     t = real(word(damaged, p + 1))
     if (t >= 0) {
-        set arrow (p + 1) from first 1e3 * t, graph 0 to first 1e3 * t, graph 1 nohead dt 2 lw 1.5 lc palette frac frac(p)
+        set arrow (p + 1) from first t, graph 0 to first t, graph 1 nohead dt 2 lw 1.5 lc palette frac frac(p)
     } else {
         intact = intact + 1
     }
 }
 set label 1 sprintf('%d of %d plies never damaged', intact, plies) at graph 0.02, graph 0.55 front
-plot for [p = 0:plies - 1] data using (1e3 * column('time')):(absorbed(p)) \
+plot for [p = 0:plies - 1] data using (column('time')):(absorbed(p)) \
         with lines lw 2 lc palette frac frac(p) title sprintf('ply %d', p)
