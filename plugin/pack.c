@@ -333,7 +333,8 @@ static int pack_state_fields(wff_model *m, wff_state_field *f)
     f[2] = (wff_state_field){P->failure, sizeof(double), n};
     f[3] = (wff_state_field){P->slip, sizeof(double), n};
     f[4] = (wff_state_field){P->eroded, sizeof(double), n};
-    return 5;
+    f[5] = (wff_state_field){P->first_damage_time, sizeof(double), n};
+    return 6;
 }
 
 /* What a checkpoint of a pack must match beyond the stacked mesh: the plies'
