@@ -31,6 +31,6 @@ do for [p = 0:plies - 1] {
         intact = intact + 1
     }
 }
-set label 1 sprintf('%d of %d plies never damaged', intact, plies) at graph 0.02, graph 0.55 front
+set label 1 sprintf('%d of %d plies never damaged', intact, plies) at graph 0.98, graph 0.05 right front
 plot for [p = 0:plies - 1] data using (column('time')):(absorbed(p)) \
         with lines lw 2 lc palette frac frac(p) title sprintf('ply %d', p)
