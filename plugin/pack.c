@@ -62,16 +62,36 @@ static void pack_follow(wff_model *m, const char *what, double theta)
             m->pack->orientation[p] = theta;
 }
 
+/* A pack of one ply (no zones' per-ply totals): its first damaged point by a
+ * scan of its elements after each advancing pass, until one is found. */
+static void first_damage_scan(wff_model *m)
+{
+    struct wff_pack *P = m->pack;
+    if (P->first_damage_time[0] >= 0)
+        return;
+    const int n_el = m->el.n_tris + m->el.n_quads;
+    for (int e = 0; e < n_el; e++)
+        if (wff_element_damage(m, e, 0) > 0 || wff_element_damage(m, e, 1) > 0) {
+            P->first_damage_time[0] = m->time;
+            return;
+        }
+}
+
 /* After an accumulating force pass: the pass's per-ply energies; the elements
  * erosion took in it (erosion.h, before this part in the list) go from their
  * ply's stored energy to its eroded energy. */
 static double pack_after_forces(wff_model *m, const double *u, const double *state,
                                 double dt_flow)
 {
-    (void)u, (void)state, (void)dt_flow;
+    (void)u, (void)state;
     struct wff_pack *P = m->pack;
-    if (!P || P->n == 1)
+    if (!P)
         return 0;
+    if (P->n == 1) {
+        if (dt_flow > 0)
+            first_damage_scan(m);
+        return 0;
+    }
     for (int i = 0; i < m->n_eroded_now; i++) /* (in element order, as erosion took them) */
         P->removed[wff_pack_element_ply(m, m->eroded_now[i])] += m->eroded_now_energy[i];
     double stored[WFF_PLIES_MAX], shear[WFF_PLIES_MAX], failure[WFF_PLIES_MAX];
@@ -84,6 +104,11 @@ static double pack_after_forces(wff_model *m, const double *u, const double *sta
         P->slip[p] += slip[p];
         P->eroded[p] += P->removed[p];
         P->removed[p] = 0;
+        /* a damage grows only where its yarn is stretched (yarn_failure.h), releasing
+         * Δd W⁺ > 0: the pass's failure energy is positive exactly when a point of
+         * the ply was damaged in it */
+        if (P->first_damage_time[p] < 0 && dt_flow > 0 && failure[p] > 0)
+            P->first_damage_time[p] = m->time;
     }
     return 0;
 }
@@ -222,6 +247,8 @@ int wff_model_ply_value(const wff_model *m, int ply, const char *key, double *va
         *value = s * dissipated;
     } else if (abs_k) {
         *value = s * (kinetic + stored + dissipated);
+    } else if (strcmp(key, "first_damage_time") == 0) {
+        *value = P ? P->first_damage_time[ply] : -1;
     } else if (strcmp(key, "failed") == 0 || strcmp(key, "eroded") == 0) {
         int failed = key[0] == 'f', count = 0, n_el = m->el.n_tris + m->el.n_quads;
         for (int e = 0; e < n_el; e++) {
@@ -235,7 +262,8 @@ int wff_model_ply_value(const wff_model *m, int ply, const char *key, double *va
         *value = count;
     } else {
         return wff_fail(err, "ply %d: unknown key '%s' (known: apex, kinetic, stored, "
-                        "dissipated, absorbed, failed, eroded, holed, through)", ply, key);
+                        "dissipated, absorbed, failed, eroded, holed, through, first_damage_time)",
+                        ply, key);
     }
     return 0;
 }
@@ -305,7 +333,8 @@ static int pack_state_fields(wff_model *m, wff_state_field *f)
     f[2] = (wff_state_field){P->failure, sizeof(double), n};
     f[3] = (wff_state_field){P->slip, sizeof(double), n};
     f[4] = (wff_state_field){P->eroded, sizeof(double), n};
-    return 5;
+    f[5] = (wff_state_field){P->first_damage_time, sizeof(double), n};
+    return 6;
 }
 
 /* What a checkpoint of a pack must match beyond the stacked mesh: the plies'

@@ -153,8 +153,10 @@ int wff_model_set_plies(wff_model *m, int n_plies, double gap, wff_error *err)
     P->tris = m->mesh.n_tris;
     P->quads = m->mesh.n_quads;
     P->mu = WFF_PLY_MU_DEFAULT;
-    for (int p = 0; p < n_plies; p++)
+    for (int p = 0; p < n_plies; p++) {
         P->orientation[p] = m->em.orientation;
+        P->first_damage_time[p] = -1; /* intact */
+    }
     if (n_plies == 1) { /* the model as it is */
         m->pack = P;
         return 0;

@@ -5,6 +5,7 @@
 #include "part.h"
 #include "clamp.h"
 #include "contact.h"
+#include "cutting.h"
 #include "distribute.h"
 #include "erosion.h"
 #include "pack.h"
@@ -19,7 +20,8 @@
  * energy out of the pass's), then the pack's per-ply accounts (which read the
  * elements erosion just took). After the velocity update: the friction
  * clamp's correction first, then the projectile's contact, then the plies'
- * (which reads the projectile's impulses). The shot's verdict has values
+ * (which reads the projectile's impulses), then the nose's contact pressure
+ * (which reads both). The shot's verdict has values
  * only (no pass of the step). */
 const wff_part_ops *const wff_parts[] = {
     &wff_erosion_part,
@@ -27,6 +29,7 @@ const wff_part_ops *const wff_parts[] = {
     &wff_clamp_part,
     &wff_projectile_contact_part,
     &wff_ply_contact_part,
+    &wff_cutting_part,
     &wff_perforation_part,
     &wff_distributed_part,
     NULL,

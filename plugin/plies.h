@@ -23,6 +23,8 @@ struct wff_pack {
     double slip[WFF_PLIES_MAX]; /* yarn slip at the crossovers */
     double stored[WFF_PLIES_MAX];
     double removed[WFF_PLIES_MAX]; /* eroded in the pass under way (erosion.c) */
+    double first_damage_time[WFF_PLIES_MAX]; /* s, the time of the first force pass that
+                                                damaged a yarn of the ply; -1 while intact */
     /* ply contact (ply_contact.c) */
     double dissipated;        /* kinetic energy the ply contact's pairs removed, J (model
                                  part; the nose contacts its solve holds are the projectile

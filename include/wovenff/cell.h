@@ -47,7 +47,10 @@
  *     triangle, sqrt(area) for a quad) when the model is built, a zone
  *     assigned or the mesh transferred; the cell reads it and never changes
  *     it (dt > 0 or not), and 0 (a point outside any mesh: the cell suite,
- *     the explorer, wff_rest_state) means no element size. A cell with
+ *     the explorer, wff_rest_state) means no element size. A state named
+ *     "contact_pressure" (unit Pa; WFF_CONTACT_PRESSURE_STATE) is set the same
+ *     way by the projectile's contact each step (0 away from the nose) and
+ *     read, never changed, by the cell. A cell with
  *     n_state 0 gets a valid pointer it must not read.
  *   - Statuses. evaluate and evaluate_shared return WFF_POINT_OK or
  *     WFF_POINT_DEGENERATE; the element code adds WFF_POINT_NONFINITE for a
@@ -100,7 +103,7 @@ extern "C" {
 /* Most amplitude degrees of freedom per node (the two crimp amplitudes). */
 #define WFF_AMPLITUDES_MAX 2
 /* Most internal state variables per material point (γᶠ, damage, yarn slip, ...). */
-#define WFF_STATE_MAX 8
+#define WFF_STATE_MAX 9
 
 typedef struct wff_cell_type wff_cell_type;
 typedef struct wff_kv wff_kv; /* parsed material file, see material.h */
@@ -371,6 +374,11 @@ static const double wff_rest_state[WFF_STATE_MAX] = {0};
 /* The name of the state the element code fills with the element's length
  * (the contract above). */
 #define WFF_ELEMENT_LENGTH_STATE "element_length"
+/* The state the projectile's contact sets each step (Pa; plugin/cutting.c): the
+ * nose's contact pressure at the point, which yarn failure's transverse cutting
+ * reads (yarn_failure.h, docs/model.md §25); like element_length, never changed
+ * by the cell, 0 away from the nose. */
+#define WFF_CONTACT_PRESSURE_STATE "contact_pressure"
 
 /* Index of the state named `name` in mat's points (< mat->n_state), or −1. */
 int wff_material_state_index(const wff_material *mat, const char *name);

@@ -74,7 +74,10 @@ int wff_model_element_ply(const wff_model *m, int user_element);
  * kinetic, stored, dissipated (shear + failure + eroded energy of its
  * elements; the ply contact's friction is the pack's), absorbed (the sum of
  * the three), J, whole specimen (× symmetry); failed (elements with yarn
- * damage > 0 in either family), eroded (elements eroded). -1 (err set,
+ * damage > 0 in either family), eroded (elements eroded); first_damage_time (s,
+ * the time of the first force pass that damaged a yarn of the ply, recorded at
+ * that step; -1 while the ply is intact, and for a model never made a pack
+ * with wff_model_plies). -1 (err set,
  * naming p or the key) otherwise. */
 int wff_model_ply_value(const wff_model *m, int ply, const char *key, double *value,
                         wff_error *err);

@@ -254,6 +254,8 @@ struct wff_model {
     int *element_model;       /* per caller's element: the model's */
     struct wff_pack *pack;    /* plies and their contact (include/wovenff/pack.h); NULL:
                                  one ply, the plain path */
+    struct wff_cutting *cutting; /* the nose's contact pressure (plugin/cutting.c); NULL
+                                    until the first step with a projectile */
 };
 #endif /* WFF_MODEL_OPAQUE */
 

@@ -397,7 +397,8 @@ static int basket_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         &k->locking_exponent, &k->shear_stiffness, &k->flow_moment, &k->flow_rate,
         &k->flow_exponent, &k->tension_only,
     };
-    if (wff_weave_parse(kv, &shared, err) || wff_yarn_failure_parse(kv, &k->failure, err))
+    if (wff_weave_parse(kv, &shared, err) || wff_yarn_failure_parse(kv, &k->failure, err) ||
+        wff_yarn_failure_no_cutting(kv, &k->failure, "basket_2x2", err))
         return -1;
     for (int f = 0; f < FAMILIES; f++)
         if (!(k->amplitude0[f] < k->pitch0[f]))

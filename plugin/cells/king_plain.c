@@ -111,8 +111,9 @@ typedef struct king_params {
     double slip_capacity;                /* n_c μ_yy: the slip tension per newton of
                                             crossover force, -; 0 without slip */
     int n_state;                         /* states per point (mat->n_state): γᶠ [, d_1, d_2
-                                            [, ε_1, ε_2 [, h]]]; with slip all eight (the
-                                            slips s_1, s_2 last) */
+                                            [, ε_1, ε_2 [, h]]]; with slip eight (the
+                                            slips s_1, s_2 last); with cutting all nine
+                                            (the contact pressure p last) */
 } king_params;
 
 _Static_assert(sizeof(king_params) <= sizeof(((wff_material *)0)->params),
@@ -132,14 +133,16 @@ enum { MECH_YARN, MECH_BENDING, MECH_COMPACTION, MECH_LOCKING, MECH_SHEAR, MECH_
  * strains of the last update (for the strain rate); with the crack band the
  * element length (the element code's); with yarn slip (docs/model.md §24) the
  * slip strains s_1, s_2, after all the others (a material's states are a
- * prefix of these: with slip a point carries all eight, those of a law that is
- * off held at 0). */
+ * prefix of these: with slip a point carries the first eight, those of a law
+ * that is off held at 0); with transverse cutting (yarn_failure.h) the contact
+ * pressure last, set by the projectile's contact (all nine). */
 static const char *const king_state_names[] = {"gamma_f", "damage1", "damage2",
                                                "yarn_strain1", "yarn_strain2",
-                                               "element_length", "slip_1", "slip_2"};
-static const char *const king_state_units[] = {"rad", "-", "-", "-", "-", "m", "-", "-"};
+                                               "element_length", "slip_1", "slip_2",
+                                               WFF_CONTACT_PRESSURE_STATE};
+static const char *const king_state_units[] = {"rad", "-", "-", "-", "-", "m", "-", "-", "Pa"};
 enum { STATE_GAMMA_F, STATE_DAMAGE1, STATE_DAMAGE2, STATE_STRAIN1, STATE_STRAIN2,
-       STATE_LENGTH, STATE_SLIP1, STATE_SLIP2, STATE_COUNT };
+       STATE_LENGTH, STATE_SLIP1, STATE_SLIP2, STATE_PRESSURE, STATE_COUNT };
 _Static_assert(STATE_LENGTH - STATE_DAMAGE1 == WFF_YARN_STATE_LENGTH,
                "king_plain: the failure states are yarn_failure.h's");
 _Static_assert(STATE_COUNT <= WFF_STATE_MAX, "king_plain carries too many states");
@@ -213,11 +216,12 @@ WFF_INLINE king_family king_family_at(const king_params *k, const wff_yarn_frame
  * k_k (L_k − L_k⁰)² times 1 − d_k where stretched. */
 WFF_INLINE wff_yarn_damage king_family_fail(const king_params *k, int f, king_family *y,
                                             double damage, double strain_prev,
-                                            double element_length, double dt)
+                                            double element_length, double pressure, double dt)
 {
     double strain = y->stretch / k->length0[f];
-    wff_yarn_damage d = wff_yarn_damage_step(&k->failure, f, strain, y->energy_yarn, damage,
-                                             strain_prev, element_length, dt);
+    wff_yarn_damage d = wff_yarn_damage_step_pressed(&k->failure, f, strain, y->energy_yarn,
+                                                     damage, strain_prev, element_length,
+                                                     pressure, dt);
     y->tension *= d.factor;
     y->energy_yarn *= d.factor;
     y->tension_factor = d.factor;
@@ -350,10 +354,13 @@ WFF_INLINE void king_point_at(const king_params *k, const wff_yarn_frame *fr, co
     if (failure_state) {
         const int kept = wff_yarn_failure_keeps_strain(&k->failure); /* ε_k of the last update */
         const double length = wff_yarn_failure_length(&k->failure, failure_state);
+        /* the contact pressure (the projectile's, cell.h) with transverse cutting */
+        const double pressure = k->failure.cutting_pressure > 0
+                                    ? failure_state[STATE_PRESSURE - STATE_DAMAGE1] : 0.0;
         for (int f = 0; f < FAMILIES; f++) {
             wff_yarn_damage d = king_family_fail(k, f, &pt->yarn[f], failure_state[f],
                                                  kept ? failure_state[2 + f] : 0, length,
-                                                 dt);
+                                                 pressure, dt);
             pt->failure_state[f] = d.damage;
             pt->failure_state[2 + f] = d.strain_prev;
             pt->failure_released += d.released;
@@ -434,7 +441,7 @@ WFF_INLINE void king_residual_tangent_at(const king_params *k, const wff_yarn_fr
             (void)king_family_slip(k, f, &y[f], slip[f], 0, 0, 0); /* (held) */
     if (damage)
         for (int f = 0; f < FAMILIES; f++)
-            (void)king_family_fail(k, f, &y[f], damage[f], 0, 0, 0); /* (held) */
+            (void)king_family_fail(k, f, &y[f], damage[f], 0, 0, 0, 0); /* (held) */
 #pragma GCC unroll 2
     for (int f = 0; f < FAMILIES; f++) {
         king_family_forces(k, fr, f, &y[f]);
@@ -475,7 +482,12 @@ static inline void king_state_out(const king_params *k, const double *state,
     if (k->slip_capacity > 0) {
         out[STATE_SLIP1] = pt->slip[0];
         out[STATE_SLIP2] = pt->slip[1];
+    } else if (k->n_state > STATE_SLIP1) {
+        out[STATE_SLIP1] = state[STATE_SLIP1]; /* (held: slip is off) */
+        out[STATE_SLIP2] = state[STATE_SLIP2];
     }
+    if (k->n_state > STATE_PRESSURE)
+        out[STATE_PRESSURE] = state[STATE_PRESSURE]; /* the contact's, never changed here */
 }
 
 /* docs/model.md §1–7, §20, §24: one material point. P = (1/(4 p1⁰ p2⁰)) Σ_k Q_k ⊗ G_k,
@@ -927,8 +939,9 @@ static int king_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         mat->yarn_spacing[f] = 2 * k->pitch0[l];
     }
     k->cell_area = 4 * k->pitch0[0] * k->pitch0[1];
-    mat->n_state = k->n_state =
-        k->slip_capacity > 0 ? STATE_COUNT : 1 + wff_yarn_failure_states(&k->failure);
+    mat->n_state = k->n_state = k->failure.cutting_pressure > 0 ? STATE_COUNT
+                                : k->slip_capacity > 0 ? STATE_SLIP2 + 1
+                                : 1 + wff_yarn_failure_states(&k->failure);
     return 0;
 }
 

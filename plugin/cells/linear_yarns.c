@@ -352,7 +352,8 @@ static int linear_parse(wff_kv *kv, wff_material *mat, wff_error *err)
         wff_kv_number(kv, "yarn_spacing_1", &mat->yarn_spacing[0], err) ||
         wff_kv_number(kv, "yarn_spacing_2", &mat->yarn_spacing[1], err) ||
         wff_kv_number_or(kv, "tension_only", 0.0, &c->tension_only, err) ||
-        wff_yarn_failure_parse(kv, &c->failure, err))
+        wff_yarn_failure_parse(kv, &c->failure, err) ||
+        wff_yarn_failure_no_cutting(kv, &c->failure, "linear_yarns", err))
         return -1;
     if (!(c->stiffness[0] > 0))
         return wff_kv_reject(kv, "S_1", err, "yarn stiffness per width must be > 0 N/m");

@@ -65,10 +65,26 @@
  * between 0.515 and 1.20 h_ref for these strains. element_length 0 (the cell
  * suite, the explorer, wff_rest_state) means no scaling.
  *
+ * Transverse cutting (optional key cutting_pressure = p_c, Pa; 0 or absent:
+ * none; docs/model.md §25). Under the projectile's edge a yarn is pressed
+ * across its axis as it is pulled along it; a pressed yarn fails at a lower
+ * strain. With p the contact pressure at the point (its state
+ * contact_pressure, Pa, set by the projectile's contact each step: the nose's
+ * force on the point's node over the node's area; never changed by the cell)
+ * both strains scale with
+ *
+ *   κ(p) = max(0, 1 − p/p_c):   ε_f κ φ  and  s(h) κ φ,
+ *
+ * so the damage is clamp((ε − ε_f κ φ)/(s κ φ), 0, 1); at p ≥ p_c a stretched
+ * yarn (ε > 0) is cut through at once (d = 1), a slack one is not. κ = 1
+ * (p = 0, or the key absent) is today's law bit for bit.
+ *
  * Material keys (parsed here, once for every cell): failure (0 off, the
  * default; 1 on), fail_strain_1, fail_strain_2, rupture_strain_1,
  * rupture_strain_2 (−), failure_rate_C (1/s) and failure_rate_p (−), the rate
- * pair optional, failure_band_length (m, optional). The strains come as a set
+ * pair optional, failure_band_length (m, optional), cutting_pressure (Pa,
+ * optional; the cell must carry the contact_pressure state: a cell that
+ * does not refuses the key). The strains come as a set
  * of four; present with failure = 0 they are checked and kept but unused (a
  * scene switches failure on through the material override, which replaces
  * values of keys already in the file: hence failure_band_length = 0 for
@@ -96,6 +112,8 @@ typedef struct wff_yarn_failure {
     double rate_p;               /* p, −; 0 without rate scaling */
     double band_length;          /* h_ref, m, the crack band's reference element length;
                                     0: no scaling (no element_length state) */
+    double cutting_pressure;     /* p_c, Pa, the contact pressure at which a stretched yarn is
+                                    cut through; 0: no cutting (no contact_pressure state) */
 } wff_yarn_failure;
 
 /* The smallest span with the crack band, a fraction of the unscaled ε_r − ε_f
@@ -139,8 +157,8 @@ static inline int wff_yarn_failure_parse(wff_kv *kv, wff_yarn_failure *f, wff_er
 {
     static const char *const strain_key[4] = {"fail_strain_1", "fail_strain_2",
                                               "rupture_strain_1", "rupture_strain_2"};
-    double failure, strain[4], rate_C, rate_p, band;
-    f->enabled = f->rate_C = f->rate_p = f->band_length = 0;
+    double failure, strain[4], rate_C, rate_p, band, cutting;
+    f->enabled = f->rate_C = f->rate_p = f->band_length = f->cutting_pressure = 0;
     f->fail_strain[0] = f->fail_strain[1] = f->rupture_strain[0] = f->rupture_strain[1] = 0;
     if (wff_kv_number_or(kv, "failure", 0.0, &failure, err))
         return -1;
@@ -150,7 +168,8 @@ static inline int wff_yarn_failure_parse(wff_kv *kv, wff_yarn_failure *f, wff_er
             return -1;
     if (wff_kv_number_or(kv, "failure_rate_C", NAN, &rate_C, err) ||
         wff_kv_number_or(kv, "failure_rate_p", NAN, &rate_p, err) ||
-        wff_kv_number_or(kv, "failure_band_length", 0.0, &band, err))
+        wff_kv_number_or(kv, "failure_band_length", 0.0, &band, err) ||
+        wff_kv_number_or(kv, "cutting_pressure", 0.0, &cutting, err))
         return -1;
     if (failure != 0 && failure != 1)
         return wff_kv_reject(kv, "failure", err, "must be 0 (no yarn failure) or 1 (yarns fail "
@@ -205,8 +224,17 @@ static inline int wff_yarn_failure_parse(wff_kv *kv, wff_yarn_failure *f, wff_er
                              "must be >= 0 m (the crack band's reference element length; "
                              "0: no scaling of the rupture strain with the element size)");
 
+    if (cutting < 0)
+        return wff_kv_reject(kv, "cutting_pressure", err,
+                             "must be >= 0 Pa (the contact pressure that cuts a stretched "
+                             "yarn through; 0: no transverse cutting)");
+    if (cutting > 0 && present == 0)
+        return wff_kv_reject(kv, "cutting_pressure", err, "transverse cutting lowers the "
+                             "failure strains: it takes fail_strain_k and rupture_strain_k");
+
     f->enabled = failure;
     f->band_length = band;
+    f->cutting_pressure = cutting;
     if (present) {
         f->fail_strain[0] = strain[0];
         f->fail_strain[1] = strain[1];
@@ -217,6 +245,18 @@ static inline int wff_yarn_failure_parse(wff_kv *kv, wff_yarn_failure *f, wff_er
         f->rate_C = rate_C;
         f->rate_p = rate_p;
     }
+    return 0;
+}
+
+/* For a cell without the contact_pressure state: refuse cutting_pressure > 0
+ * (naming the key and the cell). Returns 0 or -1. */
+static inline int wff_yarn_failure_no_cutting(wff_kv *kv, const wff_yarn_failure *f,
+                                              const char *cell, wff_error *err)
+{
+    if (f->cutting_pressure > 0)
+        return wff_kv_reject(kv, "cutting_pressure", err, "transverse cutting is the "
+                             "king_plain cell's only (the %s cell carries no contact "
+                             "pressure state)", cell);
     return 0;
 }
 
@@ -251,11 +291,24 @@ WFF_INLINE double wff_yarn_failure_span(const wff_yarn_failure *f, int k,
     return s < floor ? floor : s > ceiling ? ceiling : s;
 }
 
-/* The damage a strain ε alone would give family k at rate factor φ and
- * element length h (0: no scaling): clamp((ε − ε_f φ)/(s(h) φ), 0, 1). */
+/* κ(p) = max(0, 1 − p/p_c), the factor transverse cutting puts on both strains at
+ * contact pressure p (Pa); 1 without cutting or at p <= 0. */
+WFF_INLINE double wff_yarn_cutting_factor(const wff_yarn_failure *f, double pressure)
+{
+    if (!(f->cutting_pressure > 0) || !(pressure > 0))
+        return 1.0;
+    const double kappa = 1 - pressure / f->cutting_pressure;
+    return kappa > 0 ? kappa : 0.0;
+}
+
+/* The damage a strain ε alone would give family k at rate factor φ (times the
+ * cutting factor κ) and element length h (0: no scaling):
+ * clamp((ε − ε_f φ)/(s(h) φ), 0, 1); at φ = 0 (κ = 0, cut) 1 for ε > 0, else 0. */
 WFF_INLINE double wff_yarn_damage_of_strain(const wff_yarn_failure *f, int k, double strain,
                                             double rate_factor, double element_length)
 {
+    if (!(rate_factor > 0))
+        return strain > 0 ? 1.0 : 0.0;
     double onset = f->fail_strain[k] * rate_factor;
     double span = wff_yarn_failure_span(f, k, element_length) * rate_factor;
     double d = (strain - onset) / span;
@@ -274,18 +327,22 @@ typedef struct wff_yarn_damage {
 /* Family k at engineering strain `strain` with undamaged yarn-stretch energy
  * `energy` (W_k: its W^+ when strain > 0), state damage (d_k) and strain_prev
  * (ε_k^prev, unused without the rate law), the point's element length
- * (state element_length; 0: no scaling), step dt: the update of the header
- * comment. Failure off: nothing changes, factor 1. */
-WFF_INLINE wff_yarn_damage wff_yarn_damage_step(const wff_yarn_failure *f, int k, double strain,
-                                                double energy, double damage,
-                                                double strain_prev, double element_length,
-                                                double dt)
+ * (state element_length; 0: no scaling) and contact pressure (state
+ * contact_pressure, Pa; unused without cutting), step dt: the update of the
+ * header comment. Failure off: nothing changes, factor 1. */
+WFF_INLINE wff_yarn_damage wff_yarn_damage_step_pressed(const wff_yarn_failure *f, int k,
+                                                        double strain, double energy,
+                                                        double damage, double strain_prev,
+                                                        double element_length,
+                                                        double pressure, double dt)
 {
     wff_yarn_damage y;
     y.damage = damage;
     y.strain_prev = strain_prev;
     if (f->enabled != 0 && dt > 0) {
         double rate_factor = wff_yarn_failure_rate_factor(f, (strain - strain_prev) / dt);
+        if (f->cutting_pressure > 0)
+            rate_factor *= wff_yarn_cutting_factor(f, pressure);
         double d = wff_yarn_damage_of_strain(f, k, strain, rate_factor, element_length);
         y.damage = d > damage ? d : damage;
         y.strain_prev = strain;
@@ -294,6 +351,16 @@ WFF_INLINE wff_yarn_damage wff_yarn_damage_step(const wff_yarn_failure *f, int k
     y.factor = tension ? 1 - y.damage : 1.0;
     y.released = tension ? (y.damage - damage) * energy : 0.0;
     return y;
+}
+
+/* wff_yarn_damage_step_pressed without contact pressure (no cutting). */
+WFF_INLINE wff_yarn_damage wff_yarn_damage_step(const wff_yarn_failure *f, int k, double strain,
+                                                double energy, double damage,
+                                                double strain_prev, double element_length,
+                                                double dt)
+{
+    return wff_yarn_damage_step_pressed(f, k, strain, energy, damage, strain_prev,
+                                        element_length, 0.0, dt);
 }
 
 /* The element length h of a point from the law's states fs (d_1 first):

@@ -14,6 +14,7 @@ static const cell_case cases[] = {
     {"tests/data/king_slip.txt",                  NULL,                            30e-6, 1},
     {"tests/data/king_slip_tension_only.txt",     NULL,                            30e-6, 1},
     {"tests/data/king_slip_failure.txt",          NULL,                            30e-6, 1},
+    {"tests/data/king_cutting.txt",               NULL,                            30e-6, 1},
     {"freefem_scripts/materials/kevlar_basket.txt", "tests/data/basket_symmetric.txt", 30e-6, 1},
     {"freefem_scripts/materials/kevlar_linear.txt", "tests/data/linear_symmetric.txt", 0, 1},
 };
