@@ -17,6 +17,7 @@
  *      state is held (dt > 0 and dt = 0); with cutting_pressure = 0 in the file
  *      a point has the bits of the file without the key. */
 #include "check.h"
+#include "test_material.h"
 #include "cells/yarn_failure.h"
 #include "wovenff/material.h"
 #include "wovenff/text_io.h"
@@ -33,28 +34,11 @@ static int load_text(const char *text, wff_material *m, wff_error *e)
     return wff_material_parse_text(text, "test_cutting", m, e);
 }
 
-/* The text of a material file with `assignments` applied; the caller frees it. */
-static char *material_text(check_state *st, const char *path, const char *assignments)
-{
-    char *text = NULL, *out = NULL;
-    wff_error e;
-    if (wff_read_text_file(path, "material", 1 << 20, &text, &e)) {
-        CHECK(st, 0, "%s", e.message);
-        return NULL;
-    }
-    if (!assignments[0])
-        return text;
-    int rc = wff_material_text_set(text, path, assignments, "test", &out, &e);
-    CHECK(st, rc == 0, "%s: %s", assignments, e.message);
-    free(text);
-    return rc ? NULL : out;
-}
-
 /* A material from path with assignments; 0 or -1 (reported when refusal is 0). */
 static int load(check_state *st, const char *path, const char *set, wff_material *m,
                 wff_error *e, int refusal)
 {
-    char *text = material_text(st, path, set);
+    char *text = test_material_text(st, path, set);
     if (!text)
         return -1;
     int rc = load_text(text, m, e);
@@ -82,7 +66,7 @@ static void check_keys(check_state *st)
                                         "freefem_scripts/materials/kevlar_basket.txt",
                                         "freefem_scripts/materials/kevlar_linear.txt"};
     for (int i = 0; i < 3; i++) {
-        char *text = material_text(st, other[i], "");
+        char *text = test_material_text(st, other[i], "");
         if (!text)
             continue;
         char *more = malloc(strlen(text) + 200);
@@ -180,7 +164,7 @@ static void check_king(check_state *st)
         load(st, KEVLAR, "failure=1", &zero, &e, 0))
         return;
     /* the file without the key at all */
-    char *text = material_text(st, KEVLAR, "failure=1");
+    char *text = test_material_text(st, KEVLAR, "failure=1");
     if (!text)
         return;
     char *line = strstr(text, "\ncutting_pressure");

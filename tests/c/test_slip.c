@@ -29,6 +29,7 @@
  *      yarn_friction = 0 in the file (slip_crossovers kept) the run has the same
  *      bits as the file without the slip keys. */
 #include "check.h"
+#include "test_material.h"
 #include "test_meshes.h"
 #include "test_tmp.h"
 #include "wovenff/balance.h"
@@ -54,30 +55,12 @@ static int load_text(const char *text, wff_material *m, wff_error *e)
     return wff_material_parse_text(text, "test_slip", m, e);
 }
 
-/* The text of a material file with `assignments` applied ("" for none); the
- * caller frees it. NULL on failure (reported). */
-static char *material_text(check_state *st, const char *path, const char *assignments)
-{
-    char *text = NULL, *out = NULL;
-    wff_error e;
-    if (wff_read_text_file(path, "material", 1 << 20, &text, &e)) {
-        CHECK(st, 0, "%s", e.message);
-        return NULL;
-    }
-    if (!assignments[0])
-        return text;
-    int rc = wff_material_text_set(text, path, assignments, "test", &out, &e);
-    CHECK(st, rc == 0, "%s: %s", assignments, e.message);
-    free(text);
-    return rc ? NULL : out;
-}
-
 /* 1. the keys */
 static void check_keys(check_state *st)
 {
     wff_material m;
     wff_error e;
-    char *off = material_text(st, KEVLAR, "");
+    char *off = test_material_text(st, KEVLAR, "");
     if (!off)
         return;
     CHECK(st, load_text(off, &m, &e) == 0 && m.n_state == 1 &&
@@ -90,7 +73,7 @@ static void check_keys(check_state *st)
         {"slip_crossovers=0", "slip_crossovers"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        char *text = material_text(st, KEVLAR, bad[i].set);
+        char *text = test_material_text(st, KEVLAR, bad[i].set);
         if (!text)
             continue;
         int rc = load_text(text, &m, &e);
@@ -99,7 +82,7 @@ static void check_keys(check_state *st)
         free(text);
     }
     /* yarn_friction > 0 without slip_crossovers */
-    char *text = material_text(st, "tests/data/king_tension_only.txt", "");
+    char *text = test_material_text(st, "tests/data/king_tension_only.txt", "");
     if (text) {
         char *more = malloc(strlen(text) + 64);
         sprintf(more, "%s\nyarn_friction = 0.2\n", text);
@@ -138,7 +121,7 @@ static void check_pull(check_state *st, const char *path, double capacity, int t
         CHECK(st, 0, "%s", e.message);
         return;
     }
-    char *text = material_text(st, path, "yarn_friction=0");
+    char *text = test_material_text(st, path, "yarn_friction=0");
     if (!text || load_text(text, &off, &e)) {
         CHECK(st, 0, "%s: without slip: %s", path, text ? e.message : "");
         free(text);
@@ -226,7 +209,7 @@ static void check_balanced_pull(check_state *st)
 {
     wff_material m, off;
     wff_error e;
-    char *text = material_text(st, SLIP, "yarn_friction=0");
+    char *text = test_material_text(st, SLIP, "yarn_friction=0");
     if (wff_material_load(SLIP, &m, &e) || !text || load_text(text, &off, &e)) {
         CHECK(st, 0, "%s", e.message);
         free(text);
