@@ -181,28 +181,6 @@ std::string joined(const std::vector<Column> &cols, bool units, const char *sep)
     return text;
 }
 
-template <class M>
-long ffPathSegment(const M &material, KN<double> *const &Fa, KN<double> *const &Fb,
-                   const double &duration, const long &dynamic_amplitudes,
-                   const long &shear_flow, KN<double> *const &state)
-{
-    const char *fn = "wovenffPathSegment";
-    double F_a[6], F_b[6];
-    take_F(fn, "Fa", Fa, F_a);
-    take_F(fn, "Fb", Fb, F_b);
-    wff_ff_require_finite(fn, "duration", duration, -1);
-    wff_material scratch;
-    const wff_material *mat = wff_ff_material_arg(fn, material, &scratch);
-    wff_point_state s = take_state(fn, state, *mat);
-    wff_path_mode mode = {dynamic_amplitudes != 0, shear_flow != 0, WFF_PATH_STEP_SAFETY,
-                          WFF_PATH_FLOW_SUBSTEPS};
-    wff_error err;
-    if (wff_point_path_segment(mat, F_a, F_b, duration, &mode, &s, &err))
-        wff_ff_fail(fn, err);
-    give_state(s, *mat, state);
-    return s.substeps;
-}
-
 // dissipated: 3 finite entries the path's dissipation is added to (J/m^2).
 void take_dissipated(const char *fn, KN<double> *v, wff_point_state *s)
 {
@@ -216,11 +194,12 @@ void give_dissipated(const wff_point_state &s, KN<double> *v)
         (*v)[i] = s.dissipated[i];
 }
 
+// One segment of a path (both forms of wovenffPathSegment); dissipated NULL:
+// the form without it.
 template <class M>
-long ffPathSegmentDissipated(const M &material, KN<double> *const &Fa, KN<double> *const &Fb,
-                             const double &duration, const long &dynamic_amplitudes,
-                             const long &shear_flow, KN<double> *const &state,
-                             KN<double> *const &dissipated)
+long path_segment(const M &material, KN<double> *Fa, KN<double> *Fb, double duration,
+                  long dynamic_amplitudes, long shear_flow, KN<double> *state,
+                  KN<double> *dissipated)
 {
     const char *fn = "wovenffPathSegment";
     double F_a[6], F_b[6];
@@ -230,15 +209,35 @@ long ffPathSegmentDissipated(const M &material, KN<double> *const &Fa, KN<double
     wff_material scratch;
     const wff_material *mat = wff_ff_material_arg(fn, material, &scratch);
     wff_point_state s = take_state(fn, state, *mat);
-    take_dissipated(fn, dissipated, &s);
+    if (dissipated)
+        take_dissipated(fn, dissipated, &s);
     wff_path_mode mode = {dynamic_amplitudes != 0, shear_flow != 0, WFF_PATH_STEP_SAFETY,
                           WFF_PATH_FLOW_SUBSTEPS};
     wff_error err;
     if (wff_point_path_segment(mat, F_a, F_b, duration, &mode, &s, &err))
         wff_ff_fail(fn, err);
     give_state(s, *mat, state);
-    give_dissipated(s, dissipated);
+    if (dissipated)
+        give_dissipated(s, dissipated);
     return s.substeps;
+}
+
+template <class M>
+long ffPathSegment(const M &material, KN<double> *const &Fa, KN<double> *const &Fb,
+                   const double &duration, const long &dynamic_amplitudes,
+                   const long &shear_flow, KN<double> *const &state)
+{
+    return path_segment(material, Fa, Fb, duration, dynamic_amplitudes, shear_flow, state, NULL);
+}
+
+template <class M>
+long ffPathSegmentDissipated(const M &material, KN<double> *const &Fa, KN<double> *const &Fb,
+                             const double &duration, const long &dynamic_amplitudes,
+                             const long &shear_flow, KN<double> *const &state,
+                             KN<double> *const &dissipated)
+{
+    return path_segment(material, Fa, Fb, duration, dynamic_amplitudes, shear_flow, state,
+                        dissipated);
 }
 
 template <class M>
