@@ -340,6 +340,59 @@ int wff_model_set_impact_point(wff_model *m, double x, double y, wff_error *err)
     return 0;
 }
 
+/* The FSP's chisel nose and the oblique path (their geometry: projectile_shape.c). */
+int wff_model_set_projectile_chisel(wff_model *m, double flat_width, double bevel_degrees,
+                                    wff_error *err)
+{
+    wff_projectile *p = &m->projectile;
+    if (started(m))
+        return wff_fail(err, "projectile shape: the run has started (step %ld); set the nose "
+                        "before the first step", m->step);
+    if (!(flat_width >= 0) || !isfinite(flat_width))
+        return wff_fail(err, "chisel nose: flat width %g m must be >= 0", flat_width);
+    if (!(bevel_degrees > 0 && bevel_degrees < 90))
+        return wff_fail(err, "chisel nose: bevel angle %g deg must be in (0, 90) (from the end "
+                        "face)", bevel_degrees);
+    if (p->active && flat_width > 2 * p->radius)
+        return wff_fail(err, "chisel nose: flat width %g m is wider than the projectile (radius "
+                        "%g m)", flat_width, p->radius);
+    const wff_projectile old = *p;
+    p->nose = WFF_NOSE_CHISEL;
+    p->edge_radius = 0;
+    p->chisel_flat = flat_width;
+    p->chisel_bevel = bevel_degrees * M_PI / 180;
+    if (p->active && wff_model_place_projectile(m, p->tip, err)) {
+        *p = old;
+        return -1;
+    }
+    return 0;
+}
+
+int wff_model_set_obliquity(wff_model *m, double degrees, wff_error *err)
+{
+    wff_projectile *p = &m->projectile;
+    if (started(m))
+        return wff_fail(err, "obliquity: the run has started (step %ld); set it before the "
+                        "first step", m->step);
+    if (!(degrees >= 0 && degrees < 90))
+        return wff_fail(err, "obliquity %g deg: must be in [0, 90) (from the fabric's normal)",
+                        degrees);
+    const wff_projectile old = *p;
+    p->oblique = degrees != 0;
+    p->path[0] = p->oblique ? sin(degrees * M_PI / 180) : 0;
+    p->path[1] = 0;
+    p->path[2] = p->oblique ? cos(degrees * M_PI / 180) : 1;
+    if (wff_contact_oblique_check(m->symmetry_factor, p, err)) {
+        *p = old;
+        return -1;
+    }
+    if (p->active && wff_model_place_projectile(m, -wff_projectile_lead(p) / p->path[2], err)) {
+        *p = old;
+        return -1;
+    }
+    return 0;
+}
+
 int wff_model_place_projectile(wff_model *m, double tip, wff_error *err)
 {
     wff_projectile *p = &m->projectile;

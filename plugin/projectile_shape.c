@@ -1,9 +1,9 @@
 /* projectile_shape.c: what the standard threats added to the rigid
  * projectile (docs/threats.md, docs/model.md §16): the FSP's chisel nose, the
  * oblique path (the projectile's own frame, how far its nose reaches ahead
- * of its tip, its momentum along the path) and their setters. The contact
- * itself (contact.c) calls these; they know the projectile and the model's
- * start, nothing of the contact's impulses. */
+ * of its tip, its momentum along the path). The contact (contact.c) calls
+ * these, its setters too; they know the projectile, nothing of the model's
+ * contact or its impulses. */
 #include "contact.h"
 
 #include <math.h>
@@ -110,57 +110,5 @@ int wff_contact_oblique_check(double symmetry, const wff_projectile *p, wff_erro
         return wff_fail(err, "obliquity %g deg with a symmetric model (symmetry %g): an oblique "
                         "path breaks its mirror planes; model the full specimen (symmetry 1)",
                         atan2(p->path[0], p->path[2]) * 180 / M_PI, symmetry);
-    return 0;
-}
-
-int wff_model_set_projectile_chisel(wff_model *m, double flat_width, double bevel_degrees,
-                                    wff_error *err)
-{
-    wff_projectile *p = &m->projectile;
-    if (m->step > 0 || m->v_half_valid) /* (the run has started) */
-        return wff_fail(err, "projectile shape: the run has started (step %ld); set the nose "
-                        "before the first step", m->step);
-    if (!(flat_width >= 0) || !isfinite(flat_width))
-        return wff_fail(err, "chisel nose: flat width %g m must be >= 0", flat_width);
-    if (!(bevel_degrees > 0 && bevel_degrees < 90))
-        return wff_fail(err, "chisel nose: bevel angle %g deg must be in (0, 90) (from the end "
-                        "face)", bevel_degrees);
-    if (p->active && flat_width > 2 * p->radius)
-        return wff_fail(err, "chisel nose: flat width %g m is wider than the projectile (radius "
-                        "%g m)", flat_width, p->radius);
-    const wff_projectile old = *p;
-    p->nose = WFF_NOSE_CHISEL;
-    p->edge_radius = 0;
-    p->chisel_flat = flat_width;
-    p->chisel_bevel = bevel_degrees * M_PI / 180;
-    if (p->active && wff_model_place_projectile(m, p->tip, err)) {
-        *p = old;
-        return -1;
-    }
-    return 0;
-}
-
-int wff_model_set_obliquity(wff_model *m, double degrees, wff_error *err)
-{
-    wff_projectile *p = &m->projectile;
-    if (m->step > 0 || m->v_half_valid) /* (the run has started) */
-        return wff_fail(err, "obliquity: the run has started (step %ld); set it before the "
-                        "first step", m->step);
-    if (!(degrees >= 0 && degrees < 90))
-        return wff_fail(err, "obliquity %g deg: must be in [0, 90) (from the fabric's normal)",
-                        degrees);
-    const wff_projectile old = *p;
-    p->oblique = degrees != 0;
-    p->path[0] = p->oblique ? sin(degrees * M_PI / 180) : 0;
-    p->path[1] = 0;
-    p->path[2] = p->oblique ? cos(degrees * M_PI / 180) : 1;
-    if (wff_contact_oblique_check(m->symmetry_factor, p, err)) {
-        *p = old;
-        return -1;
-    }
-    if (p->active && wff_model_place_projectile(m, -wff_projectile_lead(p) / p->path[2], err)) {
-        *p = old;
-        return -1;
-    }
     return 0;
 }
