@@ -16,12 +16,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Index in mat's points of family k's damage, or −1 when they carry none. */
-static int damage_index(const wff_material *mat, int k)
-{
-    return wff_material_damage_state(mat, k); /* −1 unless its yarns fail (not slip alone) */
-}
-
 /* Whether some material of the model carries both damage states; the first
  * cell without yarn failure into *lacking (NULL if none). */
 static int materials_damage(const wff_model *m, const wff_cell_type **lacking)
@@ -37,7 +31,7 @@ static int materials_damage(const wff_model *m, const wff_cell_type **lacking)
                 *lacking = mat->cell;
             continue;
         }
-        carry |= damage_index(mat, 0) >= 0 && damage_index(mat, 1) >= 0;
+        carry |= wff_material_damage_state(mat, 0) >= 0 && wff_material_damage_state(mat, 1) >= 0;
     }
     return carry;
 }
@@ -103,7 +97,7 @@ int wff_erosion_set(wff_model *m, double value, wff_error *err)
 
 int wff_erosion_default(wff_model *m, wff_error *err)
 {
-    if (damage_index(&m->mat, 0) < 0 || damage_index(&m->mat, 1) < 0)
+    if (wff_material_damage_state(&m->mat, 0) < 0 || wff_material_damage_state(&m->mat, 1) < 0)
         return 0;
     return wff_erosion_on(m, WFF_EROSION_BOTH, err);
 }
@@ -113,7 +107,7 @@ static int ruptured(const wff_model *m, const wff_material *mat, const double *s
                     int rule)
 {
     const int ns = m->n_state;
-    int k0 = damage_index(mat, 0), k1 = damage_index(mat, 1);
+    int k0 = wff_material_damage_state(mat, 0), k1 = wff_material_damage_state(mat, 1);
     int all[2] = {k0 >= 0, k1 >= 0};
     for (int q = 0; q < n_points && (all[0] || all[1]); q++) {
         if (all[0] && !(s[ns * q + k0] >= 1))
@@ -168,7 +162,7 @@ double wff_element_damage(const wff_model *m, int e, int k)
 {
     wff_element_material scratch;
     const wff_material *mat = wff_zones_element_material(m, e, &scratch)->mat;
-    int i = damage_index(mat, k);
+    int i = wff_material_damage_state(mat, k);
     if (i < 0)
         return 0;
     const int n = e < m->el.n_tris ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
@@ -188,7 +182,7 @@ int wff_element_torn(const wff_model *m, int e)
     const int n = e < m->el.n_tris ? WFF_TRI_POINTS : WFF_QUAD_POINTS;
     const double *s = m->state + (size_t)m->n_state * wff_element_first_point(m->el.n_tris, e);
     for (int k = 0; k < 2; k++) {
-        int i = damage_index(mat, k);
+        int i = wff_material_damage_state(mat, k);
         for (int q = 0; i >= 0 && q < n; q++)
             if (s[m->n_state * q + i] >= 1)
                 return 1;

@@ -62,19 +62,17 @@ static void pack_follow(wff_model *m, const char *what, double theta)
             m->pack->orientation[p] = theta;
 }
 
-/* A pack of one ply (no zones' per-ply totals): its first damaged point by a
- * scan of its elements after each advancing pass, until one is found. */
+/* A pack of one ply (no zones' per-ply totals): its first damaged point after
+ * each advancing pass (wff_model_damaged, erosion.c), until one is found; no
+ * scan where its one material's yarns cannot fail (with a ply material, a zone,
+ * the scan reads each element's). */
 static void first_damage_scan(wff_model *m)
 {
     struct wff_pack *P = m->pack;
-    if (P->first_damage_time[0] >= 0)
+    if (P->first_damage_time[0] >= 0 || (!m->zones && wff_material_damage_state(&m->mat, 0) < 0))
         return;
-    const int n_el = m->el.n_tris + m->el.n_quads;
-    for (int e = 0; e < n_el; e++)
-        if (wff_element_damage(m, e, 0) > 0 || wff_element_damage(m, e, 1) > 0) {
-            P->first_damage_time[0] = m->time;
-            return;
-        }
+    if (wff_model_damaged(m))
+        P->first_damage_time[0] = m->time;
 }
 
 /* After an accumulating force pass: the pass's per-ply energies; the elements

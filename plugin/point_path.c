@@ -164,8 +164,8 @@ int wff_point_path_pull_level(const wff_material *mat, double stretch1, double t
                         "of family 2", wff_cell_name(mat->cell), mat->source);
     /* secant on λ_2 from the last level's, a first step of 1e-4 */
     double x0 = F[3], x1 = F[3] + 1e-4, f0, f1;
-    wff_point_state s0, s1;
-    if (pull_trial(mat, stretch1, x0, tension2, dt, diag, state, &s0, &f0, err) ||
+    wff_point_state s1; /* (the trials' states: only the last one's kept) */
+    if (pull_trial(mat, stretch1, x0, tension2, dt, diag, state, &s1, &f0, err) ||
         pull_trial(mat, stretch1, x1, tension2, dt, diag, state, &s1, &f1, err))
         return -1;
     for (int trial = 0; trial < 60; trial++) {
@@ -180,7 +180,6 @@ int wff_point_path_pull_level(const wff_material *mat, double stretch1, double t
         double x2 = x1 - f1 * (x1 - x0) / (f1 - f0);
         x0 = x1;
         f0 = f1;
-        s0 = s1;
         x1 = x2;
         if (pull_trial(mat, stretch1, x1, tension2, dt, diag, state, &s1, &f1, err))
             return -1;

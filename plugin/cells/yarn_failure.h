@@ -341,8 +341,7 @@ WFF_INLINE wff_yarn_damage wff_yarn_damage_step_pressed(const wff_yarn_failure *
     y.strain_prev = strain_prev;
     if (f->enabled != 0 && dt > 0) {
         double rate_factor = wff_yarn_failure_rate_factor(f, (strain - strain_prev) / dt);
-        if (f->cutting_pressure > 0)
-            rate_factor *= wff_yarn_cutting_factor(f, pressure);
+        rate_factor *= wff_yarn_cutting_factor(f, pressure); /* (1 without cutting) */
         double d = wff_yarn_damage_of_strain(f, k, strain, rate_factor, element_length);
         y.damage = d > damage ? d : damage;
         y.strain_prev = strain;
