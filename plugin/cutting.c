@@ -201,8 +201,9 @@ static double pressing_force(const wff_model *m, int n, const double j[3], doubl
  * every point. The edge's line crosses the patch of the node that carries it,
  * so the elements round that node; the element is the smallest piece the mesh
  * can cut (erosion takes an element whose points have all ruptured), and a cut
- * at the pressed node's point alone would leave the element standing. */
-static void press_element(wff_model *m, const struct wff_cutting *c, int e)
+ * at the pressed node's point alone would leave the element standing. Returns
+ * that pressure (0: no node of e pressed now). */
+static double press_element(wff_model *m, const struct wff_cutting *c, int e)
 {
     const int nt = m->el.n_tris, ns = m->n_state, slot = c->slot[e];
     double *state = m->state + (size_t)ns * wff_element_first_point(nt, e) + slot;
@@ -212,6 +213,7 @@ static void press_element(wff_model *m, const struct wff_cutting *c, int e)
         most = fmax(most, c->node_pressure[nodes[a]]);
     for (int q = 0; q < (e < nt ? WFF_TRI_POINTS : WFF_QUAD_POINTS); q++)
         state[ns * q] = most;
+    return most;
 }
 
 static int cutting_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
@@ -250,17 +252,11 @@ static int cutting_correct(wff_model *m, double dt, double dt_mid, wff_error *er
                     c->listed[e] = 1, c->pressed[c->n_pressed++] = e;
             }
         }
-        for (int k = 0; k < c->n_pressed; k++)
-            press_element(m, c, c->pressed[k]);
-        /* keep only the elements holding a pressure now */
+        /* pressed now, or back to 0 and off the list */
         int kept = 0;
         for (int k = 0; k < c->n_pressed; k++) {
             const int e = c->pressed[k];
-            const int *nodes, np = element_nodes(m, e, &nodes);
-            int touched = 0;
-            for (int a = 0; a < np; a++)
-                touched |= c->node_pressure[nodes[a]] > 0;
-            if (touched)
+            if (press_element(m, c, e) > 0)
                 c->pressed[kept++] = e;
             else
                 c->listed[e] = 0;
