@@ -191,6 +191,11 @@ static int update_time_step(wff_model *m, wff_error *err)
 {
     int worst;
     double dt = wff_zones_stable_step(m, m->u, &worst);
+    /* a part's own solid (a backing block): its step if shorter (the message
+     * below names the fabric's element that sets the fabric's) */
+    const double parts_dt = wff_parts_stable_step(m);
+    if (parts_dt < dt && worst >= 0)
+        dt = parts_dt;
     if (dt == INFINITY && worst < 0 && m->n_eroded > 0 && m->dt_stable > 0) {
         /* every element eroded: free masses, no element sets a step; keep the last */
         m->dt = m->dt_factor * m->dt_stable;
@@ -333,7 +338,7 @@ static void book_impulses(wff_model *m, double dt_before, double dt_mid)
 double wff_model_step_estimate(const wff_model *m)
 {
     int worst;
-    return m->dt_factor * wff_zones_stable_step(m, m->u, &worst);
+    return m->dt_factor * fmin(wff_zones_stable_step(m, m->u, &worst), wff_parts_stable_step(m));
 }
 
 /* The step after this one toward the model's t_stop (stop, s): the full step

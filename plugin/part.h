@@ -41,6 +41,11 @@ typedef struct wff_part_ops {
      * what the step needs. -1 (err set) on failure. */
     int (*setup)(wff_model *m, wff_error *err);
 
+    /* The longest stable step of what the part itself integrates (a backing
+     * block's elements), s; INFINITY when it has none. The model's step is the
+     * smallest of the elements' and these. */
+    double (*stable_step)(const wff_model *m);
+
     /* The stable step was updated, or an advance begins: refresh what depends
      * on the step or the positions (the projectile's contact candidates). */
     void (*refresh)(wff_model *m);
@@ -117,6 +122,8 @@ extern const wff_part_ops *const wff_parts[];
 /* Convenience loops over the list (parts.c), each in the list's order. */
 int wff_parts_setup(wff_model *m, wff_error *err);
 void wff_parts_refresh(wff_model *m);
+/* The smallest of the parts' stable steps (INFINITY: none). */
+double wff_parts_stable_step(const wff_model *m);
 double wff_parts_after_forces(wff_model *m, const double *u, const double *state,
                               double dt_flow);
 int wff_parts_correct(wff_model *m, double dt, double dt_mid, wff_error *err);

@@ -3,6 +3,7 @@
  * whole-model operations run over them. A new per-step phenomenon is a new
  * file with its wff_part_ops and one line here. */
 #include "part.h"
+#include "backing.h"
 #include "clamp.h"
 #include "contact.h"
 #include "cutting.h"
@@ -29,6 +30,7 @@ const wff_part_ops *const wff_parts[] = {
     &wff_clamp_part,
     &wff_projectile_contact_part,
     &wff_ply_contact_part,
+    &wff_backing_part,
     &wff_cutting_part,
     &wff_perforation_part,
     &wff_distributed_part,
@@ -50,6 +52,18 @@ void wff_parts_refresh(wff_model *m)
     EACH_PART(p)
         if ((*p)->refresh)
             (*p)->refresh(m);
+}
+
+double wff_parts_stable_step(const wff_model *m)
+{
+    double dt = INFINITY;
+    EACH_PART(p)
+        if ((*p)->stable_step) {
+            const double step = (*p)->stable_step(m);
+            if (step < dt)
+                dt = step;
+        }
+    return dt;
 }
 
 double wff_parts_after_forces(wff_model *m, const double *u, const double *state,

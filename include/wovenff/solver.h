@@ -256,6 +256,8 @@ struct wff_model {
                                  one ply, the plain path */
     struct wff_cutting *cutting; /* the nose's contact pressure (plugin/cutting.c); NULL
                                     until the first step with a projectile */
+    struct wff_backing *backing; /* the backing block behind the pack (plugin/backing.c);
+                                    NULL until a backing setting is given */
 };
 #endif /* WFF_MODEL_OPAQUE */
 

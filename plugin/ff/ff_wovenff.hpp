@@ -40,6 +40,7 @@ void wff_ff_register_threads(); // ff_threads.cpp: the default thread count, a m
 void wff_ff_register_kernel(); // ff_kernel.cpp: the kernel variant a model runs
 void wff_ff_register_limit();  // ff_limit.cpp: the Lambert-Jonas fit of a ballistic-limit study
 void wff_ff_register_pack();   // ff_pack.cpp: multi-ply packs
+void wff_ff_register_backing(); // ff_backing.cpp: the backing block behind a pack
 void wff_ff_register_combine(); // ff_combine.cpp: which run-level features a model takes
 
 // Record "fn: message" as the last error and stop the script (exit code 8

@@ -96,6 +96,7 @@ static void (*const kRegister[])() = {
     wff_ff_register_kernel,
     wff_ff_register_limit,
     wff_ff_register_pack,
+    wff_ff_register_backing,
     wff_ff_register_combine,
 };
 

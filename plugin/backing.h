@@ -1,0 +1,73 @@
+/* backing.h: the backing block behind the pack (plugin/backing.c, the part;
+ * plugin/backing_contact.c, its contacts with the back ply and the
+ * projectile; the solid itself is plugin/solids/block.h). docs/backing.md. */
+#ifndef WFF_BACKING_H
+#define WFF_BACKING_H
+
+#include "part.h"
+#include "solids/block.h"
+
+/* The contacts of one step between the back ply's nodes and the block's top
+ * face (node to face: a ply node over the face's bilinear quad), kinematic,
+ * with Coulomb friction (backing_contact.c). */
+typedef struct wff_face_contacts {
+    int n, max;            /* this step's contacts; room for */
+    int *node;             /* the fabric node */
+    int *face;             /* the face's 4 block nodes */
+    double *weight;        /* their bilinear weights N_a at the node's point */
+    double *normal;        /* the face's unit normal out of the block, 3 */
+    double *gap;           /* the predicted gap at the first look (< 0: penetrating), m */
+    double *lambda;        /* the normal impulse on the fabric node, N·s */
+    double *normal_speed0; /* the relative normal speed at the first look, m/s */
+    double *impulse;       /* the impulse on the fabric node, normal and friction, 3 */
+} wff_face_contacts;
+
+struct wff_backing {
+    int law;                 /* WFF_BLOCK_NONE, _CLAY, _GELATIN (setting backing) */
+    double depth, finest, growth, mu, hourglass, gap; /* the settings backing_depth,
+                                backing_element (m), backing_growth, backing_mu,
+                                backing_hourglass, backing_gap (m) */
+    int built;               /* 1: the block is made (at the run's first step) */
+    wff_block block;
+    int *ply_nodes, n_ply_nodes; /* the back ply's nodes that may touch the block */
+    wff_face_contacts contacts;
+    double *block_impulse;   /* per block DOF, this step's contact impulses, N·s */
+    double projectile_dv;    /* the projectile's velocity change by the block this step, m/s */
+    int projectile_contacts; /* block nodes the projectile pressed this step */
+    int started;             /* 1 once the block has taken its first half step */
+    double dt_next;          /* the step planned at the last correction, s */
+    /* the balance (model part, J) */
+    double work_fabric, work_projectile, work_block; /* the contact impulses' work on the
+                                fabric, on the projectile and on the block so far */
+    double kinetic;          /* the block's kinetic energy, the balance's measure */
+    double peak_depth;       /* the top face's largest indentation so far, m */
+    double seconds;          /* wall time in the block and its contacts, s */
+};
+
+extern const wff_part_ops wff_backing_part;
+
+/* The back ply's nodes against the block's top face: impulses on both (the
+ * fabric's velocities and the block's) so that no node ends the step within
+ * h (m) of the face, Coulomb friction mu; dt the step to be taken. Fills
+ * B->contacts and B->block_impulse. Returns the largest penetration left, m. */
+double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, double dt);
+
+/* The block's top-face nodes against the rigid projectile (frictionless):
+ * impulses on the nodes (into B->block_impulse) and the projectile's velocity
+ * change (B->projectile_dv, applied to m->projectile.velocity). */
+void wff_backing_projectile_contact(wff_model *m, struct wff_backing *B, double dt);
+
+/* A rigid body's penetration δ (> 0 inside) of point x and the outward
+ * normal there, the body moved along +z by `advance` (m). */
+typedef double (*wff_rigid_penetration)(const void *body, double advance, const double x[3],
+                                        double normal[3]);
+
+/* The top-face nodes of b against a rigid body of mass `mass` (kg) moving
+ * along +z at *velocity (m/s, changed by the impulses), frictionless,
+ * kinematic: no node ends the step dt inside it (to the sweeps' tolerance).
+ * Impulses on the nodes added to impulse (3 per block node, N·s, may be NULL)
+ * and to b->v. Returns the number of nodes pressed. */
+int wff_block_rigid_contact(wff_block *b, wff_rigid_penetration penetration, const void *body,
+                            double mass, double *velocity, double dt, double *impulse);
+
+#endif

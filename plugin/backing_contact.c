@@ -1,0 +1,337 @@
+/* backing_contact.c: the backing block's contacts (backing.h), kinematic as
+ * the projectile's (docs/model.md §16): velocity impulses so that nothing ends
+ * the step inside anything, found at the positions the step predicts and
+ * solved by Gauss–Seidel sweeps in node order (the same order at any thread or
+ * rank count).
+ *
+ * - The back ply on the block's top face, node to face: a fabric node over a
+ *   face quad (its bilinear point under the node) is kept h from the face
+ *   along the face's normal; the impulse λ n on the node, −N_a λ n on the
+ *   face's nodes; then Coulomb friction, the tangential slip stopped within
+ *   μ λ, in one pass.
+ * - The rigid projectile (or any rigid body moving along z) on the top face's
+ *   nodes, frictionless.
+ * Knows the model's arrays and the block's; nothing of cells or FreeFEM. */
+#include "backing.h"
+#include "contact.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Most Gauss–Seidel sweeps a step, and the largest change of a gap (m) by a
+ * sweep below which the sweeps stop. */
+#define SWEEPS_MAX 100
+#define SWEEP_TOLERANCE 1e-12
+
+/* The index i with grid[i] <= x < grid[i + 1], clamped to [0, n − 1]. */
+static int interval(const double *grid, int n, double x)
+{
+    int lo = 0, hi = n;
+    while (hi - lo > 1) {
+        const int mid = (lo + hi) / 2;
+        if (grid[mid] <= x)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* The predicted position of block node a after dt. */
+static void block_predicted(const wff_block *b, int a, double dt, double x[3])
+{
+    for (int c = 0; c < 3; c++)
+        x[c] = b->X[3 * a + c] + b->u[3 * a + c] + dt * b->v[3 * a + c];
+}
+
+/* The face (i, j) of the top face under (px, py) at the predicted positions:
+ * its nodes, the natural coordinates of the point (Newton on the bilinear map
+ * projected on x-y), walking to a neighbour while the point lies outside.
+ * 0 and the face's nodes, weights, point and normal (out of the block) when
+ * found; -1 when the point lies off the block. */
+static int locate(const wff_block *b, double dt, double px, double py, int face[4],
+                  double weight[4], double point[3], double normal[3])
+{
+    int i = interval(b->grid[0], b->n[0], px), j = interval(b->grid[1], b->n[1], py);
+    for (int walk = 0; walk < 6; walk++) {
+        face[0] = wff_block_node(b, i, j, 0), face[1] = wff_block_node(b, i + 1, j, 0);
+        face[2] = wff_block_node(b, i + 1, j + 1, 0), face[3] = wff_block_node(b, i, j + 1, 0);
+        double x[4][3];
+        for (int a = 0; a < 4; a++)
+            block_predicted(b, face[a], dt, x[a]);
+        static const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
+        double xi = 0, eta = 0;
+        for (int it = 0; it < 8; it++) {
+            double r[2] = {-px, -py}, J[4] = {0, 0, 0, 0};
+            for (int a = 0; a < 4; a++) {
+                const double N = 0.25 * (1 + sx[a] * xi) * (1 + sy[a] * eta);
+                const double dxi = 0.25 * sx[a] * (1 + sy[a] * eta);
+                const double deta = 0.25 * sy[a] * (1 + sx[a] * xi);
+                for (int c = 0; c < 2; c++) {
+                    r[c] += N * x[a][c];
+                    J[2 * c] += dxi * x[a][c];
+                    J[2 * c + 1] += deta * x[a][c];
+                }
+            }
+            const double det = J[0] * J[3] - J[1] * J[2];
+            if (!(fabs(det) > 0))
+                return -1;
+            const double dxi = (J[3] * r[0] - J[1] * r[1]) / det;
+            const double deta = (-J[2] * r[0] + J[0] * r[1]) / det;
+            xi -= dxi, eta -= deta;
+            if (fabs(dxi) + fabs(deta) < 1e-12)
+                break;
+        }
+        const double slack = 1 + 1e-9;
+        int moved = 0;
+        if (xi < -slack && i > 0)
+            i--, moved = 1;
+        else if (xi > slack && i < b->n[0] - 1)
+            i++, moved = 1;
+        if (eta < -slack && j > 0)
+            j--, moved = 1;
+        else if (eta > slack && j < b->n[1] - 1)
+            j++, moved = 1;
+        if (moved)
+            continue;
+        if (fabs(xi) > slack || fabs(eta) > slack)
+            return -1; /* off the block's edge */
+        double t_xi[3] = {0, 0, 0}, t_eta[3] = {0, 0, 0};
+        point[0] = point[1] = point[2] = 0;
+        for (int a = 0; a < 4; a++) {
+            weight[a] = 0.25 * (1 + sx[a] * xi) * (1 + sy[a] * eta);
+            for (int c = 0; c < 3; c++) {
+                point[c] += weight[a] * x[a][c];
+                t_xi[c] += 0.25 * sx[a] * (1 + sy[a] * eta) * x[a][c];
+                t_eta[c] += 0.25 * sy[a] * (1 + sx[a] * xi) * x[a][c];
+            }
+        }
+        /* x_ξ × x_η points into the block (+z): the outward normal is its opposite */
+        double n[3] = {t_xi[1] * t_eta[2] - t_xi[2] * t_eta[1],
+                       t_xi[2] * t_eta[0] - t_xi[0] * t_eta[2],
+                       t_xi[0] * t_eta[1] - t_xi[1] * t_eta[0]};
+        const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (!(len > 0))
+            return -1;
+        for (int c = 0; c < 3; c++)
+            normal[c] = -n[c] / len;
+        return 0;
+    }
+    return -1;
+}
+
+/* Δv on a fabric node's free translational DOFs by the impulse j (3). */
+static void kick_fabric(wff_model *m, int s, const double j[3])
+{
+    for (int c = 0; c < 3; c++)
+        if (m->dof_kind[D * s + c] == WFF_DOF_FREE)
+            m->v[D * s + c] += j[c] / m->mass[D * s + c];
+}
+
+/* The same on a block node's free DOFs, the impulse added to impulse (3 a node). */
+static void kick_block(wff_block *b, int a, const double j[3], double *impulse)
+{
+    for (int c = 0; c < 3; c++)
+        if (!b->held[3 * a + c]) {
+            b->v[3 * a + c] += j[c] / b->mass[3 * a + c];
+            if (impulse)
+                impulse[3 * a + c] += j[c];
+        }
+}
+
+/* The relative velocity of contact c along its normal: (v_s − Σ N_a v_a)·n. */
+static double normal_speed(const wff_model *m, const wff_block *b, const wff_face_contacts *C,
+                           int c, double rel[3])
+{
+    const int s = C->node[c];
+    for (int k = 0; k < 3; k++) {
+        rel[k] = m->v[D * s + k];
+        for (int a = 0; a < 4; a++)
+            rel[k] -= C->weight[4 * c + a] * b->v[3 * C->face[4 * c + a] + k];
+    }
+    const double *n = C->normal + 3 * c;
+    return rel[0] * n[0] + rel[1] * n[1] + rel[2] * n[2];
+}
+
+/* 1/m_eff of contact c along a direction: 1/m_s + Σ N_a²/m_a. */
+static double mobility(const wff_model *m, const wff_block *b, const wff_face_contacts *C, int c)
+{
+    const int s = C->node[c];
+    double w = 1 / m->mass[D * s + WFF_UZ];
+    for (int a = 0; a < 4; a++) {
+        const double N = C->weight[4 * c + a];
+        w += N * N / b->mass[3 * C->face[4 * c + a] + 2];
+    }
+    return w;
+}
+
+/* Contact c takes a further impulse j (3) on its node, −N_a j on its face. */
+static void apply(wff_model *m, struct wff_backing *B, int c, const double j[3])
+{
+    wff_face_contacts *C = &B->contacts;
+    kick_fabric(m, C->node[c], j);
+    for (int k = 0; k < 3; k++)
+        C->impulse[3 * c + k] += j[k];
+    for (int a = 0; a < 4; a++) {
+        const double N = C->weight[4 * c + a];
+        const double ja[3] = {-N * j[0], -N * j[1], -N * j[2]};
+        kick_block(&B->block, C->face[4 * c + a], ja, B->block_impulse);
+    }
+}
+
+double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, double dt)
+{
+    wff_block *b = &B->block;
+    wff_face_contacts *C = &B->contacts;
+    C->n = 0;
+    for (int t = 0; t < B->n_ply_nodes && C->n < C->max; t++) {
+        const int s = B->ply_nodes[t];
+        if (m->dof_kind[D * s + WFF_UZ] != WFF_DOF_FREE)
+            continue;
+        const double xs[3] = {m->mesh.xy[2 * s] + m->u[D * s + WFF_UX] + dt * m->v[D * s + WFF_UX],
+                              m->mesh.xy[2 * s + 1] + m->u[D * s + WFF_UY] + dt * m->v[D * s + WFF_UY],
+                              m->u[D * s + WFF_UZ] + dt * m->v[D * s + WFF_UZ]}; /* (a ply's
+                              plane is in its u_z: include/wovenff/pack.h) */
+        const int c = C->n;
+        double point[3];
+        if (locate(b, dt, xs[0], xs[1], C->face + 4 * c, C->weight + 4 * c, point,
+                   C->normal + 3 * c))
+            continue;
+        const double *n = C->normal + 3 * c;
+        const double gap = (xs[0] - point[0]) * n[0] + (xs[1] - point[1]) * n[1] +
+                           (xs[2] - point[2]) * n[2] - h;
+        if (gap >= 0)
+            continue;
+        C->node[c] = s;
+        C->gap[c] = gap;
+        C->lambda[c] = 0;
+        C->impulse[3 * c] = C->impulse[3 * c + 1] = C->impulse[3 * c + 2] = 0;
+        C->n++;
+    }
+    /* the sweeps: each contact's gap at the step's end, linear in the velocity
+     * changes since the first look, brought to 0 by a normal impulse >= 0 */
+    double *first = C->normal_speed0;
+    for (int c = 0; c < C->n; c++) {
+        double rel[3];
+        first[c] = normal_speed(m, b, C, c, rel);
+    }
+    for (int sweep = 0; sweep < SWEEPS_MAX; sweep++) {
+        double change = 0;
+        for (int c = 0; c < C->n; c++) {
+            double rel[3];
+            const double gap = C->gap[c] + dt * (normal_speed(m, b, C, c, rel) - first[c]);
+            const double w = mobility(m, b, C, c);
+            double next = C->lambda[c] - gap / (dt * w);
+            if (next < 0)
+                next = 0;
+            const double dl = next - C->lambda[c];
+            if (dl == 0)
+                continue;
+            C->lambda[c] = next;
+            const double *n = C->normal + 3 * c;
+            const double j[3] = {dl * n[0], dl * n[1], dl * n[2]};
+            apply(m, B, c, j);
+            change = fmax(change, fabs(dl) * w * dt);
+        }
+        if (change < SWEEP_TOLERANCE)
+            break;
+    }
+    /* friction: the tangential slip stopped within μ λ */
+    for (int c = 0; B->mu > 0 && c < C->n; c++) {
+        if (!(C->lambda[c] > 0))
+            continue;
+        double rel[3];
+        const double vn = normal_speed(m, b, C, c, rel);
+        const double *n = C->normal + 3 * c;
+        double vt[3] = {rel[0] - vn * n[0], rel[1] - vn * n[1], rel[2] - vn * n[2]};
+        const double slip = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
+        if (!(slip > 0))
+            continue;
+        const double w = mobility(m, b, C, c);
+        const double stop = slip / w, limit = B->mu * C->lambda[c];
+        const double jt = stop < limit ? stop : limit;
+        const double j[3] = {-jt * vt[0] / slip, -jt * vt[1] / slip, -jt * vt[2] / slip};
+        apply(m, B, c, j);
+    }
+    double left = 0;
+    for (int c = 0; c < C->n; c++) {
+        double rel[3];
+        const double gap = C->gap[c] + dt * (normal_speed(m, b, C, c, rel) - first[c]);
+        left = fmax(left, -gap);
+    }
+    return left;
+}
+
+int wff_block_rigid_contact(wff_block *b, wff_rigid_penetration penetration, const void *body,
+                            double mass, double *velocity, double dt, double *impulse)
+{
+    const double v0 = *velocity;
+    int count = 0;
+    for (int j = 0; j <= b->n[1]; j++)
+        for (int i = 0; i <= b->n[0]; i++) {
+            const int a = wff_block_node(b, i, j, 0);
+            double x[3], n[3];
+            block_predicted(b, a, dt, x);
+            const double depth = penetration(body, dt * v0, x, n);
+            if (!(depth > 0))
+                continue;
+            b->contact_node[count] = a;
+            b->contact_depth[count] = depth;
+            for (int c = 0; c < 3; c++)
+                b->contact_normal[3 * count + c] = n[c];
+            b->contact_speed[count] = b->v[3 * a] * n[0] + b->v[3 * a + 1] * n[1] +
+                                      b->v[3 * a + 2] * n[2];
+            b->contact_lambda[count] = 0;
+            count++;
+        }
+    for (int sweep = 0; sweep < SWEEPS_MAX && count > 0; sweep++) {
+        double change = 0;
+        for (int c = 0; c < count; c++) {
+            const int a = b->contact_node[c];
+            const double *n = b->contact_normal + 3 * c;
+            const double vn = b->v[3 * a] * n[0] + b->v[3 * a + 1] * n[1] + b->v[3 * a + 2] * n[2];
+            /* the depth at the step's end: the body's advance in, the node's move out */
+            const double depth = b->contact_depth[c] +
+                                 dt * ((*velocity - v0) * n[2] - (vn - b->contact_speed[c]));
+            const double w = 1 / b->mass[3 * a + 2] + n[2] * n[2] / mass;
+            double next = b->contact_lambda[c] + depth / (dt * w);
+            if (next < 0)
+                next = 0;
+            const double dl = next - b->contact_lambda[c];
+            if (dl == 0)
+                continue;
+            b->contact_lambda[c] = next;
+            const double j[3] = {dl * n[0], dl * n[1], dl * n[2]};
+            kick_block(b, a, j, impulse);
+            *velocity -= dl * n[2] / mass;
+            change = fmax(change, fabs(dl) * w * dt);
+        }
+        if (change < SWEEP_TOLERANCE)
+            break;
+    }
+    return count;
+}
+
+/* The projectile as a rigid body for wff_block_rigid_contact. */
+static double projectile_penetration(const void *body, double advance, const double x[3],
+                                     double normal[3])
+{
+    wff_projectile p = *(const wff_projectile *)body;
+    p.tip += advance;
+    return wff_projectile_penetration(&p, x, normal);
+}
+
+void wff_backing_projectile_contact(wff_model *m, struct wff_backing *B, double dt)
+{
+    wff_projectile *p = &m->projectile;
+    B->projectile_dv = 0;
+    B->projectile_contacts = 0;
+    if (!p->active)
+        return;
+    double velocity = p->velocity;
+    B->projectile_contacts = wff_block_rigid_contact(&B->block, projectile_penetration, p,
+                                                     p->mass, &velocity, dt, B->block_impulse);
+    B->projectile_dv = velocity - p->velocity;
+    p->velocity = velocity;
+}

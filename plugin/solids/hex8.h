@@ -1,0 +1,74 @@
+/* hex8.h — the backing block's element: an 8-node hexahedron integrated at
+ * its centre (one point, the usual explicit solid: the pressure is the
+ * element's mean, so the nearly incompressible plastic flow of clay does not
+ * lock), at finite strain, with a stiffness hourglass control (Flanagan &
+ * Belytschko 1981, Int. J. Numer. Meth. Eng. 17: the γ vectors orthogonal to
+ * every linear field).
+ *
+ * Kinematics (total Lagrangian): F at the centre from the reference
+ * gradients B0 (∂N_a/∂X there); C = FᵀF = Q diag(λ) Qᵀ; the Hencky strain in
+ * the material frame ε = ½ ln C (solid_laws.h's strain); the law's stress τ̄
+ * in that frame; the second Piola–Kirchhoff stress S = U⁻¹ τ̄ U⁻¹ and the
+ * nodal forces f_a = −V0 F S B0_a. For an isotropic stored energy W(ε), τ̄ is
+ * coaxial with U and S = 2 ∂W/∂C exactly: the forces are −∂(V0 W)/∂x
+ * (tests/c/test_hex8.c, by finite differences). The Kirchhoff stress is
+ * τ = R τ̄ Rᵀ (R = F U⁻¹), the Cauchy stress τ/J.
+ *
+ * Hourglass: q_α = Σ_a γ_αa u_a (α = 1..4), energy ½ k Σ_α |q_α|², force
+ * −k Σ_α γ_αa q_α; γ_αa = h_αa − (Σ_b h_αb X_b)·B0_a with h_α the products
+ * ξη, ηζ, ξζ, ξηζ at the nodes. k = κ G V0 Σ_a |B0_a|² / 8 (κ ~ 0.05).
+ *
+ * Pure: no allocation, no global state. Nodes in the order of the natural
+ * coordinates (−1,−1,−1), (1,−1,−1), (1,1,−1), (−1,1,−1), then the same at
+ * ζ = +1. Lengths m, stresses Pa, energies J. */
+#ifndef WFF_HEX8_H
+#define WFF_HEX8_H
+
+#define WFF_HEX_NODES 8
+
+/* What an element keeps of its reference shape. */
+typedef struct wff_hex8_ref {
+    double gradient[WFF_HEX_NODES][3]; /* B0_a = ∂N_a/∂X at the centre, 1/m */
+    double gamma[4][WFF_HEX_NODES];    /* hourglass vectors γ_αa */
+    double volume;                     /* V0, m³ (the one-point volume, 8 det J0) */
+} wff_hex8_ref;
+
+/* The reference shape from the nodes' reference positions X; -1 if the
+ * element is inverted or flat (det J0 <= 0). */
+int wff_hex8_reference(const double X[WFF_HEX_NODES][3], wff_hex8_ref *r);
+
+/* F = I + Σ_a u_a ⊗ B0_a (row-major 3×3) from the nodal displacements u. */
+void wff_hex8_gradient(const wff_hex8_ref *r, const double u[WFF_HEX_NODES][3], double F[9]);
+
+/* The material Hencky strain ε = ½ ln(FᵀF) (6 entries, solid_laws.h's order)
+ * and U⁻¹ (row-major 3×3); returns J = det F (<= 0: inverted, the rest
+ * unset). */
+double wff_hencky(const double F[9], double strain[6], double U_inv[9]);
+
+/* Nodal internal forces f_a = −V0 F U⁻¹ τ̄ U⁻¹ B0_a (written, not added)
+ * from the material-frame stress τ̄ (6 entries). */
+void wff_hex8_forces(const wff_hex8_ref *r, const double F[9], const double U_inv[9],
+                     const double stress[6], double f[WFF_HEX_NODES][3]);
+
+/* The Cauchy stress σ = R τ̄ Rᵀ / J (6 entries) of the material-frame τ̄. */
+void wff_hex8_cauchy(const double F[9], const double U_inv[9], const double stress[6],
+                     double J, double cauchy[6]);
+
+/* Hourglass stiffness k for κ and the shear modulus G (Pa), N/m. */
+double wff_hex8_hourglass_stiffness(const wff_hex8_ref *r, double kappa, double shear);
+
+/* Adds the hourglass forces −k Σ_α γ_αa q_α to f; returns the hourglass
+ * energy ½ k Σ_α |q_α|², J. */
+double wff_hex8_hourglass(const wff_hex8_ref *r, const double u[WFF_HEX_NODES][3], double k,
+                          double f[WFF_HEX_NODES][3]);
+
+/* The stable step of the element, s: 2/ω with ω² bounded by the sum of
+ * Flanagan & Belytschko's bound for the centre point, 8 c² Σ_a |b_a|²
+ * (b_a = F⁻ᵀ B0_a, the current gradients; c the dilatational wave speed, m/s),
+ * and the hourglass springs' k max_α |γ_α|² / m_node (m_node the element's
+ * lumped share of a node's mass, kg): the largest eigenvalue of a sum is at
+ * most the sum of the largest ones. */
+double wff_hex8_stable_step(const wff_hex8_ref *r, const double F[9], double wave_speed,
+                            double k, double node_mass);
+
+#endif
