@@ -41,9 +41,9 @@ static void release(struct wff_backing *B)
     wff_face_contacts *C = &B->contacts;
     free(C->node), free(C->face), free(C->weight), free(C->normal), free(C->gap);
     free(C->lambda), free(C->normal_speed0), free(C->impulse);
-    free(B->ply_nodes), free(B->block_impulse);
+    free(B->ply_nodes), free(B->block_impulse), free(B->on_nose);
     memset(C, 0, sizeof *C);
-    B->ply_nodes = NULL, B->block_impulse = NULL, B->built = 0;
+    B->ply_nodes = NULL, B->block_impulse = NULL, B->on_nose = NULL, B->built = 0;
 }
 
 /* The back ply's base z (its mid-plane's reference), m. */
@@ -81,8 +81,9 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
     C->impulse = malloc(3 * n * sizeof(double));
     B->ply_nodes = malloc(n * sizeof(int));
     B->block_impulse = calloc(3 * (size_t)B->block.n_nodes, sizeof(double));
+    B->on_nose = calloc((size_t)m->n_nodes, 1);
     if (!C->node || !C->face || !C->weight || !C->normal || !C->gap || !C->lambda ||
-        !C->normal_speed0 || !C->impulse || !B->ply_nodes || !B->block_impulse) {
+        !C->normal_speed0 || !C->impulse || !B->ply_nodes || !B->block_impulse || !B->on_nose) {
         release(B);
         return wff_fail(err, "backing: out of memory");
     }
@@ -224,6 +225,7 @@ static int backing_correct(wff_model *m, double dt, double dt_mid, wff_error *er
     for (int k = 0; k < nd; k++)
         if (!b->held[k])
             b->v[k] += dt_mid * b->f[k] / b->mass[k];
+    B->projectile_dv = 0;
     wff_backing_ply_contact(m, B, 0.5 * wff_ply_thickness(m), dt);
     wff_backing_projectile_contact(m, B, dt);
     /* the impulses as forces over the step (their work: the book op) */

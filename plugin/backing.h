@@ -30,6 +30,8 @@ struct wff_backing {
     int built;               /* 1: the block is made (at the run's first step) */
     wff_block block;
     int *ply_nodes, n_ply_nodes; /* the back ply's nodes that may touch the block */
+    unsigned char *on_nose;  /* per model node: 1 while the projectile's contact holds it
+                                this step (set and cleared by the ply contact below) */
     wff_face_contacts contacts;
     double *block_impulse;   /* per block DOF, this step's contact impulses, N·s */
     double projectile_dv;    /* the projectile's velocity change by the block this step, m/s */

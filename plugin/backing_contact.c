@@ -8,7 +8,12 @@
  *   face quad (its bilinear point under the node) is kept h from the face
  *   along the face's normal; the impulse λ n on the node, −N_a λ n on the
  *   face's nodes; then Coulomb friction, the tangential slip stopped within
- *   μ λ, in one pass.
+ *   μ λ, in one pass. A node the projectile's contact holds on the nose in
+ *   this step is pressed between nose and block: it moves with the
+ *   projectile along the normal (the pair's mass m_s + M takes λ n, the
+ *   projectile its share along z), where two impulses in turn, the nose's
+ *   and the block's, would squeeze it out sideways; so is a node the nose
+ *   would reach (within h) by the step's end.
  * - The rigid projectile (or any rigid body moving along z) on the top face's
  *   nodes, frictionless.
  * Knows the model's arrays and the block's; nothing of cells or FreeFEM. */
@@ -154,11 +159,20 @@ static double normal_speed(const wff_model *m, const wff_block *b, const wff_fac
     return rel[0] * n[0] + rel[1] * n[1] + rel[2] * n[2];
 }
 
-/* 1/m_eff of contact c along a direction: 1/m_s + Σ N_a²/m_a. */
-static double mobility(const wff_model *m, const wff_block *b, const wff_face_contacts *C, int c)
+/* The fabric side's mass of contact c: the node's, with the projectile's when
+ * the node is held on the nose. */
+static double node_mass(const wff_model *m, const struct wff_backing *B, int s)
 {
+    return m->mass[D * s + WFF_UZ] + (B->on_nose[s] ? m->projectile.mass : 0);
+}
+
+/* 1/m_eff of contact c along a direction: 1/m_s + Σ N_a²/m_a. */
+static double mobility(const wff_model *m, const struct wff_backing *B, int c)
+{
+    const wff_block *b = &B->block;
+    const wff_face_contacts *C = &B->contacts;
     const int s = C->node[c];
-    double w = 1 / m->mass[D * s + WFF_UZ];
+    double w = 1 / node_mass(m, B, s);
     for (int a = 0; a < 4; a++) {
         const double N = C->weight[4 * c + a];
         w += N * N / b->mass[3 * C->face[4 * c + a] + 2];
@@ -166,13 +180,26 @@ static double mobility(const wff_model *m, const wff_block *b, const wff_face_co
     return w;
 }
 
-/* Contact c takes a further impulse j (3) on its node, −N_a j on its face. */
+/* Contact c takes a further impulse j (3) on its node, −N_a j on its face;
+ * a node held on the nose shares it with the projectile (node_mass). */
 static void apply(wff_model *m, struct wff_backing *B, int c, const double j[3])
 {
     wff_face_contacts *C = &B->contacts;
-    kick_fabric(m, C->node[c], j);
-    for (int k = 0; k < 3; k++)
-        C->impulse[3 * c + k] += j[k];
+    const int s = C->node[c];
+    if (B->on_nose[s]) {
+        const double whole = node_mass(m, B, s), own = m->mass[D * s + WFF_UZ] / whole;
+        const double js[3] = {own * j[0], own * j[1], own * j[2]};
+        kick_fabric(m, s, js);
+        for (int k = 0; k < 3; k++)
+            C->impulse[3 * c + k] += js[k];
+        const double dv = j[2] / whole;
+        m->projectile.velocity += dv;
+        B->projectile_dv += dv;
+    } else {
+        kick_fabric(m, s, j);
+        for (int k = 0; k < 3; k++)
+            C->impulse[3 * c + k] += j[k];
+    }
     for (int a = 0; a < 4; a++) {
         const double N = C->weight[4 * c + a];
         const double ja[3] = {-N * j[0], -N * j[1], -N * j[2]};
@@ -184,7 +211,10 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
 {
     wff_block *b = &B->block;
     wff_face_contacts *C = &B->contacts;
+    const wff_projectile *p = &m->projectile;
     C->n = 0;
+    for (int k = 0; p->active && k < p->n_contact; k++)
+        B->on_nose[p->contact_node[k]] = 1;
     for (int t = 0; t < B->n_ply_nodes && C->n < C->max; t++) {
         const int s = B->ply_nodes[t];
         if (m->dof_kind[D * s + WFF_UZ] != WFF_DOF_FREE)
@@ -205,6 +235,12 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
             continue;
         C->node[c] = s;
         C->gap[c] = gap;
+        if (p->active && !B->on_nose[s]) { /* pinched: the nose would meet it by the step's end */
+            double nrm[3];
+            wff_projectile ahead = *p;
+            ahead.tip += dt * p->velocity;
+            B->on_nose[s] = wff_projectile_gap(&ahead, xs, nrm) < h;
+        }
         C->lambda[c] = 0;
         C->impulse[3 * c] = C->impulse[3 * c + 1] = C->impulse[3 * c + 2] = 0;
         C->n++;
@@ -221,7 +257,7 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
         for (int c = 0; c < C->n; c++) {
             double rel[3];
             const double gap = C->gap[c] + dt * (normal_speed(m, b, C, c, rel) - first[c]);
-            const double w = mobility(m, b, C, c);
+            const double w = mobility(m, B, c);
             double next = C->lambda[c] - gap / (dt * w);
             if (next < 0)
                 next = 0;
@@ -248,7 +284,7 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
         const double slip = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
         if (!(slip > 0))
             continue;
-        const double w = mobility(m, b, C, c);
+        const double w = mobility(m, B, c);
         const double stop = slip / w, limit = B->mu * C->lambda[c];
         const double jt = stop < limit ? stop : limit;
         const double j[3] = {-jt * vt[0] / slip, -jt * vt[1] / slip, -jt * vt[2] / slip};
@@ -260,6 +296,10 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
         const double gap = C->gap[c] + dt * (normal_speed(m, b, C, c, rel) - first[c]);
         left = fmax(left, -gap);
     }
+    for (int k = 0; p->active && k < p->n_contact; k++)
+        B->on_nose[p->contact_node[k]] = 0;
+    for (int c = 0; c < C->n; c++)
+        B->on_nose[C->node[c]] = 0;
     return left;
 }
 
@@ -325,13 +365,12 @@ static double projectile_penetration(const void *body, double advance, const dou
 void wff_backing_projectile_contact(wff_model *m, struct wff_backing *B, double dt)
 {
     wff_projectile *p = &m->projectile;
-    B->projectile_dv = 0;
     B->projectile_contacts = 0;
     if (!p->active)
         return;
     double velocity = p->velocity;
     B->projectile_contacts = wff_block_rigid_contact(&B->block, projectile_penetration, p,
                                                      p->mass, &velocity, dt, B->block_impulse);
-    B->projectile_dv = velocity - p->velocity;
+    B->projectile_dv += velocity - p->velocity;
     p->velocity = velocity;
 }
