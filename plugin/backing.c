@@ -32,7 +32,7 @@
  * clay (assumed: not measured), hourglass springs at 5 % of the shear
  * stiffness, the pack laid on the block. */
 static const struct wff_backing defaults = {
-    .depth = 0.14, .finest = 2e-3, .growth = 1.2, .mu = 0.3, .hourglass = 0.05, .gap = 0,
+    .depth = 0.14, .finest = 4e-3, .growth = 1.2, .mu = 0.3, .hourglass = 0.05, .gap = 0,
 };
 
 static void release(struct wff_backing *B)
@@ -93,6 +93,9 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
     B->built = 1;
     B->started = 0, B->dt_next = 0;
     B->work_fabric = B->work_projectile = B->work_block = B->kinetic = B->peak_depth = 0;
+    B->samples = 0;
+    int worst;
+    B->block_step = wff_block_stable_step(&B->block, &worst);
     return 0;
 }
 
@@ -182,8 +185,7 @@ static int backing_setup(wff_model *m, wff_error *err)
         return 0;
     if (!B->built && build(m, B, err))
         return -1;
-    int worst;
-    const double dt = wff_block_stable_step(&B->block, &worst);
+    const double dt = B->block_step;
     if (dt < m->dt_stable) { /* (the first step's: later ones take it through stable_step) */
         m->dt_stable = dt;
         m->dt = m->dt_factor * dt;
@@ -194,8 +196,7 @@ static int backing_setup(wff_model *m, wff_error *err)
 static double backing_stable_step(const wff_model *m)
 {
     const struct wff_backing *B = on(m);
-    int worst;
-    return B && B->built ? wff_block_stable_step(&B->block, &worst) : INFINITY;
+    return B && B->built ? B->block_step : INFINITY; /* (as of its last force pass) */
 }
 
 /* The top face's indentation of node (i, j): its u_z (> 0 into the block), m. */
@@ -204,12 +205,16 @@ static double depth_at(const wff_block *b, int i, int j)
     return b->u[3 * wff_block_node(b, i, j, 0) + 2];
 }
 
-static int backing_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
+/* The block's step, central differences on the fabric's step: its nodes moved
+ * by the step just taken, its internal forces there (its points' states
+ * advanced over that step), its velocities kicked by Δt_mid f/m as the
+ * fabric's are. The block's stable step is refreshed every STABLE_EVERY
+ * passes (its elements change shape slowly against the fabric's step; the
+ * model's step stays well under it: docs/backing.md). 0, or -1 (err set) on an
+ * inverted element. */
+#define STABLE_EVERY 16
+static int block_step(wff_model *m, struct wff_backing *B, double dt_mid, wff_error *err)
 {
-    struct wff_backing *B = on(m);
-    if (!B || !B->built)
-        return 0;
-    const double started = wff_wall_seconds();
     wff_block *b = &B->block;
     const int nd = 3 * b->n_nodes;
     if (B->started) /* u^{n+1} = u^n + Δt v^{n+½}, the step the fabric took */
@@ -222,9 +227,24 @@ static int backing_correct(wff_model *m, double dt, double dt_mid, wff_error *er
                         "from the top face's corner): inverted or NaN deformation", m->time,
                         m->step, bad + 1, i, j, k);
     }
+    if (++B->samples % STABLE_EVERY == 0) {
+        int worst;
+        B->block_step = wff_block_stable_step(b, &worst);
+    }
     for (int k = 0; k < nd; k++)
         if (!b->held[k])
             b->v[k] += dt_mid * b->f[k] / b->mass[k];
+    return 0;
+}
+
+static int backing_correct(wff_model *m, double dt, double dt_mid, wff_error *err)
+{
+    struct wff_backing *B = on(m);
+    if (!B || !B->built)
+        return 0;
+    const double started = wff_wall_seconds();
+    if (block_step(m, B, dt_mid, err))
+        return -1;
     B->projectile_dv = 0;
     wff_backing_ply_contact(m, B, 0.5 * wff_ply_thickness(m), dt);
     wff_backing_projectile_contact(m, B, dt);
@@ -247,6 +267,7 @@ static int backing_correct(wff_model *m, double dt, double dt_mid, wff_error *er
     }
     B->dt_next = dt;
     B->started = 1;
+    const wff_block *b = &B->block;
     for (int j = 0; j <= b->n[1]; j++)
         for (int i = 0; i <= b->n[0]; i++)
             B->peak_depth = fmax(B->peak_depth, depth_at(b, i, j));
@@ -254,11 +275,10 @@ static int backing_correct(wff_model *m, double dt, double dt_mid, wff_error *er
     return 0;
 }
 
-/* The impulses' work at the central difference's measure (part.h's book): on
- * the fabric and the projectile by wff_impulse_work's rule, on the block by the
- * same rule with its own accelerations; the block's kinetic energy at the
- * balance's measure, ½ Σ m v^{n+½}·(v^{n+½} − Δt a^n_internal) (Δt the step
- * planned). The impulses cleared for the next step. */
+/* The impulses' work at the central difference's measure (part.h's book,
+ * wff_impulse_work) on the fabric and the projectile (the energy the block's
+ * contacts took from the model) and on the block. The impulses cleared for
+ * the next step. */
 static void backing_book(wff_model *m, double dt_before, double dt_mid)
 {
     struct wff_backing *B = on(m);
@@ -276,6 +296,9 @@ static void backing_book(wff_model *m, double dt_before, double dt_mid)
         B->work_projectile += wff_projectile_impulse_work(
             m, m->projectile.mass * B->projectile_dv, dt_before, dt_mid);
     B->projectile_dv = 0;
+    /* the block's side: the same measure with its own accelerations (its
+     * impulses as forces over Δt_mid), and its kinetic energy at the
+     * balance's measure ½ Σ m v^{n+½}·(v^{n+½} − Δt a^n_internal) */
     wff_block *b = &B->block;
     double kinetic = 0, work = 0;
     for (int k = 0; k < 3 * b->n_nodes; k++) {
@@ -292,6 +315,15 @@ static void backing_book(wff_model *m, double dt_before, double dt_mid)
     }
     B->kinetic = kinetic;
     B->work_block += work;
+}
+
+/* The block's kinetic energy now, ½ Σ m v² (model part, J). */
+static double block_kinetic(const wff_block *b)
+{
+    double k = 0;
+    for (int i = 0; i < 3 * b->n_nodes; i++)
+        k += 0.5 * b->mass[i] * b->v[i] * b->v[i];
+    return k;
 }
 
 /* Its term of the balance (model part, J). */
@@ -337,7 +369,7 @@ static void crater(const wff_model *m, const wff_block *b, double *deepest, doub
 static const char *const backing_value_names[] = {
     "backing", "backface_signature", "crater_diameter", "crater_volume", "backing_peak_depth",
     "backing_kinetic", "backing_stored", "backing_dissipated", "backing_contact_loss",
-    "backing_elements", "backing_contacts", "backing_seconds", NULL,
+    "backing_elements", "backing_contacts", "backing_seconds", "backing_step", NULL,
 };
 
 static void backing_value(const wff_model *m, const char *key, double *value)
@@ -363,7 +395,7 @@ static void backing_value(const wff_model *m, const char *key, double *value)
     else if (strcmp(key, "backing_peak_depth") == 0)
         *value = B->peak_depth;
     else if (strcmp(key, "backing_kinetic") == 0)
-        *value = s * B->kinetic;
+        *value = s * block_kinetic(b);
     else if (strcmp(key, "backing_stored") == 0)
         *value = s * b->stored;
     else if (strcmp(key, "backing_dissipated") == 0)
@@ -376,6 +408,8 @@ static void backing_value(const wff_model *m, const char *key, double *value)
         *value = B->contacts.n + B->projectile_contacts;
     else if (strcmp(key, "backing_seconds") == 0)
         *value = B->seconds;
+    else if (strcmp(key, "backing_step") == 0)
+        *value = B->block_step;
 }
 
 /* ---- checkpoints, transfers, free ------------------------------------------------ */
@@ -401,9 +435,11 @@ static int backing_state_fields(wff_model *m, wff_state_field *f)
     f[k++] = (wff_state_field){&B->dt_next, sizeof B->dt_next, 1};
     f[k++] = (wff_state_field){&B->work_fabric, sizeof B->work_fabric, 1};
     f[k++] = (wff_state_field){&B->work_projectile, sizeof B->work_projectile, 1};
+    f[k++] = (wff_state_field){&B->block_step, sizeof B->block_step, 1};
     f[k++] = (wff_state_field){&B->work_block, sizeof B->work_block, 1};
     f[k++] = (wff_state_field){&B->kinetic, sizeof B->kinetic, 1};
     f[k++] = (wff_state_field){&B->peak_depth, sizeof B->peak_depth, 1};
+    f[k++] = (wff_state_field){&B->samples, sizeof B->samples, 1};
     return k;
 }
 

@@ -38,10 +38,12 @@ struct wff_backing {
     int projectile_contacts; /* block nodes the projectile pressed this step */
     int started;             /* 1 once the block has taken its first half step */
     double dt_next;          /* the step planned at the last correction, s */
+    double block_step;       /* s, the block's stable step (refreshed every few passes) */
+    long samples;            /* force passes of the block so far */
     /* the balance (model part, J) */
     double work_fabric, work_projectile, work_block; /* the contact impulses' work on the
-                                fabric, on the projectile and on the block so far */
-    double kinetic;          /* the block's kinetic energy, the balance's measure */
+                                fabric, the projectile and the block so far, J */
+    double kinetic;          /* the block's kinetic energy, the balance's measure, J */
     double peak_depth;       /* the top face's largest indentation so far, m */
     double seconds;          /* wall time in the block and its contacts, s */
 };

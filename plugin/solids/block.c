@@ -123,7 +123,6 @@ int wff_block_create(wff_block *b, int law, const wff_block_shape *s, double hou
     b->hex = malloc(8 * ne * sizeof(int));
     b->ref = malloc(ne * sizeof(wff_hex8_ref));
     b->hourglass_k = malloc(ne * sizeof(double));
-    b->cauchy = calloc(6 * ne, sizeof(double));
     const size_t top = (size_t)(b->n[0] + 1) * (b->n[1] + 1);
     b->contact_node = malloc(top * sizeof(int));
     b->contact_depth = malloc(top * sizeof(double));
@@ -135,7 +134,7 @@ int wff_block_create(wff_block *b, int law, const wff_block_shape *s, double hou
     else
         b->gelatin_state = calloc(ne, sizeof(wff_gelatin_state));
     if (!b->X || !b->u || !b->v || !b->f || !b->mass || !b->held || !b->hex || !b->ref ||
-        !b->hourglass_k || !b->cauchy || !b->contact_node || !b->contact_depth ||
+        !b->hourglass_k || !b->contact_node || !b->contact_depth ||
         !b->contact_normal || !b->contact_speed || !b->contact_lambda || (!b->clay_state && !b->gelatin_state)) {
         wff_block_free(b);
         return wff_fail(err, "backing block: out of memory (%ld elements)", elements);
@@ -178,7 +177,7 @@ void wff_block_free(wff_block *b)
     for (int d = 0; d < 3; d++)
         free(b->grid[d]);
     free(b->X), free(b->u), free(b->v), free(b->f), free(b->mass), free(b->held);
-    free(b->hex), free(b->ref), free(b->hourglass_k), free(b->cauchy);
+    free(b->hex), free(b->ref), free(b->hourglass_k);
     free(b->clay_state), free(b->gelatin_state);
     free(b->contact_node), free(b->contact_depth), free(b->contact_normal);
     free(b->contact_speed), free(b->contact_lambda);
@@ -219,7 +218,6 @@ int wff_block_forces(wff_block *b, double dt, int *bad)
         }
         wff_hex8_forces(r, F, U_inv, stress, fe);
         stored += r->volume * density + wff_hex8_hourglass(r, u, b->hourglass_k[e], fe);
-        wff_hex8_cauchy(F, U_inv, stress, J, b->cauchy + 6 * e);
         for (int a = 0; a < 8; a++)
             for (int c = 0; c < 3; c++)
                 b->f[3 * node[a] + c] += fe[a][c];

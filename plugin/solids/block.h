@@ -49,7 +49,6 @@ typedef struct wff_block {
     double *hourglass_k;         /* an element's hourglass stiffness, N/m */
     wff_clay_state *clay_state;  /* an element's (clay), or NULL */
     wff_gelatin_state *gelatin_state; /* an element's (gelatin), or NULL */
-    double *cauchy;              /* an element's Cauchy stress of the last pass, 6, Pa */
     /* the top face's contacts with a rigid body (backing_contact.c), a slot a top node */
     int *contact_node;
     double *contact_depth, *contact_normal, *contact_speed, *contact_lambda;

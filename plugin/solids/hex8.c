@@ -192,20 +192,6 @@ void wff_hex8_forces(const wff_hex8_ref *r, const double F[9], const double U_in
                                     P[3 * i + 2] * r->gradient[a][2]);
 }
 
-void wff_hex8_cauchy(const double F[9], const double U_inv[9], const double stress[6],
-                     double J, double cauchy[6])
-{
-    double R[9], T[9], A[9], B[9];
-    mul3(F, U_inv, R);
-    sym6_to_3(stress, T);
-    mul3(R, T, A);
-    for (int i = 0; i < 3; i++) /* B = A Rᵀ */
-        for (int j = 0; j < 3; j++)
-            B[3 * i + j] = A[3 * i] * R[3 * j] + A[3 * i + 1] * R[3 * j + 1] + A[3 * i + 2] * R[3 * j + 2];
-    cauchy[0] = B[0] / J, cauchy[1] = B[4] / J, cauchy[2] = B[8] / J;
-    cauchy[3] = B[5] / J, cauchy[4] = B[2] / J, cauchy[5] = B[1] / J;
-}
-
 static double gradient_square(const wff_hex8_ref *r)
 {
     double s = 0;

@@ -50,10 +50,6 @@ double wff_hencky(const double F[9], double strain[6], double U_inv[9]);
 void wff_hex8_forces(const wff_hex8_ref *r, const double F[9], const double U_inv[9],
                      const double stress[6], double f[WFF_HEX_NODES][3]);
 
-/* The Cauchy stress σ = R τ̄ Rᵀ / J (6 entries) of the material-frame τ̄. */
-void wff_hex8_cauchy(const double F[9], const double U_inv[9], const double stress[6],
-                     double J, double cauchy[6]);
-
 /* Hourglass stiffness k for κ and the shear modulus G (Pa), N/m. */
 double wff_hex8_hourglass_stiffness(const wff_hex8_ref *r, double kappa, double shear);
 
