@@ -62,14 +62,32 @@ static int check_params(const wff_mil662_params *p, wff_error *err)
     return 0;
 }
 
-/* A speed the walk may go to: in range, and not a shot it has taken. */
-static int open_speed(double v, const double *speed, const char *visited, int n,
+/* Where the walk goes from cur by dir * s: the speed (m/s), or −1 when the
+ * step halves below the resolution first. A speed within half the step of a
+ * shot the walk has taken (or outside [resolution, speed_max]) halves the
+ * step (for good, *s); one within half the step of a shot fired but not yet
+ * taken (another round's extra) is that shot. */
+static double walk_to(double cur, int dir, double *s, const double *speed, const char *visited, int n,
                       const wff_mil662_params *p)
 {
-    if (!(v >= p->resolution && v <= p->speed_max))
-        return 0;
-    int i = find_shot(speed, n, v, p->resolution);
-    return i < 0 || !visited[i];
+    const double res = p->resolution;
+    for (; *s >= res; *s *= 0.5) {
+        double v = wff_mil662_round(cur + dir * *s, res);
+        if (!(v >= res && v <= p->speed_max) || SAME_SPEED(v, cur, res))
+            continue;
+        int near_taken = 0, near = -1;
+        for (int i = 0; i < n; i++) {
+            double d = fabs(speed[i] - v);
+            if (d < 0.5 * *s && visited[i])
+                near_taken = 1;
+            else if (d < 0.5 * *s && (near < 0 || d < fabs(speed[near] - v)))
+                near = i;
+        }
+        if (near_taken)
+            continue;   /* (a deterministic model: a speed fired would only repeat itself) */
+        return near >= 0 ? speed[near] : v;
+    }
+    return -1;
 }
 
 /* Speeds of this round so far: is v one of them? */
@@ -108,17 +126,11 @@ int wff_mil662_next(const double *speed, const int *outcome, int n, const wff_mi
         if (o != WFF_MIL662_NONE)
             last = o;
         dir = o == WFF_MIL662_COMPLETE ? -1 : +1;   /* (neither: as a partial) */
-        double v = wff_mil662_round(cur + dir * s, res);
-        while (!open_speed(v, speed, visited, n, p) || SAME_SPEED(v, cur, res)) {
-            s *= 0.5;   /* (a deterministic model: a fired speed would only repeat itself) */
-            if (s < res) {
-                found = 0;
-                break;
-            }
-            v = wff_mil662_round(cur + dir * s, res);
-        }
-        if (!found)
+        double v = walk_to(cur, dir, &s, speed, visited, n, p);
+        if (v < 0) {
+            found = 0;
             break;
+        }
         cur = v;
     }
     free(visited);

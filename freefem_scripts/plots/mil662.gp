@@ -2,26 +2,27 @@
 # shot's striking speed against its number in the firing order (complete
 # penetrations: filled red circles; partial: open green squares; neither, undecided
 # or failed: grey crosses), the six shots of the V50 ringed, the V50 (dashed, when
-# the rule is met). The title is the scene's own words (one rounding).
-#   gnuplot -e "datafile='mil662.csv'; out='mil662.png'; v50=16.4; title_text='MIL-STD-662F: V50 ...'"
+# the rule is met). The title and the V50's label are the scene's own words (one rounding).
+#   gnuplot -e "datafile='mil662.csv'; out='mil662.png'; v50=16.4; v50_text='16.4'; title_text='MIL-STD-662F: V50 ...'"
 #       freefem_scripts/plots/mil662.gp
 # datafile: mil662.csv (shot, striking_velocity, complete 1/0/empty, status, plies_holed, in_six, ...).
 set datafile separator ','
 set datafile columnheaders
 set terminal pngcairo size 1000,650 font ',11'
 set output out
-set title title_text noenhanced font ',10'
+set title title_text noenhanced
 set xlabel 'shot (firing order)'
 set ylabel 'striking speed (m/s)'
 set grid
-set key outside right top box
+set key below horizontal box
+set bmargin 7
 stats datafile using 1 nooutput
 set xrange [0.5:STATS_max + 0.5]
 set xtics 1
 set offsets 0, 0, graph 0.08, graph 0.08
 if (v50 == v50) {
     set arrow 1 from graph 0, first v50 to graph 1, first v50 nohead dt 2 lw 1.5 lc rgb 'black'
-    set label 1 sprintf('V50 %g m/s', v50) at graph 0.01, first v50 offset 0, 0.6 left front
+    set label 1 'V50 ' . v50_text . ' m/s' at graph 0.01, first v50 offset 0, 0.6 left front
 }
 plot datafile using 1:(column(3) == 1 ? column(2) : NaN) with points pt 7 ps 1.8 lc rgb '#d62728' title 'complete', \
      datafile using 1:(strcol(3) eq '0' ? column(2) : NaN) with points pt 4 ps 1.8 lw 2 lc rgb '#2ca02c' title 'partial', \

@@ -8,22 +8,22 @@
  * the first reversal (a shot whose outcome differs from the decided shot
  * before it), then min(step, step_after) (25 ft/s, 7.62 m/s). A model is
  * deterministic: a shot at a speed already fired would only repeat its
- * outcome, so where the sequence would come back to a speed it has fired,
- * or leave [resolution, speed_max], the step is halved (for the rest of the
- * sequence) until the speed is new; below `resolution` there is none (the
- * sequence ends: WFF_MIL662_NO_SPEED). Speeds are rounded to `resolution`
+ * outcome, so where the sequence would come back to within half its step
+ * of a speed it has fired, or leave [resolution, speed_max], the step is
+ * halved (for the rest of the sequence) until the speed is clear; below
+ * `resolution` there is none (the sequence ends: WFF_MIL662_NO_SPEED). Speeds are rounded to `resolution`
  * (0.01 m/s: the limit scene's run folders). A shot neither partial nor
  * complete (undecided at the run's end, or failed) steers as a partial (it
  * has not got through: a faster shot decides) and is counted as neither.
  *
- * The history is replayed as a walk from first_speed: a speed the walk
- * reaches that is in the history takes that shot's outcome (fired before, in
- * this or an earlier round); the first speed it reaches that is not is the
- * sequence's next shot c. With jobs > 1 a round also fires speeds a step on
+ * The history is replayed as a walk from first_speed: where the walk goes
+ * within half its step of a shot of the history it has not taken (fired
+ * before: another round's extra), it takes that shot and its outcome; the
+ * first speed it reaches with no shot there is the sequence's next shot c. With jobs > 1 a round also fires speeds a step on
  * either side of it, c + dir s, c − dir s, then c ± s/2, c ± s/4, ... (dir
  * the walk's last direction, s its step; new speeds only, while the offset
  * is at least the resolution): extra shots, counted in the V50 like any
- * other, which steer only when the walk reaches them.
+ * other, which steer only when the walk comes to them.
  * With jobs = 1 the walk is the textbook sequence, shot for shot.
  *
  * The V50. Of the counted shots (partial or complete), the three highest
