@@ -11,7 +11,7 @@ set datafile columnheaders
 set terminal pngcairo size 1000,650 font ',11'
 set output out
 set title title_text noenhanced
-set xlabel 'shot (firing order)'
+set xlabel 'shot, in firing order (-)'
 set ylabel 'striking speed (m/s)'
 set grid
 set key below horizontal box
