@@ -14,6 +14,7 @@
  *    rounds (8 in 4 with a 14 m/s spread), the six by hand;
  *  - the V50 from a list: ties (equal speeds: the earlier shot), shots
  *    neither partial nor complete left out, too few, too wide;
+ *  - a shot neither partial nor complete: steers as a partial, not counted;
  *  - no speed left at the resolution; bad input named. */
 #include "check.h"
 #include "wovenff/mil662.h"
@@ -193,6 +194,19 @@ static void test_no_speed_and_errors(check_state *st)
     p.speed_max = 0.06;
     int m = wff_mil662_next(v, o, 6, &p, 1, next, NULL, &err);
     CHECK(st, m == WFF_MIL662_NO_SPEED, "no speed left: %d (%g)", m, m > 0 ? next[0] : 0);
+    /* a shot neither partial nor complete steers as a partial (up) and is not counted:
+     * 20 neither -> 20 + 16; then 36 complete -> 36 - 16 = 20 taken -> step 8: 28 */
+    const double vn[] = {20, 36};
+    const int on[] = {WFF_MIL662_NONE, WFF_MIL662_COMPLETE};
+    wff_mil662_params q = test_params();
+    m = wff_mil662_next(vn, on, 1, &q, 1, next, NULL, &err);
+    CHECK(st, m == 1 && next[0] == 36, "after a shot neither: %d speeds, %g m/s (want 36)", m, next[0]);
+    m = wff_mil662_next(vn, on, 2, &q, 1, next, NULL, &err);
+    CHECK(st, m == 1 && next[0] == 28, "then a complete: %d speeds, %g m/s (want 28)", m, next[0]);
+    wff_mil662_result rn;
+    CHECK(st, wff_mil662_v50(vn, on, 2, 38.1, &rn, &err) == 0 && rn.n_none == 1 && rn.n_complete == 1 &&
+                  rn.n_partial == 0,
+          "neither not counted: %d %d %d", rn.n_partial, rn.n_complete, rn.n_none);
     /* bad input, named */
     p = wff_mil662_defaults(-5);
     m = wff_mil662_next(v, o, 6, &p, 1, next, NULL, &err);

@@ -8,7 +8,8 @@
 #     met (exit 0), limit.json's keys (method, v50_mil662, mil662_spread,
 #     mil662_std, mil662_shots, mil662_outcomes, mil662_status "met", the fit's
 #     v_bl and v50_fit beside it), the V50 the mean of the six it names, mil662.csv
-#     a row per shot, mil662.png drawn; -backing clay reaches every run;
+#     a row per shot, mil662.png drawn; -backing clay reaches every run; -resume 1
+#     takes every shot again and ends with the same sequence;
 #  2. a budget too small (-shots 7, two a round): exit 7, "mil662_status":
 #     "budget", "v50_mil662": null, the terminal says "no V50";
 #  3. option errors (exit 2, naming the option, nothing written): -method bogus,
@@ -65,6 +66,12 @@ n=$(echo "$shots" | wc -w)
 for d in "$tmp"/law/v*/; do
     grep -q '"backing": "clay"' "$d/summary.json" || { echo "-backing clay did not reach $d"; fail=1; break; }
 done
+
+# 1a. -resume 1 into its folder: every shot taken again, the same sequence
+limit law -scene $standin -method mil662 -vfirst 150 -base "-law 121.7,0.9,2.5" -jobs 1 -backing clay -resume 1
+rc=$?
+[ $rc -eq 0 ] && [ "$(list law mil662_shots)" = "$shots" ] && [ "$(grep -c 'taken from the earlier sweep$' "$tmp/law.log")" -eq "$n" ] \
+    || { echo "-resume 1: exit $rc, shots '$(list law mil662_shots)', want '$shots', each taken"; fail=1; }
 
 # 2. the budget spent before the rule is met: no V50, said so
 limit budget -scene $standin -method mil662 -vfirst 150 -base "-law 121.7,0.9,2.5" -jobs 2 -shots 7
