@@ -62,6 +62,9 @@ done
     limit=$(sed -n 's/^ *string text = "\(striking_velocity,[a-z_,]*\)\\n";$/\1/p' freefem_scripts/lib/wff_limit.idp)
     [ -n "$limit" ] || { echo "csv_columns: limit.csv's header not found in wff_limit.idp" >&2; exit 1; }
     printf 'ballistic_limit\tlimit.csv\t%s\n' "$limit"
+    mil=$(sed -n 's/^ *string text = "\(shot,striking_velocity,[a-z_,]*\)\\n";$/\1/p' freefem_scripts/lib/wff_mil662.idp)
+    [ -n "$mil" ] || { echo "csv_columns: mil662.csv's header not found in wff_mil662.idp" >&2; exit 1; }
+    printf 'ballistic_limit\tmil662.csv\t%s\n' "$mil"
     for method in oat morris; do
         keys=$(sed -n "s/^ *string keyList = \"\\([a-z_,]*\\)\";.*/\\1/p; s/^ *if (morris) keyList = \"\\([a-z_,]*\\)\";.*/\\1/p" \
                freefem_scripts/lib/wff_sensitivity.idp | { [ $method = oat ] && head -n 1 || tail -n 1; })

@@ -64,7 +64,7 @@ if [ -t 1 ] && [ -z "${WOVENFF_TRAILER:-}" ]; then
                      held = held $0 "\n"; next }
                  /^ err code [0-9]+ ,  mpirank [0-9]+$/ {
                      code = $3 + 0
-                     if (code != 0 && code != 2 && code != 3 && code != 4 && code != 5 && code != 6 && code != 9)
+                     if (code != 0 && code != 2 && code != 3 && code != 4 && code != 5 && code != 6 && code != 7 && code != 9)
                          printf "%s%s\n", held, $0
                      held = ""; fflush(); next }
                  { if (held != "") { printf "%s", held; held = "" } print; fflush() }

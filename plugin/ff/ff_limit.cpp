@@ -15,6 +15,16 @@
 //   23 highest stopped speed  24 lowest perforating speed (NaN: none)
 // A refused input (fewer than 3 perforating runs, a non-finite or negative value)
 // stops the script with the core's message (a try/catch gets it).
+//
+// The MIL-STD-662F sequence (include/wovenff/mil662.h); outcomes 1 complete,
+// 0 partial, -1 neither (undecided, failed):
+//   real m = wovenffMil662Next(V, O, params, next);  // params [first speed, step,
+//            // step after the first reversal, jobs] (m/s, m/s, m/s, -); next resized
+//            // to m, the next round's speeds (m/s); m = 0: no new speed
+//   real v50 = wovenffMil662V50(V, O, spread, result);  // NaN unless met; result (14):
+//   0 V50 (NaN unless met)  1 spread  2 sample sd  3 status (0 met, 1 too few, 2 too wide)
+//   4 partial  5 complete  6 neither  7 .. 12 the six's shot indices (-1 none)
+//   13 the six's mean (NaN without six)
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 
@@ -24,6 +34,7 @@
 
 extern "C" {
 #include "wovenff/limit.h"
+#include "wovenff/mil662.h"
 }
 
 namespace {
@@ -79,6 +90,78 @@ double ffLambertJonasLaw(const double &vs, const double &vbl, const double &a, c
     return wff_lambert_jonas(vs, vbl, a, p);
 }
 
+// The history's outcomes as the core's (each -1, 0 or 1, else an error naming it).
+std::vector<int> mil662Outcomes(const char *fn, KN<double> *const &v, KN<double> *const &o)
+{
+    if (!v || !o || v->N() != o->N())
+        wff_ff_fail(fn, "the speed and outcome arrays differ in size");
+    std::vector<int> out(o->N());
+    for (long i = 0; i < o->N(); i++) {
+        double x = (*o)[i];
+        if (!(x == -1 || x == 0 || x == 1))
+            wff_ff_fail(fn, "shot " + std::to_string(i + 1) + ": outcome " + std::to_string(x) +
+                                " (1 complete, 0 partial, -1 neither)");
+        out[i] = (int)x;
+    }
+    return out;
+}
+
+double ffMil662Next(KN<double> *const &v, KN<double> *const &o, KN<double> *const &params,
+                    KN<double> *const &next)
+{
+    const char *fn = "wovenffMil662Next";
+    std::vector<int> oc = mil662Outcomes(fn, v, o);
+    if (!params || params->N() != 4 || !next)
+        wff_ff_fail(fn, "expected params [first speed, step, step after the first reversal, jobs]");
+    wff_mil662_params p = wff_mil662_defaults((*params)[0]);
+    p.step = (*params)[1];
+    p.step_after = (*params)[2];
+    double jobs = (*params)[3];
+    if (!(jobs >= 1 && jobs <= WFF_MIL662_JOBS_MAX))
+        wff_ff_fail(fn, "jobs " + std::to_string(jobs) + " (1 to " + std::to_string(WFF_MIL662_JOBS_MAX) + ")");
+    std::vector<double> s(v->N()), out((size_t)jobs);
+    for (long i = 0; i < v->N(); i++)
+        s[i] = (*v)[i];
+    wff_error err;
+    int m = wff_mil662_next(s.data(), oc.data(), (int)s.size(), &p, (int)jobs, out.data(), NULL, &err);
+    if (m < 0)
+        wff_ff_fail(fn, err);
+    next->resize(m > 0 ? m : 1);
+    (*next)[0] = 0;
+    for (int k = 0; k < m; k++)
+        (*next)[k] = out[k];
+    return m;
+}
+
+double ffMil662V50(KN<double> *const &v, KN<double> *const &o, const double &spread,
+                   KN<double> *const &result)
+{
+    const char *fn = "wovenffMil662V50";
+    std::vector<int> oc = mil662Outcomes(fn, v, o);
+    if (!result)
+        wff_ff_fail(fn, "expected (speeds, outcomes, largest spread, result)");
+    std::vector<double> s(v->N());
+    for (long i = 0; i < v->N(); i++)
+        s[i] = (*v)[i];
+    wff_mil662_result r;
+    wff_error err;
+    if (wff_mil662_v50(s.data(), oc.data(), (int)s.size(), spread, &r, &err))
+        wff_ff_fail(fn, err);
+    result->resize(14);
+    double *x = &(*result)[0];
+    x[0] = r.v50;
+    x[1] = r.spread;
+    x[2] = r.std_dev;
+    x[3] = r.status;
+    x[4] = r.n_partial;
+    x[5] = r.n_complete;
+    x[6] = r.n_none;
+    for (int k = 0; k < 6; k++)
+        x[7 + k] = r.chosen[k];
+    x[13] = r.mean;
+    return r.v50;
+}
+
 } // namespace
 
 void wff_ff_register_limit()
@@ -88,4 +171,9 @@ void wff_ff_register_limit()
                    ffLambertJonas));
     Global.Add("wovenffLambertJonasLaw", "(",
                new OneOperator4_<double, double, double, double, double>(ffLambertJonasLaw));
+    Global.Add("wovenffMil662Next", "(",
+               new OneOperator4_<double, KN<double> *, KN<double> *, KN<double> *, KN<double> *>(
+                   ffMil662Next));
+    Global.Add("wovenffMil662V50", "(",
+               new OneOperator4_<double, KN<double> *, KN<double> *, double, KN<double> *>(ffMil662V50));
 }

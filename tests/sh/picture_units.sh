@@ -5,7 +5,7 @@
 # (ballistic_impact plain to the first profile time, the same with yarn slip on
 # (slip_0.png), with -failure on and with -plies 2; strip_tension, explicit_loop, fit_parameters; the unit-cell explorer,
 # every path, king_plain and basket_2x2; ballistic_limit against its stand-in
-# scene), through a gnuplot stand-in on PATH that logs each call's script and
+# scene, -method fit and mil662), through a gnuplot stand-in on PATH that logs each call's script and
 # -e settings. Each logged call is then run again by the real gnuplot with a
 # hook before every plot (the axis labels and tic formats in force, and
 # `set table`: every point as gnuplot computed it), and
@@ -47,6 +47,8 @@ scene king freefem_scripts/unit_cell_explorer.edp -steps 6
 scene basket freefem_scripts/unit_cell_explorer.edp -material freefem_scripts/materials/kevlar_basket.txt -steps 4 -path warp,equibiaxial,shear
 scene limit freefem_scripts/ballistic_limit.edp -scene tests/edp/scenes/lambert_jonas_standin.edp \
     -base "-law 120,0.9,2.5" -vmin 100 -vmax 200 -jobs 2 -runs 6
+scene mil662 freefem_scripts/ballistic_limit.edp -scene tests/edp/scenes/lambert_jonas_standin.edp \
+    -base "-law 121.7,0.9,2.5" -method mil662 -vfirst 150 -jobs 2
 
 # the hook before each plot: the last plot's table, a marker, the labels in force, the
 # script's tic formats for x and y (its `set format` statements become WFFFMT_<axis> = ...: a
@@ -75,7 +77,7 @@ check() {
         "$tmp/trace.txt" || fail=1
     checked=$((checked + 1))
 }
-for name in impact slip failure pack strip loop fit king basket limit; do
+for name in impact slip failure pack strip loop fit king basket limit mil662; do
     [ -s "$tmp/$name.calls" ] || { echo "$name: no gnuplot call logged"; fail=1; continue; }
     while IFS="$(printf '\t')" read -r script vars; do
         check "$name" "$script" "$vars"
