@@ -41,6 +41,17 @@ static int has_pack(const wff_model *m, char *what, size_t size)
     return 1;
 }
 
+/* A backing block behind the pack (backing.c). */
+static int has_backing(const wff_model *m, char *what, size_t size)
+{
+    double law = 0;
+    wff_error err;
+    if (wff_model_value(m, "backing", &law, &err) || law == 0)
+        return 0;
+    snprintf(what, size, "the model has a backing block (%s)", law == 1 ? "clay" : "gelatin");
+    return 1;
+}
+
 /* A part of the step that a checkpoint cannot hold (part.h: the pack's ply
  * contact): the parts' own answer, the one checkpoint.c refuses with. */
 static int parts_refuse_checkpoint(const wff_model *m, char *what, size_t size)
@@ -100,6 +111,8 @@ static const combine_rule rules[] = {
     {"remesh", has_ranks, NULL,
      "a mesh transfer over ranks is not built (the points' states would have to be gathered "
      "first); run -adapt on one rank", "distribute.c distributed_refuses_remesh (wff_model_remesh)"},
+    {"remesh", has_backing, NULL, "a mesh transfer does not carry the backing block; use one "
+     "or the other", "backing.c refuses_remesh"},
     {"remesh", NULL, "checkpoint", checkpoint_no_transfer, NULL},
     {"remesh", NULL, "restart", checkpoint_no_transfer, NULL},
     {"checkpoint", parts_refuse_checkpoint, NULL, checkpoint_no_part,
@@ -127,6 +140,12 @@ static const combine_rule rules[] = {
     {"obliquity", has_erosion, NULL,
      "the perforation verdict is judged along z (docs/threats.md); an oblique shot without "
      "yarn failure", NULL},
+    {"obliquity", has_backing, NULL,
+     "the backing's contacts work along z (docs/backing.md); an oblique shot without a backing",
+     NULL},
+    {"adaptive_step", has_backing, NULL,
+     "going back to a kept state does not take the backing block's step back; run it at a "
+     "smaller -dtfactor", NULL},
     {"adaptive_step", parts_refuse_checkpoint, NULL,
      "the adaptive step goes back to a state the checkpoint's fields hold; run it at a smaller "
      "-dtfactor", "integrator.c start_adaptive (the same parts' answer)"},

@@ -1,0 +1,69 @@
+#!/bin/sh
+# The backing block through the ballistic scene (issue 30 item 1; docs/backing.md),
+# coarse and short: one ply struck by the default ball at 22 m/s on Roma
+# Plastilina clay (-backing clay, 4 mm elements under the impact) to 0.5 ms:
+#   - summary.json's backface_signature (the top face's deepest point now),
+#     crater_diameter and crater_volume are written and positive, the signature
+#     at most the dynamic peak backing_peak_depth; crater.csv (x, depth) whose
+#     deepest point is the signature's; crater.png drawn;
+#   - the energy balance, which holds the block's own account (kinetic + stored
+#     + dissipated − the contacts' work on it) beside its contacts' work on the
+#     fabric and projectile, within 1 %, and the contacts' loss not negative
+#     beyond 0.1 % of the energy given (a contact does not create energy);
+#   - the clay resists: the projectile at 0.5 ms is slower than on the same
+#     ply without a backing;
+#   - refusals naming the options: -backing sand; -backing with -obliquity
+#     and with -adapt (which features combine: plugin/combine.c).
+set -u
+base="${WFF_TEST_TMP:-/tmp}/backing_scene"
+fail=0
+run() { # name, options
+    name=$1; shift
+    rm -rf "$base.$name"
+    sh tools/ff.sh freefem_scripts/ballistic_impact.edp -mesh coarse -tend 0.5e-3 -vtkdt 1 \
+        -out "$base.$name" "$@" > "$base.$name.log" 2>&1 ||
+        { tail -5 "$base.$name.log"; echo "$name: the run failed"; fail=1; }
+}
+value() { # name, key
+    sed -n "s/^  \"$2\": \([^,]*\),*\$/\1/p" "$base.$1/summary.json" | head -1
+}
+run clay -backing clay -plots 1
+run bare -plots 0
+[ $fail = 0 ] || exit 1
+bfs=$(value clay backface_signature); peak=$(value clay backing_peak_depth)
+dia=$(value clay crater_diameter); vol=$(value clay crater_volume)
+err=$(value clay max_energy_error); loss=$(value clay backing_contact_loss)
+vc=$(value clay final_projectile_velocity); vb=$(value bare final_projectile_velocity)
+echo "clay: back-face signature $bfs m (peak $peak m), crater $dia m across, $vol m^3;" \
+     "energy error $err, contact loss $loss J; projectile $vc m/s (bare ply: $vb m/s);" \
+     "the block $(value clay backing_elements) elements, $(value clay backing_seconds) s of" \
+     "$(value clay wall_seconds) s"
+awk -v b="$bfs" -v p="$peak" -v d="$dia" -v v="$vol" 'BEGIN {
+    if (!(b > 1e-3)) { print "backface_signature " b " m: not a crater"; exit 1 }
+    if (!(b <= p + 1e-12)) { print "backface_signature " b " above the dynamic peak " p; exit 1 }
+    if (!(d > 0 && v > 0)) { print "crater diameter " d ", volume " v ": not positive"; exit 1 }
+}' || fail=1
+awk -v e="$err" -v l="$loss" 'BEGIN {
+    given = 0.5 * 0.104 * 22 * 22
+    if (!(e < 0.01)) { print "largest energy error " e ": not within 1 %"; exit 1 }
+    if (!(l > -1e-3 * given)) { print "the contacts created " -l " J"; exit 1 }
+}' || fail=1
+awk -v c="$vc" -v b="$vb" 'BEGIN { if (!(c < b)) { print "projectile " c " m/s on clay, not slower than the bare ply'"'"'s " b; exit 1 } }' || fail=1
+head -1 "$base.clay/crater.csv" | grep -qx 'x,depth' || { echo "crater.csv: header not x,depth"; fail=1; }
+deep=$(awk -F, 'NR > 1 && $2 > m { m = $2 } END { printf "%.12g", m }' "$base.clay/crater.csv")
+awk -v d="$deep" -v b="$bfs" 'BEGIN { if (!(d <= b + 1e-12 && d >= 0.999 * b)) { print "crater.csv deepest " d " against the signature " b; exit 1 } }' || fail=1
+[ -s "$base.clay/crater.png" ] || { echo "crater.png not drawn"; fail=1; }
+refused() { # name, wanted text, options
+    name=$1; want=$2; shift 2
+    sh tools/ff.sh freefem_scripts/ballistic_impact.edp -mesh coarse -tend 1e-5 -plots 0 \
+        -out "$base.$name" "$@" > "$base.$name.log" 2>&1
+    rc=$?
+    if [ $rc -ne 2 ] || ! grep -q -- "$want" "$base.$name.log"; then
+        echo "$name: exit $rc, want 2 naming '$want'"; tail -3 "$base.$name.log"; fail=1
+    fi
+}
+refused sand "-backing" -backing sand
+refused oblique "backing" -backing clay -obliquity 30
+refused adapt "backing" -backing clay -adapt 5
+[ $fail = 0 ] && echo "backing_scene: ok"
+exit $fail
