@@ -246,7 +246,7 @@ static int backing_correct(wff_model *m, double dt, double dt_mid, wff_error *er
     if (block_step(m, B, dt_mid, err))
         return -1;
     B->projectile_dv = 0;
-    wff_backing_ply_contact(m, B, 0.5 * wff_ply_thickness(m), dt);
+    B->overlap = wff_backing_ply_contact(m, B, 0.5 * wff_ply_thickness(m), dt, dt_mid);
     wff_backing_projectile_contact(m, B, dt);
     /* the impulses as forces over the step (their work: the book op) */
     const wff_face_contacts *C = &B->contacts;
@@ -431,6 +431,7 @@ static int backing_state_fields(wff_model *m, wff_state_field *f)
         f[k++] = (wff_state_field){b->gelatin_state, sizeof(wff_gelatin_state), ne};
     f[k++] = (wff_state_field){&b->stored, sizeof b->stored, 1};
     f[k++] = (wff_state_field){&b->dissipated, sizeof b->dissipated, 1};
+    f[k++] = (wff_state_field){&b->viscous, sizeof b->viscous, 1};
     f[k++] = (wff_state_field){&B->started, sizeof B->started, 1};
     f[k++] = (wff_state_field){&B->dt_next, sizeof B->dt_next, 1};
     f[k++] = (wff_state_field){&B->work_fabric, sizeof B->work_fabric, 1};

@@ -45,16 +45,19 @@ struct wff_backing {
                                 fabric, the projectile and the block so far, J */
     double kinetic;          /* the block's kinetic energy, the balance's measure, J */
     double peak_depth;       /* the top face's largest indentation so far, m */
+    double overlap;          /* the back ply's largest overlap with the face, the last step, m */
     double seconds;          /* wall time in the block and its contacts, s */
 };
 
 extern const wff_part_ops wff_backing_part;
 
-/* The back ply's nodes against the block's top face: impulses on both (the
- * fabric's velocities and the block's) so that no node ends the step within
- * h (m) of the face, Coulomb friction mu; dt the step to be taken. Fills
- * B->contacts and B->block_impulse. Returns the largest penetration left, m. */
-double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, double dt);
+/* The back ply's nodes against the block's top face (a node closer than h,
+ * m, pushed out by a damped penalty spring; Coulomb friction mu): impulses on
+ * both (the fabric's velocities and the block's) over dt_mid; dt the step to
+ * be taken (the spring's stiffness). Fills B->contacts and B->block_impulse.
+ * Returns the largest overlap now, m. */
+double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, double dt,
+                               double dt_mid);
 
 /* The block's top-face nodes against the rigid projectile (frictionless):
  * impulses on the nodes (into B->block_impulse) and the projectile's velocity

@@ -5,15 +5,18 @@
  * rank count).
  *
  * - The back ply on the block's top face, node to face: a fabric node over a
- *   face quad (its bilinear point under the node) is kept h from the face
- *   along the face's normal; the impulse λ n on the node, −N_a λ n on the
- *   face's nodes; then Coulomb friction, the tangential slip stopped within
- *   μ λ, in one pass. A node the projectile's contact holds on the nose in
+ *   face quad (its bilinear point under the node) closer than h to the face
+ *   along the face's normal is pushed out by a stiff damped spring (a penalty
+ *   contact: a force, not a kinematic correction, so that a pack's column,
+ *   held kinematically by the ply contact, is slowed through it over a few
+ *   steps instead of being corrected back and forth between the two), the
+ *   impulse F Δt_mid n on the node, −N_a of it on the face's nodes; then
+ *   Coulomb friction, the tangential slip stopped within μ of the normal
+ *   impulse, in one pass. A node the projectile's contact holds on the nose in
  *   this step is pressed between nose and block: it moves with the
- *   projectile along the normal (the pair's mass m_s + M takes λ n, the
- *   projectile its share along z), where two impulses in turn, the nose's
- *   and the block's, would squeeze it out sideways; so is a node the nose
- *   would reach (within h) by the step's end.
+ *   projectile along the normal (the pair's mass m_s + M takes the impulse,
+ *   the projectile its share along z), where the nose's correction and the
+ *   block's push would squeeze it out sideways.
  * - The rigid projectile (or any rigid body moving along z) on the top face's
  *   nodes, frictionless.
  * Knows the model's arrays and the block's; nothing of cells or FreeFEM. */
@@ -25,9 +28,13 @@
 #include <string.h>
 
 /* Most Gauss–Seidel sweeps a step, and the largest change of a gap (m) by a
- * sweep below which the sweeps stop. */
+ * sweep below which the sweeps stop (the rigid contact). */
 #define SWEEPS_MAX 100
 #define SWEEP_TOLERANCE 1e-12
+/* The ply-on-block contact's spring, (ω Δt)² of a contact's own mode, and its
+ * dashpot's fraction of critical damping. */
+#define PENALTY 0.25
+#define DAMPING 0.5
 
 /* The index i with grid[i] <= x < grid[i + 1], clamped to [0, n − 1]. */
 static int interval(const double *grid, int n, double x)
@@ -207,7 +214,8 @@ static void apply(wff_model *m, struct wff_backing *B, int c, const double j[3])
     }
 }
 
-double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, double dt)
+double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, double dt,
+                               double dt_mid)
 {
     wff_block *b = &B->block;
     wff_face_contacts *C = &B->contacts;
@@ -215,17 +223,21 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
     C->n = 0;
     for (int k = 0; p->active && k < p->n_contact; k++)
         B->on_nose[p->contact_node[k]] = 1;
+    double deepest = 0;
+    /* the springs' step: the stable one's fraction, not a step the travel limit shortened
+     * (a spring stiffened by a short step would shorten it further) */
+    const double step = m->dt_stable > 0 ? fmax(dt, m->dt_factor * m->dt_stable) : dt;
     for (int t = 0; t < B->n_ply_nodes && C->n < C->max; t++) {
         const int s = B->ply_nodes[t];
         if (m->dof_kind[D * s + WFF_UZ] != WFF_DOF_FREE)
             continue;
-        const double xs[3] = {m->mesh.xy[2 * s] + m->u[D * s + WFF_UX] + dt * m->v[D * s + WFF_UX],
-                              m->mesh.xy[2 * s + 1] + m->u[D * s + WFF_UY] + dt * m->v[D * s + WFF_UY],
-                              m->u[D * s + WFF_UZ] + dt * m->v[D * s + WFF_UZ]}; /* (a ply's
-                              plane is in its u_z: include/wovenff/pack.h) */
+        const double xs[3] = {m->mesh.xy[2 * s] + m->u[D * s + WFF_UX],
+                              m->mesh.xy[2 * s + 1] + m->u[D * s + WFF_UY],
+                              m->u[D * s + WFF_UZ]}; /* (a ply's plane is in its u_z:
+                                                        include/wovenff/pack.h) */
         const int c = C->n;
         double point[3];
-        if (locate(b, dt, xs[0], xs[1], C->face + 4 * c, C->weight + 4 * c, point,
+        if (locate(b, 0, xs[0], xs[1], C->face + 4 * c, C->weight + 4 * c, point,
                    C->normal + 3 * c))
             continue;
         const double *n = C->normal + 3 * c;
@@ -235,43 +247,26 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
             continue;
         C->node[c] = s;
         C->gap[c] = gap;
-        if (p->active && !B->on_nose[s]) { /* pinched: the nose would meet it by the step's end */
-            double nrm[3];
-            wff_projectile ahead = *p;
-            ahead.tip += dt * p->velocity;
-            B->on_nose[s] = wff_projectile_gap(&ahead, xs, nrm) < h;
-        }
         C->lambda[c] = 0;
         C->impulse[3 * c] = C->impulse[3 * c + 1] = C->impulse[3 * c + 2] = 0;
         C->n++;
+        deepest = fmax(deepest, -gap);
     }
-    /* the sweeps: each contact's gap at the step's end, linear in the velocity
-     * changes since the first look, brought to 0 by a normal impulse >= 0 */
-    double *first = C->normal_speed0;
+    /* the normal force: a spring on the overlap with a dashpot, each contact's
+     * stiffness PENALTY m_eff / Δt² (its own frequency √PENALTY / Δt, well
+     * within the step's limit beside the fabric's own), damped at DAMPING of
+     * critical, never pulling; its impulse F Δt_mid */
     for (int c = 0; c < C->n; c++) {
         double rel[3];
-        first[c] = normal_speed(m, b, C, c, rel);
-    }
-    for (int sweep = 0; sweep < SWEEPS_MAX; sweep++) {
-        double change = 0;
-        for (int c = 0; c < C->n; c++) {
-            double rel[3];
-            const double gap = C->gap[c] + dt * (normal_speed(m, b, C, c, rel) - first[c]);
-            const double w = mobility(m, B, c);
-            double next = C->lambda[c] - gap / (dt * w);
-            if (next < 0)
-                next = 0;
-            const double dl = next - C->lambda[c];
-            if (dl == 0)
-                continue;
-            C->lambda[c] = next;
-            const double *n = C->normal + 3 * c;
-            const double j[3] = {dl * n[0], dl * n[1], dl * n[2]};
+        const double vn = normal_speed(m, b, C, c, rel);
+        const double w = mobility(m, B, c), stiffness = PENALTY / (w * step * step);
+        const double damping = 2 * DAMPING * sqrt(stiffness / w);
+        const double force = fmax(0, stiffness * -C->gap[c] - damping * vn);
+        C->lambda[c] = force * dt_mid;
+        const double *n = C->normal + 3 * c;
+        const double j[3] = {C->lambda[c] * n[0], C->lambda[c] * n[1], C->lambda[c] * n[2]};
+        if (C->lambda[c] > 0)
             apply(m, B, c, j);
-            change = fmax(change, fabs(dl) * w * dt);
-        }
-        if (change < SWEEP_TOLERANCE)
-            break;
     }
     /* friction: the tangential slip stopped within μ λ */
     for (int c = 0; B->mu > 0 && c < C->n; c++) {
@@ -290,17 +285,9 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
         const double j[3] = {-jt * vt[0] / slip, -jt * vt[1] / slip, -jt * vt[2] / slip};
         apply(m, B, c, j);
     }
-    double left = 0;
-    for (int c = 0; c < C->n; c++) {
-        double rel[3];
-        const double gap = C->gap[c] + dt * (normal_speed(m, b, C, c, rel) - first[c]);
-        left = fmax(left, -gap);
-    }
     for (int k = 0; p->active && k < p->n_contact; k++)
         B->on_nose[p->contact_node[k]] = 0;
-    for (int c = 0; c < C->n; c++)
-        B->on_nose[C->node[c]] = 0;
-    return left;
+    return deepest;
 }
 
 int wff_block_rigid_contact(wff_block *b, wff_rigid_penetration penetration, const void *body,

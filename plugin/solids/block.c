@@ -72,6 +72,7 @@ int wff_block_create(wff_block *b, int law, const wff_block_shape *s, double hou
         return wff_fail(err, "backing_hourglass = %g: must be in [0, 1]", hourglass);
     b->law = law;
     b->hourglass = hourglass;
+    b->viscosity[0] = 0.06, b->viscosity[1] = 1.2;
     b->clay = wff_clay_roma_plastilina;
     b->gelatin = wff_gelatin_ordnance10;
     if (law == WFF_BLOCK_CLAY) {
@@ -187,13 +188,15 @@ void wff_block_free(wff_block *b)
 int wff_block_forces(wff_block *b, double dt, int *bad)
 {
     memset(b->f, 0, 3 * (size_t)b->n_nodes * sizeof(double));
-    double stored = 0, dissipated = 0;
+    double stored = 0, dissipated = 0, viscous = 0;
     for (int e = 0; e < b->n_elements; e++) {
         const int *node = b->hex + 8 * e;
         const wff_hex8_ref *r = &b->ref[e];
-        double u[8][3], F[9], strain[6], U_inv[9], stress[6], fe[8][3];
-        for (int a = 0; a < 8; a++)
+        double u[8][3], v[8][3], F[9], strain[6], U_inv[9], stress[6], fe[8][3];
+        for (int a = 0; a < 8; a++) {
             memcpy(u[a], b->u + 3 * node[a], sizeof u[a]);
+            memcpy(v[a], b->v + 3 * node[a], sizeof v[a]);
+        }
         wff_hex8_gradient(r, u, F);
         const double J = wff_hencky(F, strain, U_inv);
         if (!(J > 0) || !isfinite(strain[0] + strain[1] + strain[2] + strain[3] + strain[4] +
@@ -218,12 +221,16 @@ int wff_block_forces(wff_block *b, double dt, int *bad)
         }
         wff_hex8_forces(r, F, U_inv, stress, fe);
         stored += r->volume * density + wff_hex8_hourglass(r, u, b->hourglass_k[e], fe);
+        if (b->viscosity[0] > 0 || b->viscosity[1] > 0)
+            viscous += dt * wff_hex8_bulk_viscosity(r, F, J, v, b->density, b->wave_speed,
+                                                    b->viscosity[0], b->viscosity[1], fe);
         for (int a = 0; a < 8; a++)
             for (int c = 0; c < 3; c++)
                 b->f[3 * node[a] + c] += fe[a][c];
     }
     b->stored = stored;
-    b->dissipated = dissipated;
+    b->viscous += viscous;
+    b->dissipated = dissipated + b->viscous;
     return 0;
 }
 
@@ -237,8 +244,10 @@ double wff_block_stable_step(const wff_block *b, int *worst)
         for (int a = 0; a < 8; a++)
             memcpy(u[a], b->u + 3 * node[a], sizeof u[a]);
         wff_hex8_gradient(&b->ref[e], u, F);
+        const double b1 = b->viscosity[0];
         const double step = wff_hex8_stable_step(&b->ref[e], F, b->wave_speed, b->hourglass_k[e],
-                                                 b->density * b->ref[e].volume / 8);
+                                                 b->density * b->ref[e].volume / 8) *
+                            (sqrt(1 + b1 * b1) - b1);
         if (step < dt || *worst < 0) {
             dt = step;
             *worst = e;

@@ -37,6 +37,8 @@ typedef struct wff_block {
     wff_clay_params clay;
     wff_gelatin_params gelatin;
     double hourglass;            /* κ of the hourglass springs */
+    double viscosity[2];         /* the bulk viscosity's linear and quadratic factors b1, b2
+                                    (hex8.h; 0.06, 1.2 by default) */
     double density, wave_speed, shear; /* of the law: kg/m³, m/s, Pa */
     int n[3];                    /* elements along x, y, z */
     double *grid[3];             /* the grid's coordinates along x, y, z (n + 1 each), m */
@@ -53,7 +55,9 @@ typedef struct wff_block {
     int *contact_node;
     double *contact_depth, *contact_normal, *contact_speed, *contact_lambda;
     double stored;               /* of the last pass: Σ V0 W + hourglass energy, J */
-    double dissipated;           /* Σ V0 × the law's dissipation so far (states), J */
+    double dissipated;           /* Σ V0 × the law's dissipation so far (states) + the bulk
+                                    viscosity's, J */
+    double viscous;              /* the bulk viscosity's dissipation so far, J */
 } wff_block;
 
 /* A block of the law (WFF_BLOCK_CLAY / GELATIN, with the default parameters
@@ -70,9 +74,10 @@ static inline int wff_block_node(const wff_block *b, int i, int j, int k)
     return i + (b->n[0] + 1) * (j + (b->n[1] + 1) * k);
 }
 
-/* The internal forces at b->u into b->f (written), the elements' states
- * advanced over dt (s; 0: held, the stress of the states as they are); b->stored
- * and b->dissipated follow. -1 with *bad the element (from 0) whose
+/* The internal forces at b->u into b->f (written), with the bulk viscosity's
+ * at the velocities b->v, the elements' states advanced over dt (s; 0: held,
+ * the stress of the states as they are; the viscosity's work over dt at that
+ * power); b->stored and b->dissipated follow. -1 with *bad the element (from 0) whose
  * deformation is inverted or not finite, nothing of the states changed. */
 int wff_block_forces(wff_block *b, double dt, int *bad);
 

@@ -192,6 +192,30 @@ void wff_hex8_forces(const wff_hex8_ref *r, const double F[9], const double U_in
                                     P[3 * i + 2] * r->gradient[a][2]);
 }
 
+double wff_hex8_bulk_viscosity(const wff_hex8_ref *r, const double F[9], double J,
+                               const double v[WFF_HEX_NODES][3], double density,
+                               double wave_speed, double linear, double quadratic,
+                               double f[WFF_HEX_NODES][3])
+{
+    double inv[9];
+    inverse3(F, J, inv);
+    double b[WFF_HEX_NODES][3], rate = 0;
+    for (int a = 0; a < WFF_HEX_NODES; a++)
+        for (int i = 0; i < 3; i++) {
+            b[a][i] = inv[i] * r->gradient[a][0] + inv[3 + i] * r->gradient[a][1] +
+                      inv[6 + i] * r->gradient[a][2];
+            rate += v[a][i] * b[a][i];
+        }
+    const double volume = J * r->volume, length = cbrt(volume);
+    double q = density * length * linear * wave_speed * -rate;
+    if (rate < 0)
+        q += density * length * length * quadratic * quadratic * rate * rate;
+    for (int a = 0; a < WFF_HEX_NODES; a++)
+        for (int i = 0; i < 3; i++)
+            f[a][i] += volume * q * b[a][i];
+    return q * -rate * volume;
+}
+
 static double gradient_square(const wff_hex8_ref *r)
 {
     double s = 0;

@@ -58,6 +58,21 @@ double wff_hex8_hourglass_stiffness(const wff_hex8_ref *r, double kappa, double 
 double wff_hex8_hourglass(const wff_hex8_ref *r, const double u[WFF_HEX_NODES][3], double k,
                           double f[WFF_HEX_NODES][3]);
 
+/* Bulk viscosity (the explicit codes' artificial viscosity, von Neumann &
+ * Richtmyer's quadratic term with a linear one; the factors Abaqus/Explicit
+ * uses by default are 0.06 and 1.2): a pressure
+ *   q = ρ L (b1 c (−ε̇_v) + b2² L ε̇_v²)   (the quadratic term in compression only)
+ * from the volume rate ε̇_v = tr D = Σ_a v_a·b_a at the nodal velocities v
+ * (b_a = F⁻ᵀ B0_a), L = (J V0)^(1/3), ρ (kg/m³, the reference's) and the
+ * dilatational wave speed c (m/s). Adds its nodal forces J V0 q b_a to f and
+ * returns the power it dissipates, q (−ε̇_v) J V0 >= 0, W. It damps the
+ * ringing of a compressed element and spreads an impact's front over a few
+ * elements; it acts only on a changing volume. */
+double wff_hex8_bulk_viscosity(const wff_hex8_ref *r, const double F[9], double J,
+                               const double v[WFF_HEX_NODES][3], double density,
+                               double wave_speed, double linear, double quadratic,
+                               double f[WFF_HEX_NODES][3]);
+
 /* The stable step of the element, s: 2/ω with ω² bounded by the sum of
  * Flanagan & Belytschko's bound for the centre point, 8 c² Σ_a |b_a|²
  * (b_a = F⁻ᵀ B0_a, the current gradients; c the dilatational wave speed, m/s),
@@ -66,5 +81,7 @@ double wff_hex8_hourglass(const wff_hex8_ref *r, const double u[WFF_HEX_NODES][3
  * most the sum of the largest ones. */
 double wff_hex8_stable_step(const wff_hex8_ref *r, const double F[9], double wave_speed,
                             double k, double node_mass);
+/* ... lowered by the linear bulk viscosity's damping b1 of the highest mode:
+ * × (√(1 + b1²) − b1) (the central difference's limit with damping). */
 
 #endif
