@@ -25,6 +25,7 @@ short="-mesh coarse -tend 2e-5 -vtkdt 1"
 ff impact "$impact" -mesh coarse -tend 0.4e-3 -vtkdt 1 -plots 1
 ff impact_failure "$impact" $short -failure on -plots 1
 ff impact_pack "$impact" $short -plies 2 -plots 0
+ff impact_backing "$impact" $short -backing clay -plots 0
 ff impact_slip "$impact" -mesh coarse -tend 0.4e-3 -vtkdt 1 -plots 1 -set yarn_friction=0.2
 ff strip freefem_scripts/strip_tension.edp -mesh coarse -strain 0.0005 -velocity 25 -ramp 0 -frame 1e-6 -plots 0
 ff loop freefem_scripts/explicit_loop.edp -n 6 -tend 2e-5 -plots 0
@@ -42,7 +43,7 @@ for m in freefem_scripts/materials/*.txt; do
 done
 # the headers: "SCENE<TAB>FILE<TAB>column,column,..."
 {
-    for run in impact impact_failure impact_pack impact_slip; do
+    for run in impact impact_failure impact_pack impact_slip impact_backing; do
         for f in "$tmp/$run"/*.csv; do
             printf 'ballistic_impact\t%s\t%s\n' "$(basename "$f" | sed 's/^contour_[0-9]*\.csv$/contour_<k>.csv/; s/^slip_[0-9]*\.csv$/slip_<k>.csv/')" "$(head -n 1 "$f")"
         done

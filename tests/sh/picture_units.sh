@@ -40,6 +40,7 @@ scene impact "$impact" -mesh coarse -tend 0.4e-3 -vtkdt 1 -plots 1
 scene slip "$impact" -mesh coarse -tend 0.4e-3 -vtkdt 1 -plots 1 -set yarn_friction=0.2
 scene failure "$impact" -mesh coarse -tend 2e-5 -vtkdt 1 -failure on -plots 1
 scene pack "$impact" -mesh coarse -tend 2e-5 -vtkdt 1 -plies 2 -plots 1
+scene backing "$impact" -mesh coarse -tend 2e-5 -vtkdt 1 -backing clay -plots 1
 scene strip freefem_scripts/strip_tension.edp -mesh coarse -strain 0.002 -velocity 25 -ramp 0 -frame 1e-6 -plots 1
 scene loop freefem_scripts/explicit_loop.edp -n 6 -tend 2e-5 -plots 1
 scene fit freefem_scripts/fit_parameters.edp -params K_I -maxiter 1 -plots 1
@@ -77,7 +78,7 @@ check() {
         "$tmp/trace.txt" || fail=1
     checked=$((checked + 1))
 }
-for name in impact slip failure pack strip loop fit king basket limit mil662; do
+for name in impact slip failure pack backing strip loop fit king basket limit mil662; do
     [ -s "$tmp/$name.calls" ] || { echo "$name: no gnuplot call logged"; fail=1; continue; }
     while IFS="$(printf '\t')" read -r script vars; do
         check "$name" "$script" "$vars"
