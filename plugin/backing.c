@@ -93,7 +93,7 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
     B->built = 1;
     B->started = 0, B->dt_next = 0;
     B->work_fabric = B->work_projectile = B->work_block = B->kinetic = B->peak_depth = 0;
-    B->samples = 0;
+    B->samples = 0, B->stiffness_per_mass = 0, B->overlap = 0;
     int worst;
     B->block_step = wff_block_stable_step(&B->block, &worst);
     return 0;
@@ -369,7 +369,8 @@ static void crater(const wff_model *m, const wff_block *b, double *deepest, doub
 static const char *const backing_value_names[] = {
     "backing", "backface_signature", "crater_diameter", "crater_volume", "backing_peak_depth",
     "backing_kinetic", "backing_stored", "backing_dissipated", "backing_contact_loss",
-    "backing_elements", "backing_contacts", "backing_seconds", "backing_step", NULL,
+    "backing_elements", "backing_contacts", "backing_seconds", "backing_step", "backing_overlap",
+    NULL,
 };
 
 static void backing_value(const wff_model *m, const char *key, double *value)
@@ -410,6 +411,8 @@ static void backing_value(const wff_model *m, const char *key, double *value)
         *value = B->seconds;
     else if (strcmp(key, "backing_step") == 0)
         *value = B->block_step;
+    else if (strcmp(key, "backing_overlap") == 0)
+        *value = B->overlap;
 }
 
 /* ---- checkpoints, transfers, free ------------------------------------------------ */
@@ -441,6 +444,7 @@ static int backing_state_fields(wff_model *m, wff_state_field *f)
     f[k++] = (wff_state_field){&B->kinetic, sizeof B->kinetic, 1};
     f[k++] = (wff_state_field){&B->peak_depth, sizeof B->peak_depth, 1};
     f[k++] = (wff_state_field){&B->samples, sizeof B->samples, 1};
+    f[k++] = (wff_state_field){&B->stiffness_per_mass, sizeof B->stiffness_per_mass, 1};
     return k;
 }
 

@@ -46,6 +46,8 @@ struct wff_backing {
     double kinetic;          /* the block's kinetic energy, the balance's measure, J */
     double peak_depth;       /* the top face's largest indentation so far, m */
     double overlap;          /* the back ply's largest overlap with the face, the last step, m */
+    double stiffness_per_mass; /* the ply-on-block springs' stiffness per kg of node, 1/s²
+                                (fixed at the first step: backing_contact.c) */
     double seconds;          /* wall time in the block and its contacts, s */
 };
 

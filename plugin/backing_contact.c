@@ -224,9 +224,12 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
     for (int k = 0; p->active && k < p->n_contact; k++)
         B->on_nose[p->contact_node[k]] = 1;
     double deepest = 0;
-    /* the springs' step: the stable one's fraction, not a step the travel limit shortened
-     * (a spring stiffened by a short step would shorten it further) */
-    const double step = m->dt_stable > 0 ? fmax(dt, m->dt_factor * m->dt_stable) : dt;
+    /* the springs' stiffness per kg of the node, fixed at the first step (a
+     * spring whose stiffness changes while compressed gives back more than it
+     * took: the step shortens as the fabric is crushed, and a node held on
+     * the nose carries the projectile's mass) */
+    if (!(B->stiffness_per_mass > 0))
+        B->stiffness_per_mass = PENALTY / (dt * dt);
     for (int t = 0; t < B->n_ply_nodes && C->n < C->max; t++) {
         const int s = B->ply_nodes[t];
         if (m->dof_kind[D * s + WFF_UZ] != WFF_DOF_FREE)
@@ -253,13 +256,14 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
         deepest = fmax(deepest, -gap);
     }
     /* the normal force: a spring on the overlap with a dashpot, each contact's
-     * stiffness PENALTY m_eff / Δt² (its own frequency √PENALTY / Δt, well
-     * within the step's limit beside the fabric's own), damped at DAMPING of
-     * critical, never pulling; its impulse F Δt_mid */
+     * stiffness PENALTY m_s / Δt_0² (its own frequency at most √PENALTY / Δt_0
+     * on the node's mass, well within the step's limit beside the fabric's
+     * own), damped at DAMPING of critical, never pulling; its impulse F Δt_mid */
     for (int c = 0; c < C->n; c++) {
         double rel[3];
         const double vn = normal_speed(m, b, C, c, rel);
-        const double w = mobility(m, B, c), stiffness = PENALTY / (w * step * step);
+        const double w = mobility(m, B, c);
+        const double stiffness = B->stiffness_per_mass * m->mass[D * C->node[c] + WFF_UZ];
         const double damping = 2 * DAMPING * sqrt(stiffness / w);
         const double force = fmax(0, stiffness * -C->gap[c] - damping * vn);
         C->lambda[c] = force * dt_mid;
