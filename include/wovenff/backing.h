@@ -21,6 +21,12 @@ extern "C" {
  * > 0 into the block) now; returns how many (0: no backing block yet). */
 int wff_model_backing_profile(const wff_model *m, int max, double *x, double *depth);
 
+/* The block as a VTK unstructured grid (.vtu, ASCII) at path: its hexahedra at
+ * their current positions, point data displacement and velocity (m, m/s), cell
+ * data eq_plastic_strain (clay's ᾱ; 0 for gelatin). Written whole. -1 (err
+ * set) without a block or on a write error. */
+int wff_model_backing_vtk(const wff_model *m, const char *path, wff_error *err);
+
 #ifdef __cplusplus
 }
 #endif

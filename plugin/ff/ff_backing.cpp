@@ -6,6 +6,7 @@
 //   real bfs = wovenffGet(md, "backface_signature");   // crater_diameter, crater_volume, ...
 //   int n = wovenffBackingProfile(md, x, depth);       // the top face along x through the
 //                                                      // impact point: x (m), indentation (m)
+//   wovenffBackingVTK(md, dir + "/backing.vtu");       // the block for ParaView
 // Failures name the function. Knows the public API only.
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
@@ -34,10 +35,21 @@ long ffBackingProfile(const long &id, KN<double> *const &x, KN<double> *const &d
     return n;
 }
 
+long ffBackingVtk(const long &id, string *const &path)
+{
+    const char *fn = "wovenffBackingVTK";
+    const wff_model *m = wff_ff_model(id, fn);
+    wff_error err;
+    if (wff_model_backing_vtk(m, path->c_str(), &err))
+        wff_ff_fail(fn, err);
+    return 0;
+}
+
 } // namespace
 
 void wff_ff_register_backing()
 {
     Global.Add("wovenffBackingProfile", "(",
                new OneOperator3_<long, long, KN<double> *, KN<double> *>(ffBackingProfile));
+    Global.Add("wovenffBackingVTK", "(", new OneOperator2_<long, long, string *>(ffBackingVtk));
 }

@@ -5,7 +5,7 @@
 #   - summary.json's backface_signature (the top face's deepest point now),
 #     crater_diameter and crater_volume are written and positive, the signature
 #     at most the dynamic peak backing_peak_depth; crater.csv (x, depth) whose
-#     deepest point is the signature's; crater.png drawn;
+#     deepest point is the signature's; crater.png drawn; backing.vtu whole;
 #   - the energy balance, which holds the block's own account (kinetic + stored
 #     + dissipated − the contacts' work on it) beside its contacts' work on the
 #     fabric and projectile, within 1 %, and the contacts' loss not negative
@@ -53,6 +53,8 @@ head -1 "$base.clay/crater.csv" | grep -qx 'x,depth' || { echo "crater.csv: head
 deep=$(awk -F, 'NR > 1 && $2 > m { m = $2 } END { printf "%.12g", m }' "$base.clay/crater.csv")
 awk -v d="$deep" -v b="$bfs" 'BEGIN { if (!(d <= b + 1e-12 && d >= 0.999 * b)) { print "crater.csv deepest " d " against the signature " b; exit 1 } }' || fail=1
 [ -s "$base.clay/crater.png" ] || { echo "crater.png not drawn"; fail=1; }
+tail -1 "$base.clay/backing.vtu" | grep -qx '</VTKFile>' && grep -q 'NumberOfCells="1859"' "$base.clay/backing.vtu" \
+    || { echo "backing.vtu: not a whole grid of the block's 1859 cells"; fail=1; }
 refused() { # name, wanted text, options
     name=$1; want=$2; shift 2
     sh tools/ff.sh freefem_scripts/ballistic_impact.edp -mesh coarse -tend 1e-5 -plots 0 \
