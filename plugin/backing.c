@@ -40,7 +40,7 @@ static void release(struct wff_backing *B)
     wff_block_free(&B->block);
     wff_face_contacts *C = &B->contacts;
     free(C->node), free(C->face), free(C->weight), free(C->normal), free(C->gap);
-    free(C->lambda), free(C->normal_speed0), free(C->impulse);
+    free(C->lambda), free(C->impulse);
     free(B->ply_nodes), free(B->block_impulse), free(B->on_nose);
     memset(C, 0, sizeof *C);
     B->ply_nodes = NULL, B->block_impulse = NULL, B->on_nose = NULL, B->built = 0;
@@ -77,13 +77,12 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
     C->normal = malloc(3 * n * sizeof(double));
     C->gap = malloc(n * sizeof(double));
     C->lambda = malloc(n * sizeof(double));
-    C->normal_speed0 = malloc(n * sizeof(double));
     C->impulse = malloc(3 * n * sizeof(double));
     B->ply_nodes = malloc(n * sizeof(int));
     B->block_impulse = calloc(3 * (size_t)B->block.n_nodes, sizeof(double));
     B->on_nose = calloc((size_t)m->n_nodes, 1);
     if (!C->node || !C->face || !C->weight || !C->normal || !C->gap || !C->lambda ||
-        !C->normal_speed0 || !C->impulse || !B->ply_nodes || !B->block_impulse || !B->on_nose) {
+        !C->impulse || !B->ply_nodes || !B->block_impulse || !B->on_nose) {
         release(B);
         return wff_fail(err, "backing: out of memory");
     }

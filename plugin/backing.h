@@ -8,17 +8,16 @@
 #include "solids/block.h"
 
 /* The contacts of one step between the back ply's nodes and the block's top
- * face (node to face: a ply node over the face's bilinear quad), kinematic,
- * with Coulomb friction (backing_contact.c). */
+ * face (node to face: a ply node over the face's bilinear quad), a damped
+ * penalty spring with Coulomb friction (backing_contact.c). */
 typedef struct wff_face_contacts {
     int n, max;            /* this step's contacts; room for */
     int *node;             /* the fabric node */
     int *face;             /* the face's 4 block nodes */
     double *weight;        /* their bilinear weights N_a at the node's point */
     double *normal;        /* the face's unit normal out of the block, 3 */
-    double *gap;           /* the predicted gap at the first look (< 0: penetrating), m */
+    double *gap;           /* the gap now (< 0: overlapping), m */
     double *lambda;        /* the normal impulse on the fabric node, N·s */
-    double *normal_speed0; /* the relative normal speed at the first look, m/s */
     double *impulse;       /* the impulse on the fabric node, normal and friction, 3 */
 } wff_face_contacts;
 
