@@ -90,11 +90,10 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
     for (int k = 0; k < per_ply; k++)
         B->ply_nodes[k] = (plies - 1) * per_ply + k;
     B->built = 1;
-    B->started = 0, B->dt_next = 0;
-    B->work_fabric = B->work_projectile = B->work_block = B->kinetic = B->peak_depth = 0;
-    B->samples = 0, B->stiffness_per_mass = 0, B->overlap = 0;
+    memset(&B->run, 0, sizeof B->run);
+    B->overlap = 0;
     int worst;
-    B->block_step = wff_block_stable_step(&B->block, &worst);
+    B->run.block_step = wff_block_stable_step(&B->block, &worst);
     return 0;
 }
 
@@ -184,7 +183,7 @@ static int backing_setup(wff_model *m, wff_error *err)
         return 0;
     if (!B->built && build(m, B, err))
         return -1;
-    const double dt = B->block_step;
+    const double dt = B->run.block_step;
     if (dt < m->dt_stable) { /* (the first step's: later ones take it through stable_step) */
         m->dt_stable = dt;
         m->dt = m->dt_factor * dt;
@@ -195,7 +194,7 @@ static int backing_setup(wff_model *m, wff_error *err)
 static double backing_stable_step(const wff_model *m)
 {
     const struct wff_backing *B = on(m);
-    return B && B->built ? B->block_step : INFINITY; /* (as of its last force pass) */
+    return B && B->built ? B->run.block_step : INFINITY; /* (as of its last force pass) */
 }
 
 /* The top face's indentation of node (i, j): its u_z (> 0 into the block), m. */
@@ -216,19 +215,19 @@ static int block_step(wff_model *m, struct wff_backing *B, double dt_mid, wff_er
 {
     wff_block *b = &B->block;
     const int nd = 3 * b->n_nodes;
-    if (B->started) /* u^{n+1} = u^n + Δt v^{n+½}, the step the fabric took */
+    if (B->run.started) /* u^{n+1} = u^n + Δt v^{n+½}, the step the fabric took */
         for (int k = 0; k < nd; k++)
-            b->u[k] += B->dt_next * b->v[k];
+            b->u[k] += B->run.dt_next * b->v[k];
     int bad;
-    if (wff_block_forces(b, B->started ? B->dt_next : 0, &bad)) {
+    if (wff_block_forces(b, B->run.started ? B->run.dt_next : 0, &bad)) {
         const int i = bad % b->n[0], j = bad / b->n[0] % b->n[1], k = bad / (b->n[0] * b->n[1]);
         return wff_fail(err, "t = %.6g s (step %ld): backing block element %d (grid %d %d %d "
                         "from the top face's corner): inverted or NaN deformation", m->time,
                         m->step, bad + 1, i, j, k);
     }
-    if (++B->samples % STABLE_EVERY == 0) {
+    if (++B->run.samples % STABLE_EVERY == 0) {
         int worst;
-        B->block_step = wff_block_stable_step(b, &worst);
+        B->run.block_step = wff_block_stable_step(b, &worst);
     }
     for (int k = 0; k < nd; k++)
         if (!b->held[k])
@@ -264,12 +263,12 @@ static int backing_correct(wff_model *m, double dt, double dt_mid, wff_error *er
         p->force -= p->mass * B->projectile_dv / dt_mid;
         p->impulse_total -= p->mass * B->projectile_dv;
     }
-    B->dt_next = dt;
-    B->started = 1;
+    B->run.dt_next = dt;
+    B->run.started = 1;
     const wff_block *b = &B->block;
     for (int j = 0; j <= b->n[1]; j++)
         for (int i = 0; i <= b->n[0]; i++)
-            B->peak_depth = fmax(B->peak_depth, depth_at(b, i, j));
+            B->run.peak_depth = fmax(B->run.peak_depth, depth_at(b, i, j));
     B->seconds += wff_wall_seconds() - started;
     return 0;
 }
@@ -288,11 +287,11 @@ static void backing_book(wff_model *m, double dt_before, double dt_mid)
         for (int k = 0; k < 3; k++) {
             const double j = C->impulse[3 * c + k];
             if (j != 0)
-                B->work_fabric += wff_impulse_work(m, D * C->node[c] + k, j, dt_before, dt_mid);
+                B->run.work_fabric += wff_impulse_work(m, D * C->node[c] + k, j, dt_before, dt_mid);
             C->impulse[3 * c + k] = 0;
         }
     if (B->projectile_dv != 0)
-        B->work_projectile += wff_projectile_impulse_work(
+        B->run.work_projectile += wff_projectile_impulse_work(
             m, m->projectile.mass * B->projectile_dv, dt_before, dt_mid);
     B->projectile_dv = 0;
     /* the block's side: the same measure with its own accelerations (its
@@ -304,7 +303,7 @@ static void backing_book(wff_model *m, double dt_before, double dt_mid)
         if (b->held[k])
             continue;
         const double mass = b->mass[k], v = b->v[k], j = B->block_impulse[k];
-        kinetic += 0.5 * mass * v * (v - B->dt_next * b->f[k] / mass);
+        kinetic += 0.5 * mass * v * (v - B->run.dt_next * b->f[k] / mass);
         if (j != 0) {
             const double a = (b->f[k] + j / dt_mid) / mass;
             work += dt_before > 0 ? j * (v - 0.5 * dt_before * a)
@@ -312,8 +311,9 @@ static void backing_book(wff_model *m, double dt_before, double dt_mid)
             B->block_impulse[k] = 0;
         }
     }
-    B->kinetic = kinetic;
-    B->work_block += work;
+    B->run.kinetic = kinetic;
+    B->run.kinetic_peak = fmax(B->run.kinetic_peak, kinetic);
+    B->run.work_block += work;
 }
 
 /* The block's kinetic energy now, ½ Σ m v² (model part, J). */
@@ -331,8 +331,8 @@ static double backing_dissipated(const wff_model *m)
     const struct wff_backing *B = on(m);
     if (!B || !B->built)
         return 0;
-    return B->kinetic + B->block.stored + B->block.dissipated - B->work_block - B->work_fabric -
-           B->work_projectile;
+    return B->run.kinetic + B->block.stored + B->block.dissipated - B->run.work_block - B->run.work_fabric -
+           B->run.work_projectile;
 }
 
 /* ---- values -------------------------------------------------------------------- */
@@ -393,7 +393,7 @@ static void backing_value(const wff_model *m, const char *key, double *value)
     else if (strcmp(key, "crater_volume") == 0)
         crater(m, b, &deepest, &diameter, value);
     else if (strcmp(key, "backing_peak_depth") == 0)
-        *value = B->peak_depth;
+        *value = B->run.peak_depth;
     else if (strcmp(key, "backing_kinetic") == 0)
         *value = s * block_kinetic(b);
     else if (strcmp(key, "backing_stored") == 0)
@@ -401,7 +401,7 @@ static void backing_value(const wff_model *m, const char *key, double *value)
     else if (strcmp(key, "backing_dissipated") == 0)
         *value = s * b->dissipated;
     else if (strcmp(key, "backing_contact_loss") == 0)
-        *value = s * (-B->work_fabric - B->work_projectile - B->work_block);
+        *value = s * (-B->run.work_fabric - B->run.work_projectile - B->run.work_block);
     else if (strcmp(key, "backing_elements") == 0)
         *value = b->n_elements;
     else if (strcmp(key, "backing_contacts") == 0)
@@ -409,9 +409,11 @@ static void backing_value(const wff_model *m, const char *key, double *value)
     else if (strcmp(key, "backing_seconds") == 0)
         *value = B->seconds;
     else if (strcmp(key, "backing_step") == 0)
-        *value = B->block_step;
+        *value = B->run.block_step;
     else if (strcmp(key, "backing_overlap") == 0)
         *value = B->overlap;
+    else if (strcmp(key, "backing_kinetic_peak") == 0)
+        *value = s * B->run.kinetic_peak;
 }
 
 /* ---- checkpoints, transfers, free ------------------------------------------------ */
@@ -434,16 +436,7 @@ static int backing_state_fields(wff_model *m, wff_state_field *f)
     f[k++] = (wff_state_field){&b->stored, sizeof b->stored, 1};
     f[k++] = (wff_state_field){&b->dissipated, sizeof b->dissipated, 1};
     f[k++] = (wff_state_field){&b->viscous, sizeof b->viscous, 1};
-    f[k++] = (wff_state_field){&B->started, sizeof B->started, 1};
-    f[k++] = (wff_state_field){&B->dt_next, sizeof B->dt_next, 1};
-    f[k++] = (wff_state_field){&B->work_fabric, sizeof B->work_fabric, 1};
-    f[k++] = (wff_state_field){&B->work_projectile, sizeof B->work_projectile, 1};
-    f[k++] = (wff_state_field){&B->block_step, sizeof B->block_step, 1};
-    f[k++] = (wff_state_field){&B->work_block, sizeof B->work_block, 1};
-    f[k++] = (wff_state_field){&B->kinetic, sizeof B->kinetic, 1};
-    f[k++] = (wff_state_field){&B->peak_depth, sizeof B->peak_depth, 1};
-    f[k++] = (wff_state_field){&B->samples, sizeof B->samples, 1};
-    f[k++] = (wff_state_field){&B->stiffness_per_mass, sizeof B->stiffness_per_mass, 1};
+    f[k++] = (wff_state_field){&B->run, sizeof B->run, 1};
     return k;
 }
 

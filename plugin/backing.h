@@ -35,18 +35,23 @@ struct wff_backing {
     double *block_impulse;   /* per block DOF, this step's contact impulses, N·s */
     double projectile_dv;    /* the projectile's velocity change by the block this step, m/s */
     int projectile_contacts; /* block nodes the projectile pressed this step */
-    int started;             /* 1 once the block has taken its first half step */
-    double dt_next;          /* the step planned at the last correction, s */
-    double block_step;       /* s, the block's stable step (refreshed every few passes) */
-    long samples;            /* force passes of the block so far */
-    /* the balance (model part, J) */
-    double work_fabric, work_projectile, work_block; /* the contact impulses' work on the
-                                fabric, the projectile and the block so far, J */
-    double kinetic;          /* the block's kinetic energy, the balance's measure, J */
-    double peak_depth;       /* the top face's largest indentation so far, m */
+    struct {                 /* its evolving account (one field of the checkpoint) */
+        long started;        /* 1 once the block has taken its first half step (a long: the
+                                struct has no padding, its bytes all its own) */
+        long samples;        /* force passes of the block so far */
+        double dt_next;      /* the step planned at the last correction, s */
+        double block_step;   /* s, the block's stable step (refreshed every few passes) */
+        /* the balance (model part, J) */
+        double work_fabric, work_projectile, work_block; /* the contact impulses' work on
+                                the fabric, the projectile and the block so far, J */
+        double kinetic;      /* the block's kinetic energy, the balance's measure, J */
+        double kinetic_peak; /* its largest so far, J (the crater has settled when the
+                                kinetic energy is a small part of it) */
+        double peak_depth;   /* the top face's largest indentation so far, m */
+        double stiffness_per_mass; /* the ply-on-block springs' stiffness per kg of node,
+                                1/s² (fixed at the first step: backing_contact.c) */
+    } run;
     double overlap;          /* the back ply's largest overlap with the face, the last step, m */
-    double stiffness_per_mass; /* the ply-on-block springs' stiffness per kg of node, 1/s²
-                                (fixed at the first step: backing_contact.c) */
     double seconds;          /* wall time in the block and its contacts, s */
 };
 

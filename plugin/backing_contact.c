@@ -228,8 +228,8 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
      * spring whose stiffness changes while compressed gives back more than it
      * took: the step shortens as the fabric is crushed, and a node held on
      * the nose carries the projectile's mass) */
-    if (!(B->stiffness_per_mass > 0))
-        B->stiffness_per_mass = PENALTY / (dt * dt);
+    if (!(B->run.stiffness_per_mass > 0))
+        B->run.stiffness_per_mass = PENALTY / (dt * dt);
     for (int t = 0; t < B->n_ply_nodes && C->n < C->max; t++) {
         const int s = B->ply_nodes[t];
         if (m->dof_kind[D * s + WFF_UZ] != WFF_DOF_FREE)
@@ -263,7 +263,7 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
         double rel[3];
         const double vn = normal_speed(m, b, C, c, rel);
         const double w = mobility(m, B, c);
-        const double stiffness = B->stiffness_per_mass * m->mass[D * C->node[c] + WFF_UZ];
+        const double stiffness = B->run.stiffness_per_mass * m->mass[D * C->node[c] + WFF_UZ];
         const double damping = 2 * DAMPING * sqrt(stiffness / w);
         const double force = fmax(0, stiffness * -C->gap[c] - damping * vn);
         C->lambda[c] = force * dt_mid;

@@ -6,8 +6,9 @@
 #include "part.h" /* (wff_state_field, a part's fields) */
 #include "solver_internal.h"
 
-#define WFF_STATE_FIELDS_MAX 64 /* room for what wff_state_fields gives: the model's 42 at
-                                   most now, then the parts' */
+#define WFF_STATE_FIELDS_MAX 96 /* room for what wff_state_fields gives: the model's 42 at
+                                   most now, then the parts' (a pack's, its contact's and a
+                                   backing's: 7 + 5 + 7 at most now) */
 
 /* The fields in file order (pointer, element size, count) into f, with
  * n_candidates contact candidates; returns their number. */

@@ -12,6 +12,8 @@
 #     beyond 0.1 % of the energy given (a contact does not create energy);
 #   - the clay resists: the projectile at 0.5 ms is slower than on the same
 #     ply without a backing;
+#   - checkpointed at 0.1 ms and restarted: the uninterrupted run's history.csv,
+#     state_hash and signature, byte for byte;
 #   - refusals naming the options: -backing sand; -backing with -obliquity
 #     and with -adapt (which features combine: plugin/combine.c).
 set -u
@@ -55,6 +57,19 @@ awk -v d="$deep" -v b="$bfs" 'BEGIN { if (!(d <= b + 1e-12 && d >= 0.999 * b)) {
 [ -s "$base.clay/crater.png" ] || { echo "crater.png not drawn"; fail=1; }
 tail -1 "$base.clay/backing.vtu" | grep -qx '</VTKFile>' && grep -q 'NumberOfCells="1859"' "$base.clay/backing.vtu" \
     || { echo "backing.vtu: not a whole grid of the block's 1859 cells"; fail=1; }
+# a checkpoint at 0.1 ms restarted: the uninterrupted run's history and state, byte for byte
+short="-mesh coarse -vtkdt 1 -backing clay -tend 0.2e-3 -plots 0"
+rm -rf "$base.whole" "$base.part"
+sh tools/ff.sh freefem_scripts/ballistic_impact.edp $short -out "$base.whole" > "$base.whole.log" 2>&1 ||
+    { tail -3 "$base.whole.log"; echo "whole: the run failed"; fail=1; }
+sh tools/ff.sh freefem_scripts/ballistic_impact.edp $short -checkpoint 5 -stopafter 10 \
+    -out "$base.part" > "$base.part.log" 2>&1   # (exit 9: stopped there on purpose)
+sh tools/ff.sh freefem_scripts/ballistic_impact.edp $short -restart "$base.part" \
+    > "$base.restart.log" 2>&1 || { tail -3 "$base.restart.log"; echo "restart failed"; fail=1; }
+cmp -s "$base.whole/history.csv" "$base.part/history.csv" &&
+    [ "$(value whole state_hash)" = "$(value part state_hash)" ] &&
+    [ "$(value whole backface_signature)" = "$(value part backface_signature)" ] ||
+    { echo "restarted with a backing: not the uninterrupted run's history and state"; fail=1; }
 refused() { # name, wanted text, options
     name=$1; want=$2; shift 2
     sh tools/ff.sh freefem_scripts/ballistic_impact.edp -mesh coarse -tend 1e-5 -plots 0 \
