@@ -369,7 +369,7 @@ static const char *const backing_value_names[] = {
     "backing", "backface_signature", "crater_diameter", "crater_volume", "backing_peak_depth",
     "backing_kinetic", "backing_stored", "backing_dissipated", "backing_contact_loss",
     "backing_elements", "backing_contacts", "backing_seconds", "backing_step", "backing_overlap",
-    NULL,
+    "backing_kinetic_peak", NULL,
 };
 
 static void backing_value(const wff_model *m, const char *key, double *value)

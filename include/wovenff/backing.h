@@ -5,8 +5,9 @@
  * backing_element (the finest element, m), backing_growth, backing_mu,
  * backing_hourglass, backing_gap (m). Its values by name (wff_model_value):
  * backface_signature, crater_diameter, crater_volume, backing_peak_depth,
- * backing_kinetic, backing_stored, backing_dissipated, backing_contact_loss,
- * backing_elements, backing_contacts, backing_seconds. */
+ * backing_kinetic, backing_kinetic_peak, backing_stored, backing_dissipated,
+ * backing_contact_loss, backing_elements, backing_contacts, backing_seconds,
+ * backing_step, backing_overlap. */
 #ifndef WOVENFF_BACKING_H
 #define WOVENFF_BACKING_H
 
