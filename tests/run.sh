@@ -11,9 +11,9 @@
 # 2-core machine two tests at once take about half the wall time. Each test keeps
 # its files in a folder of its own under $WFF_TEST_TMP. A shell test whose header
 # holds the line "# test-runner: alone (why)" runs with no other test beside it
-# (its own MPI ranks or daemons want the cores, or the ports); these run first. A
-# shell test with "# test-runner: first (why)" is started before the others (a
-# long test started last would leave the other cores idle at the end).
+# (its own MPI ranks want the cores); these run first. A shell test with
+# "# test-runner: first (~N s: why)" is started before the others, the longest (N)
+# first (a long test started last would leave the other cores idle at the end).
 # WFF_TEST_JOBS=1: one test at a time, in the order of the listing.
 # Arguments: only the tests whose names (as printed: c/test_cells, sh/restart.sh, ...)
 # match one of them (shell patterns: 'sh/*scene*'); none: every test.
@@ -49,9 +49,11 @@ chosen() { # NAME PATTERN...: one of the patterns matches NAME (no pattern: ever
     done
 } > "$state/alone"
 {
-    for t in tests/sh/*.sh; do
-        [ -f "$t" ] && ! marked alone "$t" && marked first "$t" && printf 'sh/%s\tsh %s\n' "$(basename "$t")" "$t"
-    done
+    for t in tests/sh/*.sh; do   # (the longest first: "first (~N s" in the line)
+        [ -f "$t" ] && ! marked alone "$t" && marked first "$t" &&
+            printf '%s\tsh/%s\tsh %s\n' "$(sed -n 's/^# test-runner: first (~\([0-9]*\) s.*/\1/p' "$t")" \
+                "$(basename "$t")" "$t"
+    done | sort -t "$tab" -k1,1rn | cut -f2-
     for t in tests/sh/*.sh; do
         [ -f "$t" ] && ! marked alone "$t" && ! marked first "$t" && printf 'sh/%s\tsh %s\n' "$(basename "$t")" "$t"
     done

@@ -27,6 +27,8 @@
 #    state's hash) printing the same at 2 ranks as on one.
 # Skipped, saying why, where the MPI module or mpirun is missing (make deps installs
 # OpenMPI's libopenmpi-dev; make builds the module where mpicc is).
+# test-runner: alone (its ranks use the machine's cores and wait for each other by polling:
+# a test beside them would stall them; tests/run.sh runs it before the others, by itself)
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/distributed"
 rm -rf "$tmp"; mkdir -p "$tmp"
