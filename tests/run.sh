@@ -24,8 +24,14 @@ case "$jobs" in ''|*[!0-9]*|0) echo "tests/run.sh: WFF_TEST_JOBS '$jobs' is not 
 state=$(mktemp -d) || exit 1
 WFF_TEST_TMP=$(mktemp -d) || exit 1; export WFF_TEST_TMP
 workers=""
+# (a worker's tests ignore Ctrl-C, as every command sh starts with &: an interrupted run
+# ends each worker and what it started, by process id, children first)
+kill_tree() {
+    for child in $(ps -o pid= --ppid "$1" 2>/dev/null); do kill_tree "$child"; done
+    kill "$1" 2>/dev/null
+}
 cleanup() {
-    [ -n "$workers" ] && kill $workers 2>/dev/null
+    for w in $workers; do kill_tree "$w"; done
     rm -rf "$state" "$WFF_TEST_TMP"
 }
 trap cleanup EXIT
