@@ -5,6 +5,7 @@
 # and follows the static one-point solution (load_static): every sample at
 # 1.5-2 % strain within 1.5 % of it (measured: at most 0.47 %; below ~1 % the
 # toe's ringing is several per cent of the small static load).
+# test-runner: first (~27 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 out="${WFF_TEST_TMP:-/tmp}/basket_strip"
 rm -rf "$out"

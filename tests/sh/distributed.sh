@@ -27,6 +27,8 @@
 #    state's hash) printing the same at 2 ranks as on one.
 # Skipped, saying why, where the MPI module or mpirun is missing (make deps installs
 # OpenMPI's libopenmpi-dev; make builds the module where mpicc is).
+# test-runner: alone (its ranks use the machine's cores and wait for each other by polling:
+# a test beside them would stall them; tests/run.sh runs it before the others, by itself)
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/distributed"
 rm -rf "$tmp"; mkdir -p "$tmp"
@@ -45,6 +47,12 @@ run() { # NAME NP (0: the serial module) ARGS...: the scene into $tmp/NAME_NP
         set -- sh tools/ff.sh -np "$np" "$scene" "$@"
     fi
     timeout -k 5 600 "$@" -threads 1 -plots 0 -vtkdt 1 -out "$tmp/${name}_$np" > "$tmp/${name}_$np.log" 2>&1
+    rc=$?; echo "$rc" > "$tmp/${name}_$np.rc"; return "$rc"
+}
+# ran NAME NP [ARGS...]: the run's exit code, or (no run yet) run it now
+ran() {
+    if [ -f "$tmp/$1_$2.rc" ]; then return "$(cat "$tmp/$1_$2.rc")"; fi
+    run "$@"
 }
 # summary.json less what the wall clock and the rank count set
 summary() {
@@ -70,19 +78,41 @@ same() {
 
 case_at() { # NAME RANKS ARGS...
     name=$1; ranks=$2; shift 2
-    run "$name" 0 "$@" || { echo "$name serial: exit $?"; tail -3 "$tmp/${name}_0.log"; fail=1; return; }
+    ran "$name" 0 "$@" || { echo "$name serial: exit $?"; tail -3 "$tmp/${name}_0.log"; fail=1; return; }
     line="$name: state $(hash_of "$tmp/${name}_0")"
     for np in $ranks; do
-        run "$name" "$np" "$@" || { echo "$name at $np ranks: exit $?"; tail -5 "$tmp/${name}_$np.log"; fail=1; continue; }
+        ran "$name" "$np" "$@" || { echo "$name at $np ranks: exit $?"; tail -5 "$tmp/${name}_$np.log"; fail=1; continue; }
         same "$name" "$np"
         line="$line, $np ranks $(hash_of "$tmp/${name}_$np")"
     done
     echo "$line"
 }
 
-case_at paper "1 2 3 4" -mesh coarse -tend 5e-4
-case_at pack "1 2 3 4" -mesh coarse -plies 8 -tend 2e-4
-case_at perforation "2 3 4" -mesh coarse -plies 4 -failure on -velocity 45
+# The runs on one process (the serial module's, one rank's) first, two at a time: a lane a
+# core (the 4-ply perforation's serial run, the longest, in one; the rest in the other);
+# case_at then takes each one's results (ran) and runs the ranks.
+paper="-mesh coarse -tend 5e-4" pack="-mesh coarse -plies 8 -tend 2e-4"
+perforation="-mesh coarse -plies 4 -failure on -velocity 45"
+limit="-mesh coarse -clamp fixed -failure on -velocity 16.6"
+static="-mesh coarse -tend 3e-4 -amplitudes static"
+staticquad="-mesh coarse -tend 3e-4 -amplitudes static -elements quad -checkpoint 10"
+slip="-mesh coarse -tend 3e-4 -set yarn_friction=0.2"
+ck="-mesh coarse -tend 5e-4 -checkpoint 10"
+run perforation 0 $perforation &
+lane=$!
+{
+    run paper 0 $paper; run paper 1 $paper; run pack 0 $pack; run pack 1 $pack
+    run limit 0 $limit; run static 0 $static; run staticquad 0 $staticquad; run slip 0 $slip
+    run ck 0 $ck -stopafter 20
+    timeout -k 5 300 sh tools/ff.sh freefem_scripts/explicit_loop.edp -n 12 -tend 1e-4 -plots 0 \
+        -out "$tmp/loop_0" > "$tmp/loop_0.log" 2>&1; echo $? > "$tmp/loop_0.rc"
+    timeout -k 5 300 sh tools/ff.sh tests/edp/scenes/api_ranks.edp > "$tmp/api_0.txt" 2>&1; echo $? > "$tmp/api_0.rc"
+}
+wait $lane
+
+case_at paper "1 2 3 4" $paper
+case_at pack "1 2 3 4" $pack
+case_at perforation "2 3 4" $perforation
 grep -q '"perforated": true' "$tmp/perforation_0/summary.json" \
     || { echo "the 4-ply run at 45 m/s did not perforate: the case tests no erosion"; fail=1; }
 eroded=$(sed -n 's/.*"eroded_elements": \([0-9]*\).*/\1/p' "$tmp/perforation_0/summary.json")
@@ -97,12 +127,10 @@ cmp -s "$tmp/pack_0/history.csv" "$tmp/hybrid_2/history.csv" && [ "$(hash_of "$t
     || { echo "2 ranks x 2 threads: the pack's state $(hash_of "$tmp/hybrid_2"), serial one thread $(hash_of "$tmp/pack_0")"; fail=1; }
 echo "pack at 2 ranks x 2 threads: state $(hash_of "$tmp/hybrid_2")"
 
-# a checkpoint at 2 ranks, restarted at 3
-ck="-mesh coarse -tend 5e-4 -checkpoint 10"
+# a checkpoint at 2 ranks, restarted at 3 (the serial one: in the lanes above)
 run ck 2 $ck -stopafter 20
 rc=$?
 [ $rc -eq 9 ] || { echo "checkpointed run at 2 ranks: exit $rc, want 9 (-stopafter)"; tail -3 "$tmp/ck_2.log"; fail=1; }
-run ck 0 $ck -stopafter 20
 for f in "$tmp/ck_0/checkpoint/"model_*.bin; do
     cmp -s "$f" "$tmp/ck_2/checkpoint/$(basename "$f")" \
         || { echo "checkpoint $(basename "$f") at 2 ranks differs from the serial one"; fail=1; }
@@ -127,7 +155,7 @@ cmp -s "$tmp/packck_2/history.csv" "$tmp/pack_0/history.csv" && [ "$(hash_of "$t
 echo "the 8-ply pack checkpointed at 2 ranks, restarted at 3: state $(hash_of "$tmp/packck_2")"
 
 # the verdict within 1 % of the ballistic limit
-case_at limit "2 4" -mesh coarse -clamp fixed -failure on -velocity 16.6
+case_at limit "2 4" $limit
 verdict() { sed -n 's/.*"verdict": "\([a-z]*\)".*/\1/p' "$1/summary.json"; }
 v0=$(verdict "$tmp/limit_0")
 [ -n "$v0" ] || { echo "16.6 m/s: no verdict"; fail=1; }
@@ -137,8 +165,8 @@ done
 echo "16.6 m/s (V50 16.50 m/s on this mesh): $v0 at 1 (the serial module), 2 and 4 ranks"
 
 # static amplitudes (triangles, then quads with checkpoints), yarn slip
-case_at static "2 3" -mesh coarse -tend 3e-4 -amplitudes static
-case_at staticquad "2" -mesh coarse -tend 3e-4 -amplitudes static -elements quad -checkpoint 10
+case_at static "2 3" $static
+case_at staticquad "2" $staticquad
 n=0
 for f in "$tmp/staticquad_0/checkpoint/"model_*.bin; do
     [ -f "$f" ] || continue
@@ -147,7 +175,7 @@ for f in "$tmp/staticquad_0/checkpoint/"model_*.bin; do
         || { echo "static amplitudes on quads: checkpoint $(basename "$f") at 2 ranks differs from the serial one"; fail=1; }
 done
 [ "$n" -gt 0 ] || { echo "static amplitudes on quads: no checkpoint written"; fail=1; }
-case_at slip "2" -mesh coarse -tend 3e-4 -set yarn_friction=0.2
+case_at slip "2" $slip
 
 # -adapt over ranks: refused before the run, naming it
 run adapt 2 -mesh coarse -tend 3e-4 -adapt 1
@@ -156,14 +184,14 @@ rc=$?
     || { echo "-adapt at 2 ranks: exit $rc, want 2 with the refusal"; tail -3 "$tmp/adapt_2.log"; fail=1; }
 echo "-adapt at 2 ranks: refused (exit $rc)"
 
-# a script's own loop: explicit_loop.edp, and the API's calls one by one
-for np in 0 2; do
-    if [ "$np" = 0 ]; then set -- sh tools/ff.sh; else set -- sh tools/ff.sh -np "$np"; fi
-    timeout -k 5 300 "$@" freefem_scripts/explicit_loop.edp -n 12 -tend 1e-4 -plots 0 \
-        -out "$tmp/loop_$np" > "$tmp/loop_$np.log" 2>&1 || { echo "explicit_loop at $np ranks: exit $?"; tail -3 "$tmp/loop_$np.log"; fail=1; }
-    timeout -k 5 300 "$@" tests/edp/scenes/api_ranks.edp > "$tmp/api_$np.txt" 2>&1 \
-        || { echo "api_ranks.edp at $np ranks: exit $?"; tail -3 "$tmp/api_$np.txt"; fail=1; }
-done
+# a script's own loop: explicit_loop.edp, and the API's calls one by one (on one process:
+# in the lanes above)
+rc=$(cat "$tmp/loop_0.rc"); [ "$rc" = 0 ] || { echo "explicit_loop at 0 ranks: exit $rc"; tail -3 "$tmp/loop_0.log"; fail=1; }
+rc=$(cat "$tmp/api_0.rc"); [ "$rc" = 0 ] || { echo "api_ranks.edp at 0 ranks: exit $rc"; tail -3 "$tmp/api_0.txt"; fail=1; }
+timeout -k 5 300 sh tools/ff.sh -np 2 freefem_scripts/explicit_loop.edp -n 12 -tend 1e-4 -plots 0 \
+    -out "$tmp/loop_2" > "$tmp/loop_2.log" 2>&1 || { echo "explicit_loop at 2 ranks: exit $?"; tail -3 "$tmp/loop_2.log"; fail=1; }
+timeout -k 5 300 sh tools/ff.sh -np 2 tests/edp/scenes/api_ranks.edp > "$tmp/api_2.txt" 2>&1 \
+    || { echo "api_ranks.edp at 2 ranks: exit $?"; tail -3 "$tmp/api_2.txt"; fail=1; }
 cmp -s "$tmp/loop_0/history.csv" "$tmp/loop_2/history.csv" \
     || { echo "explicit_loop at 2 ranks: history.csv differs from the serial run's"; fail=1; }
 grep -q '^steps ' "$tmp/api_0.txt" || { echo "api_ranks.edp printed no state"; fail=1; }

@@ -14,6 +14,7 @@
 # gives, is in docs/limits.md "Exit codes of the scenes". Runs are tiny (coarse
 # mesh, -tend 2e-5 s) and the sweeps use the stand-in scene of limit_scene.sh.
 # Run from the repository root (tests/run.sh does).
+# test-runner: first (~23 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/hostile"
 rm -rf "$tmp"; mkdir -p "$tmp"

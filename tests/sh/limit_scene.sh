@@ -22,6 +22,7 @@
 #    which the law's residual passes the striking speed; a plain fit warns nothing;
 #  - a scene that never perforates: exit 5, the error names -vmax;
 #  - every run of a round failing: exit 4; bad options: exit 2.
+# test-runner: first (~24 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/limit_scene"
 rm -rf "$tmp"; mkdir -p "$tmp"

@@ -7,6 +7,7 @@
 # 40 plies, docs/model.md §23), which no check of the numbers caught: the stack
 # held zeros in the tests. One thread (libgomp's team start is not memcheck's
 # business). Skipped, and said, where valgrind is not installed.
+# test-runner: first (~21 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 command -v valgrind > /dev/null 2>&1 || { echo "memcheck_ply_contact: no valgrind on this machine: skipped"; exit 0; }
 log="${WFF_TEST_TMP:-/tmp}/memcheck_ply_contact.log"

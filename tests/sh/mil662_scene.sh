@@ -21,6 +21,7 @@
 #     every partial below every complete (the outcomes change at one speed between
 #     them), the V50 within the six's speeds, the fit beside it. ~40 s on 2 shared
 #     cores.
+# test-runner: first (~35 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/mil662_scene"
 rm -rf "$tmp"; mkdir -p "$tmp"

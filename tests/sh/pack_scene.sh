@@ -19,6 +19,7 @@
 # so do 20 plies to 1 ms;
 # 8 frictionless plies without the travel limit run to 0.4 ms (a crimp amplitude ran
 # away at 0.30 ms before); every bad input exits 2 naming the option with nothing written.
+# test-runner: first (~55 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}"
 out="$tmp/pack_scene"

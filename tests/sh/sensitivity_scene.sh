@@ -15,6 +15,7 @@
 # Bad inputs stop with exit code 2 before anything is run: an unknown input,
 # low >= high, a non-number, out of range, -jobs 0, base options the scene
 # refuses, the mesh in a Morris design.
+# test-runner: first (~30 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/sensitivity_scene"
 rm -rf "$tmp"; mkdir -p "$tmp"

@@ -17,6 +17,7 @@
 #    the local runner's, byte for byte.
 # Where Slurm cannot start (not root, slurm-wlm or munge missing) it says so in one line
 # and passes. Every Slurm call has a timeout.
+# test-runner: first (~24 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/slurm_sweep"
 rm -rf "$tmp"; mkdir -p "$tmp/bin"

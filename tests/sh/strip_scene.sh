@@ -6,6 +6,7 @@
 # 1 % of the static one-point solution (the load_static column). Measured: warp at
 # most 0.73 %, weft 0.79 %; at the earlier default (2 m/s, 1 ms start) the weft was
 # 25 % above the static load at 1 % strain and this test fails.
+# test-runner: first (~23 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 out="${WFF_TEST_TMP:-/tmp}/strip_scene"
 rm -rf "$out"

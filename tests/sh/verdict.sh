@@ -21,6 +21,7 @@
 # "invariants" ok (issue 27 item 7: -0.67 J at 0.48 ms before the column solve),
 # the ply penetration within its bound; a 2-ply pack stopped: its back-face
 # deformation a number.
+# test-runner: first (~90 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 tmp="${WFF_TEST_TMP:-/tmp}/verdict"
 rm -rf "$tmp"; mkdir -p "$tmp"
