@@ -208,7 +208,8 @@ int wff_model_set_preload(wff_model *m, const double F_pre[4], const double dA0[
             m->u[D * n + 3] = dA0[0];
             m->u[D * n + 4] = dA0[1];
         }
-    if (m->zones && wff_zones_preload_changed(m, err)) /* matched zone preloads follow */
+    if (m->zones && (wff_zones_preload_changed(m, err) || /* matched zone preloads follow */
+                     wff_model_masses_changed(m, err)))
         return -1;
     wff_model_stored_energy_now(m);
     return 0;

@@ -191,6 +191,7 @@ int wff_model_set_plies(wff_model *m, int n_plies, double gap, wff_error *err)
         wff_model_free(&pk);
         return -1;
     }
+    wff_model_set_element_lengths(&pk); /* (each ply's zone: the model's material) */
     wff_model_free(m); /* (the pack has its own communicator over the same ranks) */
     *m = pk;
     return 0;

@@ -307,7 +307,7 @@ int wff_zones_preload_changed(wff_model *m, wff_error *err)
     for (int k = 1; k < Z->n; k++)
         if (Z->zone[k].preload == WFF_ZONE_PRELOAD_MATCHED && match_preload(m, k, err))
             return -1;
-    return wff_model_masses_changed(m, err);
+    return 0;
 }
 
 /* The zone table of a model without one: zone 0 (the model's material) holding
@@ -361,9 +361,9 @@ static int zone_add(wff_model *m, const wff_material *mat, int preload, int ply,
     return k;
 }
 
-/* wff_model_zone_elements with the selection in the model's own element order.
- * In a pack of several plies the selection becomes one zone per ply it touches. */
-static int zone_elements_model(wff_model *m, const unsigned char *selected,
+/* wff_model_zone_elements' zones with the selection in the model's own element
+ * order (zones.h): in a pack of several plies one zone per ply it touches. */
+int wff_zones_select(wff_model *m, const unsigned char *selected,
                                const char *material_path, int preload, wff_error *err)
 {
     if (m->step > 0 || m->v_half_valid)
@@ -431,9 +431,8 @@ static int zone_elements_model(wff_model *m, const unsigned char *selected,
             Z->element_zone[e] = k;
             count++;
         }
-    if (build(m, err) || wff_model_masses_changed(m, err))
+    if (build(m, err))
         return -1;
-    wff_model_set_element_lengths(m); /* (the zone's material may carry them) */
     return count;
 }
 
@@ -452,11 +451,10 @@ int wff_zones_pack(wff_model *m, wff_error *err)
         }
     for (int e = 0; e < Z->n_el; e++)
         Z->element_zone[e] = 1 + wff_pack_element_ply(m, e);
-    if (build(m, err) || wff_model_masses_changed(m, err)) {
+    if (build(m, err)) {
         wff_zones_free(m);
         return -1;
     }
-    wff_model_set_element_lengths(m);
     return 0;
 }
 
@@ -481,61 +479,6 @@ void wff_zones_ply_totals(const wff_model *m, double *stored, double *shear, dou
     }
 }
 
-int wff_model_zone_region(wff_model *m, const char *group, int group_tag,
-                          const char *material_path, int preload, wff_error *err)
-{
-    int tag = group_tag;
-    if (group && group[0]) {
-        tag = wff_mesh_group_tag(&m->mesh, 2, group);
-        if (tag < 0)
-            return wff_fail(err, "zone material '%s': no physical surface named '%s' in the "
-                            "mesh", material_path, group);
-    }
-    int nt = m->el.n_tris, n_el = nt + m->el.n_quads, count = 0;
-    unsigned char *sel = calloc((size_t)(n_el ? n_el : 1), 1);
-    if (!sel)
-        return wff_fail(err, "out of memory");
-    for (int e = 0; e < n_el; e++) {
-        int region = e < nt ? m->mesh.tri_region[e] : m->mesh.quad_region[e - nt];
-        sel[e] = region == tag;
-        count += sel[e];
-    }
-    if (count == 0) {
-        free(sel);
-        return wff_fail(err, "zone material '%s': no element in region %d%s%s", material_path,
-                        tag, group && group[0] ? " " : "", group && group[0] ? group : "");
-    }
-    int n = zone_elements_model(m, sel, material_path, preload, err);
-    free(sel);
-    return n;
-}
-
-int wff_model_zone_disc(wff_model *m, double x, double y, double radius, int outside,
-                        const char *material_path, int preload, wff_error *err)
-{
-    if (!(radius >= 0) || !isfinite(radius) || !isfinite(x) || !isfinite(y))
-        return wff_fail(err, "zone material '%s': disc centre (%g, %g) m, radius %g m: must "
-                        "be finite, radius >= 0", material_path, x, y, radius);
-    int nt = m->el.n_tris, n_el = nt + m->el.n_quads;
-    unsigned char *sel = calloc((size_t)(n_el ? n_el : 1), 1);
-    if (!sel)
-        return wff_fail(err, "out of memory");
-    for (int e = 0; e < n_el; e++) {
-        int nn = e < nt ? 3 : 4;
-        const int *node = e < nt ? m->mesh.tri + 3 * e : m->mesh.quad + 4 * (e - nt);
-        double cx = 0, cy = 0;
-        for (int a = 0; a < nn; a++) {
-            cx += m->mesh.xy[2 * node[a]] / nn;
-            cy += m->mesh.xy[2 * node[a] + 1] / nn;
-        }
-        int beyond = hypot(cx - x, cy - y) > radius;
-        sel[e] = outside ? beyond : !beyond;
-    }
-    int n = zone_elements_model(m, sel, material_path, preload, err);
-    free(sel);
-    return n;
-}
-
 int wff_model_zone_count(const wff_model *m)
 {
     return m->zones ? m->zones->n : 1;
@@ -553,22 +496,6 @@ const wff_material *wff_model_zone_material(const wff_model *m, int zone)
     if (zone == 0)
         return &m->mat;
     return m->zones && zone > 0 && zone < m->zones->n ? &m->zones->zone[zone].mat : NULL;
-}
-
-int wff_model_zone_elements(wff_model *m, const unsigned char *selected,
-                            const char *material_path, int preload, wff_error *err)
-{
-    if (!m->element_user) /* the caller's order is the model's */
-        return zone_elements_model(m, selected, material_path, preload, err);
-    int n_el = m->el.n_tris + m->el.n_quads;
-    unsigned char *sel = malloc((size_t)(n_el ? n_el : 1));
-    if (!sel)
-        return wff_fail(err, "out of memory");
-    for (int e = 0; e < n_el; e++) /* model element e is the caller's element_user[e] */
-        sel[e] = selected[m->element_user[e]];
-    int n = zone_elements_model(m, sel, material_path, preload, err);
-    free(sel);
-    return n;
 }
 
 void wff_zones_forces(wff_model *m, const double *u, double *state, double dt, double *f,

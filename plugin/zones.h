@@ -15,6 +15,12 @@
  * transfer. Other points are left alone. */
 void wff_model_set_element_lengths(wff_model *m);
 
+/* The elements selected (the model's order) given a zone of the material at
+ * material_path (preload WFF_ZONE_PRELOAD_*), one per ply a pack's selection
+ * touches; the model's masses are not set again here (zones_model.c's callers
+ * do). Returns the elements in it, or -1 (err set). */
+int wff_zones_select(wff_model *m, const unsigned char *selected, const char *material_path,
+                     int preload, wff_error *err);
 /* Free the zones (wff_model_free). */
 void wff_zones_free(wff_model *m);
 /* The element force pass: wff_elements_forces over each zone with its own
@@ -47,14 +53,15 @@ void wff_zones_energy_split(const wff_model *m, const double *u, const double *s
  * *scratch filled for its zone. */
 const wff_element_material *wff_zones_element_material(const wff_model *m, int e,
                                                        wff_element_material *scratch);
-/* The model's preload changed: matched zone preloads solved again, masses set;
- * -1 (err set) if a match fails. */
+/* The model's preload changed: matched zone preloads solved again (the caller
+ * sets the masses again: wff_model_masses_changed); -1 (err set) if a match fails. */
 int wff_zones_preload_changed(wff_model *m, wff_error *err);
 /* The zones' materials, preloads and element assignment folded into hash g
  * (g unchanged without zones: checkpoints of one-material models as before). */
 uint64_t wff_zones_fingerprint(const wff_model *m, uint64_t g);
 /* pack_build.c: a pack of several plies gets one zone per ply (zone 0, the model's material,
- * left empty), each of the model's material; -1 (err set) if the model has zones. */
+ * left empty), each of the model's material; -1 (err set) if the model has zones. The
+ * caller sets the masses and element lengths again. */
 int wff_zones_pack(wff_model *m, wff_error *err);
 /* The last force pass's stored energy, shear, failure and slip dissipation of each
  * ply (model part, J; the model's wff_pack_plies entries); zeros without zones. */
