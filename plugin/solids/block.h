@@ -82,7 +82,9 @@ static inline int wff_block_node(const wff_block *b, int i, int j, int k)
 int wff_block_forces(wff_block *b, double dt, int *bad);
 
 /* The block's stable step, s, at b->u (INFINITY for no element), the element
- * setting it into *worst. */
+ * setting it into *worst: each element's wff_hex8_stable_step lowered by the
+ * linear bulk viscosity's damping b1 of the highest mode, × (√(1 + b1²) − b1)
+ * (the central difference's limit with damping). */
 double wff_block_stable_step(const wff_block *b, int *worst);
 
 #endif

@@ -81,7 +81,5 @@ double wff_hex8_bulk_viscosity(const wff_hex8_ref *r, const double F[9], double 
  * most the sum of the largest ones. */
 double wff_hex8_stable_step(const wff_hex8_ref *r, const double F[9], double wave_speed,
                             double k, double node_mass);
-/* ... lowered by the linear bulk viscosity's damping b1 of the highest mode:
- * × (√(1 + b1²) − b1) (the central difference's limit with damping). */
 
 #endif
