@@ -53,17 +53,9 @@
  * material with failure on; the wave speeds stay the undamaged bounds.
  *
  * Yarn slip at the crossovers (docs/model.md §24, optional: material key
- * yarn_friction = μ_yy > 0 with slip_crossovers = n_c): a slip strain s_k per
- * family, in series with the yarn's elastic stretch, moves yarn through the
- * crossovers, the truss's rest length L_k⁰(1 + s_k):
- *
- *   T_k = k_k (L_k − L_k⁰(1 + s_k)),   energy k_k (L_k − L_k⁰(1 + s_k))²,
- *
- * and Coulomb friction caps the tension: |T_k| ≤ T_slip = n_c μ_yy ⟨F_I⟩, the
- * friction of n_c crossovers each pressed by the crossover force F_I; a step
- * that would exceed it slips (the return map, king_family_slip), dissipating
- * the friction's work T_slip × 2 L_k⁰ |Δs_k|. States s_1, s_2 after
- * the others (n_state 8 with slip). The blocked kernels decline slip.
+ * yarn_friction = μ_yy > 0 with slip_crossovers = n_c): yarn_slip.h. States s_1,
+ * s_2 after the others (n_state 8 with slip). The blocked kernels (king_lanes.h)
+ * decline slip.
  *
  * The model is written once: king_family_at (one yarn family at a point),
  * king_point_at (a point: compaction, both families, shear flow, residuals,
@@ -228,56 +220,7 @@ WFF_INLINE wff_yarn_damage king_family_fail(const king_params *k, int f, king_fa
     return d;
 }
 
-/* What yarn slip does to one family in one update (king_family_slip). */
-typedef struct king_slip {
-    double slip;     /* s_k after the update, - */
-    double released; /* the friction's work, T_slip × the slip, J per cell (>= 0) */
-} king_slip;
-
-/* docs/model.md §24, yarn slip at the crossovers on family f: the slip strain
- * s_k (state `slip`) moves yarn through the crossovers into the cell, the truss's
- * rest length becoming L_k⁰(1 + s_k):
- *   x_k = L_k − L_k⁰(1 + s_k)   (y->stretch; the tension_only floor as for the yarn)
- *   T_k = k_k x_k,  energy k_k x_k²            (the stored energy with s_k held)
- * With dt > 0, Coulomb friction at the crossovers caps the tension the truss
- * carries, c_k x_k with c_k = (1 − d_k) k_k where stretched (d_k the damage before
- * this update, 0 without failure) and k_k elsewhere, at the slip tension
- *   T_slip = n_c μ_yy ⟨F_I⟩                    (slip_tension, N)
- * by the return map of rate-independent friction (the yarn's own elasticity is
- * the stick's): where |c_k x_k| > T_slip (s_k held) the truss slips to
- *   x_k ← sign(x_k) T_slip / c_k,   s_k ← s_k + (x_k,trial − x_k)/L_k⁰
- * dissipating the friction's work, the slip tension times the yarn slid through
- * the crossovers, 2 T_slip L_k⁰ |Δs_k| ≥ 0 (two trusses per cell). That is what
- * the explicit step's work measure needs: in steady slip the force is T_slip and
- * the stored energy does not change, so the kinetic energy lost is T_slip times
- * the slip. (The stored energy the update releases at this geometry,
- * c_k (x_trial² − x_k²), is larger by c_k (L_k⁰ Δs_k)²: booked instead, it put the
- * balance of a slipping run off by a fifth of the slip's dissipation.) dt = 0 holds
- * s_k (then T_k and the energy are the exact derivatives' pair). Sets y->stretch,
- * y->tension (undamaged: king_family_fail applies 1 − d_k) and y->energy_yarn. */
-WFF_INLINE king_slip king_family_slip(const king_params *k, int f, king_family *y, double slip,
-                                      double damage, double slip_tension, double dt)
-{
-    const double rest0 = k->length0[f], stiffness = k->yarn_stiffness[f];
-    const double stretch_floor = k->tension_only != 0 ? 0.0 : -INFINITY;
-    king_slip out = {slip, 0.0};
-    double stretch = (y->length - rest0) - rest0 * slip; /* x_k with s_k held */
-    double carried = stretch > stretch_floor ? stretch : stretch_floor;
-    if (dt > 0) {
-        const double carrying = carried > 0 ? (1 - damage) * stiffness : stiffness; /* c_k */
-        const double trial = carrying * carried; /* the tension with s_k held, N */
-        if (fabs(trial) > slip_tension) {
-            const double held = copysign(slip_tension, trial) / carrying; /* x_k at T_slip */
-            out.slip = slip + (stretch - held) / rest0;
-            out.released = 2 * slip_tension * fabs(stretch - held);
-            stretch = carried = held;
-        }
-    }
-    y->stretch = stretch;
-    y->tension = stiffness * carried;
-    y->energy_yarn = stiffness * carried * carried;
-    return out;
-}
+#include "yarn_slip.h"
 
 /* docs/model.md §5–6, what family k's laws push with, l the other family:
  *   F_k^N = 2 T_k sinβ_k − 2 F_Lk sinα_k [1 + λ p_l|cosθ|cosβ_k/L_k] + 2 M_bk cosβ_k/L_k
@@ -308,13 +251,6 @@ typedef struct king_point {
     double slip[FAMILIES];     /* s_k after the step (with slip) */
     double slip_released;      /* Σ_k the slip's dissipation, J per cell (with slip) */
 } king_point;
-
-/* The slip tension T_slip = n_c μ_yy ⟨F_I⟩ (docs/model.md §24), N: no friction
- * where the crossover is open (F_I ≤ 0). */
-WFF_INLINE double king_slip_tension(const king_params *k, double crossover_force)
-{
-    return k->slip_capacity * (crossover_force > 0 ? crossover_force : 0.0);
-}
 
 /* docs/model.md §3, §5–7 at one point of the frame fr, amplitudes dA, state γᶠ:
  *   R_k = (F_I − F_k^N)/(4 p1⁰ p2⁰)
@@ -461,12 +397,6 @@ static wff_shear_flow king_flow(const king_params *k, double dt)
 static inline const double *king_failure_state(const king_params *k, const double *state)
 {
     return k->failure.enabled != 0 ? state + STATE_DAMAGE1 : NULL;
-}
-
-/* A point's slip states (s_1, s_2), or NULL when the material has no yarn slip. */
-static inline const double *king_slip_state(const king_params *k, const double *state)
-{
-    return k->slip_capacity > 0 ? state + STATE_SLIP1 : NULL;
 }
 
 /* A point's updated states into out (n_state values): γᶠ, the failure law's
@@ -626,41 +556,6 @@ static void king_wave_speeds(const void *params, double areal_density, const dou
                         k->slip_capacity, membrane_speed, amplitude_omega);
 }
 
-/* The blocked kernels run king_point_at with c = 2 and n = 1 as constants
- * (branch-free, vectorised); other exponents, yarn failure and yarn slip go
- * back to the general path (the wave speeds keep the undamaged bounds, so
- * failure does not matter to them, slip does: §24; the tangent has no flow). */
-WFF_INLINE int king_blocks_accept(const king_params *k)
-{
-    return k->locking_exponent == 2 && k->flow_exponent == 1 && k->failure.enabled == 0 &&
-           k->slip_capacity == 0;
-}
-
-WFF_INLINE int king_wave_accepts(const king_params *k)
-{
-    return k->locking_exponent == 2 && k->flow_exponent == 1 && k->slip_capacity == 0;
-}
-
-WFF_INLINE int king_tangent_accepts(const king_params *k)
-{
-    return k->locking_exponent == 2 && k->failure.enabled == 0 && k->slip_capacity == 0;
-}
-
-/* Lane b of a wave-speed block (king_wave_speeds_at, c = 2 and n = 1); ctx
- * holds the areal density. */
-WFF_INLINE void king_wave_lane(const king_params *k, const wff_lane_arg *ctx, wff_wave_block *blk,
-                               double flag[WFF_BLOCK], int b)
-{
-    (void)flag;
-    const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
-                         blk->F[3][b], blk->F[4][b], blk->F[5][b]};
-    const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
-    double speed, omega;
-    king_wave_speeds_at(k, ctx->value, F, dA, 2.0, 1.0, 0.0, &speed, &omega);
-    blk->membrane_speed[b] = speed;
-    blk->amplitude_omega[b] = omega;
-}
-
 /* Shared-kinematics fast path (docs/model.md §11): n points sharing one F, the
  * frame (g_k, p_k, θ, J) computed once, each point by king_point_at, the
  * stress assembled once from the weighted sum of the points' Q_k coefficients:
@@ -714,120 +609,6 @@ static int king_evaluate_shared(const void *params, const double F[6], int n_poi
     return WFF_POINT_OK;
 }
 
-/* What the lanes of a triangle block share (king_tri_setup): the flow step
- * and the stress scale p_k⁰/(4 p1⁰ p2⁰)/3. */
-typedef struct king_tri_ctx {
-    wff_shear_flow flow;
-    double scale[FAMILIES];
-} king_tri_ctx;
-
-WFF_INLINE void king_tri_setup(const king_params *k, double dt, king_tri_ctx *ctx,
-                               const wff_tri_block *blk)
-{
-    (void)blk;
-    ctx->flow = king_flow(k, dt);
-    const double inv_cell = 1 / k->cell_area, third = 1.0 / 3.0;
-    ctx->scale[0] = k->pitch0[0] * inv_cell * third;
-    ctx->scale[1] = k->pitch0[1] * inv_cell * third;
-}
-
-/* Lane b of a block: one triangle's three nodal points (weights 1/3) sharing
- * one F, the frame computed once (docs/model.md §11), king_point_at three
- * times, the stress from the summed Q_k coefficients; its degenerate test as
- * a double in flag[b] (cell_lanes.h). */
-WFF_INLINE void king_tri_lane(const king_params *k, const king_tri_ctx *ctx, wff_tri_block *blk,
-                              double flag[WFF_BLOCK], int b)
-{
-    const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
-                         blk->F[3][b], blk->F[4][b], blk->F[5][b]};
-    wff_yarn_frame fr;
-    (void)wff_yarn_kinematics(k->pitch0, F, &fr);
-    flag[b] = fr.p[0] > 0 && fr.p[1] > 0 && fr.sin_t > 0 ? 0.0 : 1.0;
-    double q[FAMILIES][FAMILIES] = {{0, 0}, {0, 0}}, energy = 0, dissipated = 0;
-#pragma GCC unroll 3
-    for (int p = 0; p < 3; p++) {
-        const double dA[2] = {blk->dA[p][0][b], blk->dA[p][1][b]};
-        king_point pt;
-        king_point_at(k, &fr, dA, blk->state[p][STATE_GAMMA_F][b], NULL, NULL, 0, &ctx->flow,
-                      2.0, 1.0, &pt);
-        blk->residual[p][0][b] = pt.residual[0];
-        blk->residual[p][1][b] = pt.residual[1];
-        blk->state[p][STATE_GAMMA_F][b] = pt.gamma_f;
-#pragma GCC unroll 2
-        for (int f = 0; f < FAMILIES; f++)
-#pragma GCC unroll 2
-            for (int m = 0; m < FAMILIES; m++)
-                q[f][m] += pt.q[f][m];
-        energy += pt.energy;
-        dissipated += pt.dissipated;
-    }
-    double stress[6];
-    wff_stress_from_q(&fr, q, ctx->scale, stress);
-#pragma GCC unroll 6
-    for (int i = 0; i < 6; i++)
-        blk->stress[i][b] = stress[i];
-    const double inv_cell = 1 / k->cell_area, third = 1.0 / 3.0;
-    blk->energy[b] = energy * third * inv_cell;
-    blk->dissipated[b] = dissipated * third * inv_cell;
-    blk->failure_dissipated[b] = 0;
-    blk->slip_dissipated[b] = 0;
-}
-
-WFF_INLINE void king_tri_finish(const king_params *k, const king_tri_ctx *ctx,
-                                const double flag[WFF_BLOCK], wff_tri_block *blk)
-{
-    (void)k;
-    (void)ctx;
-    for (int b = 0; b < WFF_BLOCK; b++)
-        blk->degenerate[b] = flag[b] != 0;
-}
-
-/* What the lanes of a point block share: the flow step and the stress scale
- * p_k⁰/(4 p1⁰ p2⁰). */
-typedef struct king_point_ctx {
-    wff_shear_flow flow;
-    double scale[FAMILIES];
-} king_point_ctx;
-
-WFF_INLINE void king_point_setup(const king_params *k, double dt, king_point_ctx *ctx,
-                                 const wff_point_block *blk)
-{
-    (void)blk;
-    ctx->flow = king_flow(k, dt);
-    const double inv_cell = 1 / k->cell_area;
-    ctx->scale[0] = k->pitch0[0] * inv_cell;
-    ctx->scale[1] = k->pitch0[1] * inv_cell;
-}
-
-/* Lane b of a point block: one material point with its own F (a quad's Gauss
- * point), king_point_at once, its stress; plain scalars once inlined. */
-WFF_INLINE void king_point_lane(const king_params *k, const king_point_ctx *ctx,
-                                wff_point_block *blk, double flag[WFF_BLOCK], int b)
-{
-    (void)flag;
-    const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
-                         blk->F[3][b], blk->F[4][b], blk->F[5][b]};
-    wff_yarn_frame fr;
-    blk->degenerate[b] = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
-    const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
-    king_point pt;
-    king_point_at(k, &fr, dA, blk->state[STATE_GAMMA_F][b], NULL, NULL, 0, &ctx->flow, 2.0, 1.0,
-                  &pt);
-    blk->residual[0][b] = pt.residual[0];
-    blk->residual[1][b] = pt.residual[1];
-    blk->state[STATE_GAMMA_F][b] = pt.gamma_f;
-    double stress[6];
-    wff_stress_from_q(&fr, pt.q, ctx->scale, stress);
-#pragma GCC unroll 6
-    for (int i = 0; i < 6; i++)
-        blk->stress[i][b] = stress[i];
-    const double inv_cell = 1 / k->cell_area;
-    blk->energy[b] = pt.energy * inv_cell;
-    blk->dissipated[b] = pt.dissipated * inv_cell;
-    blk->failure_dissipated[b] = 0;
-    blk->slip_dissipated[b] = 0;
-}
-
 /* The amplitude residual and its exact tangent at one point (king_residual_tangent_at);
  * γᶠ does not enter R, the damages (held) do. */
 static int king_amplitude_tangent(const void *params, const double F[6], const double dA[2],
@@ -847,61 +628,7 @@ static int king_amplitude_tangent(const void *params, const double F[6], const d
     return WFF_POINT_OK;
 }
 
-/* Lane b of a tangent block: king_residual_tangent_at with c = 2. */
-WFF_INLINE void king_tangent_lane(const king_params *k, const wff_lane_arg *ctx,
-                                  wff_tangent_block *blk, double flag[WFF_BLOCK], int b)
-{
-    (void)ctx;
-    (void)flag;
-    const double F[6] = {blk->F[0][b], blk->F[1][b], blk->F[2][b],
-                         blk->F[3][b], blk->F[4][b], blk->F[5][b]};
-    const double dA[2] = {blk->dA[0][b], blk->dA[1][b]};
-    wff_yarn_frame fr;
-    blk->degenerate[b] = wff_yarn_kinematics(k->pitch0, F, &fr) != WFF_POINT_OK;
-    double residual[2], tangent[4];
-    king_residual_tangent_at(k, &fr, dA, 2.0, NULL, NULL, residual, tangent);
-    blk->residual[0][b] = residual[0];
-    blk->residual[1][b] = residual[1];
-#pragma GCC unroll 4
-    for (int i = 0; i < 4; i++)
-        blk->tangent[i][b] = tangent[i];
-}
-
-/* The blocked ops (cell_lanes.h), each one vectorised loop over the lanes
- * above: king_evaluate_tri_block, king_evaluate_point_block,
- * king_amplitude_tangent_block, king_wave_speeds_block. */
-WFF_CELL_TRI_BLOCK(king, king_params, king_blocks_accept, king_tri_ctx, king_tri_setup,
-                   king_tri_lane, king_tri_finish)
-WFF_CELL_POINT_BLOCK(king, king_params, king_blocks_accept, king_point_ctx, king_point_setup,
-                     king_point_lane, wff_lanes_nothing_after)
-WFF_CELL_TANGENT_BLOCK(king, king_params, king_tangent_accepts, wff_lane_arg,
-                       wff_lanes_keep_arg, king_tangent_lane, wff_lanes_nothing_after)
-WFF_CELL_WAVE_BLOCK(king, king_params, king_wave_accepts, wff_lane_arg, wff_lanes_keep_arg,
-                    king_wave_lane, wff_lanes_nothing_after)
-
-/* docs/model.md §24: the yarn slip's keys, yarn_friction (μ_yy, default 0: no
- * slip) and slip_crossovers (n_c, required with μ_yy > 0; present with 0 it is
- * checked and kept, unused, so that a file can carry it and a scene set μ_yy). */
-static int king_slip_parse(wff_kv *kv, king_params *k, wff_error *err)
-{
-    double crossovers;
-    if (wff_kv_number_or(kv, "yarn_friction", 0.0, &k->yarn_friction, err) ||
-        wff_kv_number_or(kv, "slip_crossovers", NAN, &crossovers, err))
-        return -1;
-    if (!(k->yarn_friction >= 0))
-        return wff_kv_reject(kv, "yarn_friction", err, "must be >= 0 (the yarn-on-yarn "
-                             "Coulomb friction coefficient at the crossovers; 0: no slip)");
-    if (!isnan(crossovers) && !(crossovers >= 1))
-        return wff_kv_reject(kv, "slip_crossovers", err, "must be >= 1 (the crossovers "
-                             "whose friction anchors a family's tension)");
-    if (k->yarn_friction > 0 && isnan(crossovers))
-        return wff_kv_reject(kv, "yarn_friction", err, "yarn slip (yarn_friction > 0) needs "
-                             "slip_crossovers, the crossovers whose friction anchors a "
-                             "family's tension (docs/model.md §24)");
-    k->slip_crossovers = isnan(crossovers) ? 0 : crossovers;
-    k->slip_capacity = k->yarn_friction > 0 ? k->yarn_friction * k->slip_crossovers : 0;
-    return 0;
-}
+#include "king_lanes.h"
 
 /* docs/model.md §9: the material file's keys, checked; derived reference
  * quantities L_k⁰, β_k⁰, d_k⁰ (at θ⁰ = 90°) and the cell area; the yarn
