@@ -164,18 +164,23 @@ static int check_spacing(const wff_material *mat, int f, const char *text, const
                   band);
 }
 
+double wff_material_specific_stiffness(const wff_material *mat, int family)
+{
+    double F[6] = {1, 0, 0, 1, 0, 0}, dA[2] = {0, 0}, state[WFF_STATE_MAX] = {0};
+    F[family == 0 ? 0 : 3] = 1 + kStretch;
+    wff_point_result r;
+    if (wff_material_evaluate(mat, F, dA, state, 0, &r) != WFF_POINT_OK)
+        return NAN;
+    double stress = r.stress[family == 0 ? 0 : 3]; /* N/m */
+    return stress / kStretch / mat->areal_density; /* m^2/s^2 */
+}
+
 static int check_stiffness(const wff_material *mat, int f, const char *text, const char *source,
                            wff_error *err)
 {
-    double F[6] = {1, 0, 0, 1, 0, 0}, dA[2] = {0, 0}, state[WFF_STATE_MAX] = {0};
-    F[f == 0 ? 0 : 3] = 1 + kStretch;
-    wff_point_result r;
-    if (wff_material_evaluate(mat, F, dA, state, 0, &r) != WFF_POINT_OK)
-        return 0; /* (the cell's own business) */
-    double stress = r.stress[f == 0 ? 0 : 3]; /* N/m */
-    double specific = stress / kStretch / mat->areal_density; /* m^2/s^2 */
+    double specific = wff_material_specific_stiffness(mat, f);
     if (!(specific > 0) || !off_band(&kSpecificStiffness, specific))
-        return 0; /* (no stiffness in tension: the cell decides) */
+        return 0; /* (NaN: the cell's own business; none in tension: the cell decides) */
     int p = slip_power(&kSpecificStiffness, specific);
     char what[320];
     snprintf(what, sizeof what, "%s is ~%.0fx %s than Kevlar-like fabrics: its stress per width "

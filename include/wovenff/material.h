@@ -70,6 +70,12 @@ int wff_material_parse_text(const char *text, const char *source_name,
  * reader itself (wff_material_load) does not apply these bands: a model may
  * be any fabric, or none (the tests' light and stiff variants). */
 int wff_material_scales(const char *path, wff_error *err);
+/* The stiffness the scale check measures, family (0 warp, 1 weft): the cell's
+ * stress per width P_kk (N/m) at 1 % stretch of that family alone (amplitudes
+ * and state at the reference), over (1 % x rho_A): m^2/s^2, the square of the
+ * membrane's tensile wave speed. NaN when the cell cannot evaluate there. Used
+ * by the check above and by the Phoenix-Porwal estimate (membrane_limit.h). */
+double wff_material_specific_stiffness(const wff_material *mat, int family);
 int wff_material_scales_text(const char *text, const char *source, wff_error *err);
 
 /* Write a copy of the material file `path` to `out_path` with some values

@@ -25,15 +25,26 @@
 //   0 V50 (NaN unless met)  1 spread  2 sample sd  3 status (0 met, 1 too few, 2 too wide)
 //   4 partial  5 complete  6 neither  7 .. 12 the six's shot indices (-1 none)
 //   13 the six's mean (NaN without six)
+//
+// The Phoenix-Porwal membrane estimate (include/wovenff/membrane_limit.h), a first
+// shot for the sequence:
+//   real v = wovenffV50Estimate(material, plies, mass, radius, opening);  // m/s;
+//            // material file, plies (a whole number >= 1), projectile mass (kg) and
+//            // face radius (m), clamp opening radius (m; 0: no clamp). The infinite
+//            // membrane's V50 (the clamp's speed is not returned)
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 
+#include <cmath>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "ff_wovenff.hpp"
 
 extern "C" {
 #include "wovenff/limit.h"
+#include "wovenff/membrane_limit.h"
 #include "wovenff/mil662.h"
 }
 
@@ -162,6 +173,24 @@ double ffMil662V50(KN<double> *const &v, KN<double> *const &o, const double &spr
     return r.v50;
 }
 
+double ffV50Estimate(string *const &material, const double &plies, const double &mass,
+                     const double &radius, const double &opening)
+{
+    const char *fn = "wovenffV50Estimate";
+    if (!(plies >= 1 && plies <= 1e6 && plies == std::floor(plies)))
+    {
+        std::ostringstream what;
+        what << "plies = " << plies << ": must be a whole number >= 1";
+        wff_ff_fail(fn, what.str());
+    }
+    wff_pp_result r;
+    wff_error err;
+    if (wff_membrane_limit_estimate(material->c_str(), (int)plies, mass, radius, opening, &r,
+                                    NULL, &err))
+        wff_ff_fail(fn, err);
+    return r.v50;
+}
+
 } // namespace
 
 void wff_ff_register_limit()
@@ -176,4 +205,6 @@ void wff_ff_register_limit()
                    ffMil662Next));
     Global.Add("wovenffMil662V50", "(",
                new OneOperator4_<double, KN<double> *, KN<double> *, double, KN<double> *>(ffMil662V50));
+    Global.Add("wovenffV50Estimate", "(",
+               new OneOperator5_<double, string *, double, double, double, double>(ffV50Estimate));
 }
