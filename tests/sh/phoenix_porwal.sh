@@ -5,7 +5,8 @@
 # (1 + Gamma) times the small-strain Smith speed sqrt(2) c eps^(3/4) it prints; the
 # reconstructed K_max is the edge-strain factor at the peak x* = sqrt(3/(8 Gamma))
 # (recomputed here from the printed Gamma); a failure strain given in the material
-# (fail_strain_1) is used; bad options stop with exit 2 naming them.
+# (fail_strain_1) is used; bad options (-plies 0 and 1.5 among them) stop with exit 2
+# naming them.
 # Run from the repository root (tests/run.sh does).
 set -u
 tmp="${WFF_TEST_TMP:-}"
@@ -43,7 +44,7 @@ sh $tool -material "$dir/failing.txt" > "$dir/failing.out" 2>&1
 grep -q "^eps_max       0.04 (fail_strain_1 of the material)" "$dir/failing.out" ||
     { echo "fail_strain_1 not used:"; cat "$dir/failing.out"; fail=1; }
 
-for bad in "-kmax 0.5" "-mass -1" "-bogus 1" "-radius"; do
+for bad in "-kmax 0.5" "-mass -1" "-bogus 1" "-radius" "-plies 0" "-plies 1.5"; do
     # shellcheck disable=SC2086
     sh $tool $bad > "$dir/bad.txt" 2>&1
     rc=$?
