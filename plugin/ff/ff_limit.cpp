@@ -31,7 +31,12 @@
 //   real v = wovenffV50Estimate(material, plies, mass, radius, opening);  // m/s;
 //            // material file, plies (a whole number >= 1), projectile mass (kg) and
 //            // face radius (m), clamp opening radius (m; 0: no clamp). The infinite
-//            // membrane's V50 (the clamp's speed is not returned)
+//            // membrane's V50
+//   real v = wovenffV50Estimate(material, plies, mass, radius, opening, result);
+//            // the same; result (8): 0 V50 (m/s)  1 K_max  2 x* (cone radius / r_p at
+//            // the peak)  3 K at the clamp  4 the speed above which the fabric fails
+//            // before the cone reaches the clamp (m/s; 3, 4: 0 unless the clamp is
+//            // inside the peak)  5 c (m/s)  6 eps_max  7 Gamma
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
 
@@ -173,8 +178,8 @@ double ffMil662V50(KN<double> *const &v, KN<double> *const &o, const double &spr
     return r.v50;
 }
 
-double ffV50Estimate(string *const &material, const double &plies, const double &mass,
-                     const double &radius, const double &opening)
+double ffV50EstimateAll(string *const &material, const double &plies, const double &mass,
+                        const double &radius, const double &opening, KN<double> *const &result)
 {
     const char *fn = "wovenffV50Estimate";
     if (!(plies >= 1 && plies <= 1e6 && plies == std::floor(plies)))
@@ -184,11 +189,25 @@ double ffV50Estimate(string *const &material, const double &plies, const double 
         wff_ff_fail(fn, what.str());
     }
     wff_pp_result r;
+    wff_pp_input used;
     wff_error err;
     if (wff_membrane_limit_estimate(material->c_str(), (int)plies, mass, radius, opening, &r,
-                                    NULL, &err))
+                                    &used, &err))
         wff_ff_fail(fn, err);
+    if (result) {
+        result->resize(8);
+        const double v[8] = {r.v50, r.k_max, r.x_peak, r.k_clamp, r.v50_clamp,
+                             used.wave_speed, used.failure_strain, used.gamma};
+        for (int i = 0; i < 8; i++)
+            (*result)[i] = v[i];
+    }
     return r.v50;
+}
+
+double ffV50Estimate(string *const &material, const double &plies, const double &mass,
+                     const double &radius, const double &opening)
+{
+    return ffV50EstimateAll(material, plies, mass, radius, opening, nullptr);
 }
 
 } // namespace
@@ -207,4 +226,7 @@ void wff_ff_register_limit()
                new OneOperator4_<double, KN<double> *, KN<double> *, double, KN<double> *>(ffMil662V50));
     Global.Add("wovenffV50Estimate", "(",
                new OneOperator5_<double, string *, double, double, double, double>(ffV50Estimate));
+    Global.Add("wovenffV50Estimate", "(",
+               new OneOperator6_<double, string *, double, double, double, double, KN<double> *>(
+                   ffV50EstimateAll));
 }
