@@ -182,10 +182,9 @@ double ffV50EstimateAll(string *const &material, const double &plies, const doub
                         const double &radius, const double &opening, KN<double> *const &result)
 {
     const char *fn = "wovenffV50Estimate";
-    if (!(plies >= 1 && plies <= 1e6 && plies == std::floor(plies)))
-    {
+    if (!(plies >= 1 && plies <= 1e6 && plies == std::floor(plies))) {
         std::ostringstream what;
-        what << "plies = " << plies << ": must be a whole number >= 1";
+        what << "plies = " << plies << ": must be a whole number >= 1 (at most 1e6)";
         wff_ff_fail(fn, what.str());
     }
     wff_pp_result r;
