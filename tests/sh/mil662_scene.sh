@@ -12,8 +12,10 @@
 #     takes every shot again and ends with the same sequence;
 #  2. a budget too small (-shots 7, two a round): exit 7, "mil662_status":
 #     "budget", "v50_mil662": null, the terminal says "no V50";
+#  2a. no -vfirst: sighting shots from the Phoenix-Porwal estimate, the first shot from
+#     the slowest perforating one's residual, the rule met;
 #  3. option errors (exit 2, naming the option, nothing written): -method bogus,
-#     -method mil662 without -vfirst, a fit option with mil662, a mil662 option
+#     -vfirst not a speed, a fit option with mil662, a mil662 option
 #     with the fit;
 #  4. the real scene, cheapest (one ply, coarse mesh, the default ball, the fixed
 #     clamp; its V50 16.3 m/s with the fit: docs/pack_study.md), -vfirst 14 -step 1
@@ -83,6 +85,38 @@ grep '^MIL-STD-662F:' "$tmp/budget.log"
     || { echo "budget: status $(key budget mil662_status), V50 $(key budget v50_mil662)"; fail=1; }
 grep -q '^MIL-STD-662F: no V50: the shot budget (-shots 7) is spent' "$tmp/budget.log" || { echo "budget: not said"; fail=1; }
 
+# 2a. no -vfirst: sighting shots from the Phoenix-Porwal estimate (one ply, the 104 g ball: the
+#     wovenffV50Estimate value, far below the stand-in's 121.7 m/s), 1.5 times faster a round
+#     while none perforates; the first shot of the sequence at sqrt(v^2 - v_r^2) of the slowest
+#     perforating one (within the bracket of the fastest stopped below it); the rule met
+limit sight -scene $standin -method mil662 -base "-law 121.7,0.9,2.5" -jobs 1
+rc=$?
+grep '^  sighting\|^MIL-STD-662F:' "$tmp/sight.log"
+[ $rc -eq 0 ] || { echo "sighting: exit $rc, want 0"; tail -5 "$tmp/sight.log"; fail=1; }
+rule=$(key sight mil662_rule)
+from=$(echo "$rule" | sed -n 's/.*"vfirst_from": "\([a-z-]*\)".*/\1/p')
+est=$(echo "$rule" | sed -n 's/.*"estimate": \([0-9.e+-]*\),.*/\1/p')
+nsight=$(echo "$rule" | sed -n 's/.*"sighting_shots": \([0-9]*\),.*/\1/p')
+vfirst=$(echo "$rule" | sed -n 's/.*"vfirst": \([0-9.e+-]*\),.*/\1/p')
+[ "$from" = sighting ] || { echo "sighting: vfirst_from '$from'"; fail=1; }
+# the sighting shots: est, then 1.5 times faster each (none perforating but the last), then vfirst
+# from the last one's residual (limit.csv: striking_velocity,residual_velocity,...)
+awk -F, -v est="$est" -v n="$nsight" -v vf="$vfirst" -v shots="$(list sight mil662_shots)" '
+    NR > 1 { r[$1 + 0] = $2 }
+    END { k = split(shots, s, " "); if (n < 2 || k < n + 1) { print "sighting: " n " sighting shots of " k; exit 1 }
+          want = est
+          for (i = 1; i <= n; i++) { d = s[i] - want; if (d < 0) d = -d
+              if (d > 0.011) { print "sighting shot " i ": " s[i] " m/s, want " want; exit 1 }
+              perf = s[i] > 121.7; if (perf != (i == n)) { print "sighting shot " i " at " s[i] ": perforated " perf; exit 1 }
+              want = 1.5 * s[i] }
+          v = s[n]; vr = r[v + 0]; e = sqrt(v * v - vr * vr); lo = s[n - 1]
+          if (!(e > lo && e < v)) e = 0.5 * (lo + v)
+          d = e - vf; if (d < 0) d = -d
+          if (d > 0.011) { print "first shot " vf " m/s, want " e " (from " v " m/s, residual " vr ")"; exit 1 }
+          if (s[n + 1] != vf) { print "the sequence starts at " s[n + 1] ", not " vf; exit 1 }
+          printf "sighting: estimate %s m/s, %d sighting shots, the first shot at %s m/s\n", est, n, vf }' "$tmp/sight/limit.csv" || fail=1
+[ "$(key sight mil662_status)" = '"met"' ] || { echo "sighting: status $(key sight mil662_status)"; fail=1; }
+
 # 3. option errors: exit 2, the option named, nothing written
 refuse() { # name, pattern, options...
     name=$1; pattern=$2; shift 2
@@ -94,7 +128,7 @@ refuse() { # name, pattern, options...
     grep -m1 '^error' "$tmp/$name.log" | cut -c1-150
 }
 refuse bogus "-method" -method bogus
-refuse novfirst "-method mil662 needs -vfirst" -method mil662
+refuse badvfirst "-vfirst 'fast' is not a speed" -method mil662 -vfirst fast
 refuse fitopt "-runs is -method fit's" -method mil662 -vfirst 100 -runs 10
 refuse milopt "-shots is -method mil662's" -shots 10
 
