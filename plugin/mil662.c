@@ -90,6 +90,16 @@ static double walk_to(double cur, int dir, double *s, const double *speed, const
     return -1;
 }
 
+/* Is a shot fired within `within` of v (at least the same shot at the
+ * resolution)? An extra there would only repeat what is known. */
+static int near_shot(const double *speed, int n, double v, double within, double res)
+{
+    for (int i = 0; i < n; i++)
+        if (SAME_SPEED(speed[i], v, res) || fabs(speed[i] - v) < within)
+            return 1;
+    return 0;
+}
+
 /* Speeds of this round so far: is v one of them? */
 static int planned(const double *next, int m, double v, double res)
 {
@@ -145,7 +155,7 @@ int wff_mil662_next(const double *speed, const int *outcome, int n, const wff_mi
     for (double off = s; m < jobs && off >= res; off *= 0.5)
         for (int side = 0; side < 2 && m < jobs; side++) {
             double v = wff_mil662_round(cur + (side ? -dir : dir) * off, res);
-            if (v >= res && v <= p->speed_max && find_shot(speed, n, v, res) < 0 &&
+            if (v >= res && v <= p->speed_max && !near_shot(speed, n, v, 0.25 * off, res) &&
                 !planned(next, m, v, res))
                 next[m++] = v;
         }

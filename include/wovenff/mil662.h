@@ -21,8 +21,9 @@
  * before: another round's extra), it takes that shot and its outcome; the
  * first speed it reaches with no shot there is the sequence's next shot c. With jobs > 1 a round also fires speeds a step on
  * either side of it, c + dir s, c − dir s, then c ± s/2, c ± s/4, ... (dir
- * the walk's last direction, s its step; new speeds only, while the offset
- * is at least the resolution): extra shots, counted in the V50 like any
+ * the walk's last direction, s its step; new speeds only: none within a
+ * quarter of its offset of a shot fired, while the offset is at least the
+ * resolution): extra shots, counted in the V50 like any
  * other, which steer only when the walk comes to them.
  * With jobs = 1 the walk is the textbook sequence, shot for shot.
  *

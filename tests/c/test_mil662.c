@@ -12,6 +12,8 @@
  *  - two shots a round: the round's extra a step (or a half step) beside the
  *    sequence's shot, every speed new; the rule met after 6 shots in 3
  *    rounds (8 in 4 with a 14 m/s spread), the six by hand;
+ *  - an extra not within a quarter of its offset of a shot fired (a shot
+ *    0.28 m/s from one fired would only repeat it);
  *  - the V50 from a list: ties (equal speeds: the earlier shot), shots
  *    neither partial nor complete left out, too few, too wide;
  *  - a shot neither partial nor complete: steers as a partial, not counted;
@@ -144,6 +146,24 @@ static void test_two_a_round(check_state *st)
             CHECK(st, fabs(sh.speed[i] - sh.speed[j]) > 0.005, "shots %d and %d at one speed", j, i);
 }
 
+/* An extra does not land next to a shot fired: the 12-ply FSP sequence of
+ * docs/ballistic_limit.md (sighting shots 421.18 C, 336.95 C; from 306.75 P,
+ * 321.99 P; the walk takes 336.95 -> the step 7.62: c = 329.33). Beside it
+ * 321.71 is 0.28 m/s from 321.99 and 336.95 fired: the half step's 325.52. */
+static void test_extra_not_near(check_state *st)
+{
+    wff_mil662_params p = wff_mil662_defaults(306.75);
+    const double speed[] = {421.18, 336.95, 306.75, 321.99};
+    const int outcome[] = {WFF_MIL662_COMPLETE, WFF_MIL662_COMPLETE, WFF_MIL662_PARTIAL,
+                           WFF_MIL662_PARTIAL};
+    double next[2];
+    wff_error err;
+    int m = wff_mil662_next(speed, outcome, 4, &p, 2, next, NULL, &err);
+    CHECK(st, m == 2, "extra not near: %d speeds", m);
+    CHECK_CLOSE(st, next[0], 329.33, 1e-9, 0, "extra not near: the sequence's shot");
+    CHECK_CLOSE(st, next[1], 325.52, 1e-9, 0, "extra not near: the extra a half step down");
+}
+
 static void test_v50_list(check_state *st)
 {
     wff_error err;
@@ -230,6 +250,7 @@ int main(void)
     check_state st = {0, 0};
     test_textbook(&st);
     test_two_a_round(&st);
+    test_extra_not_near(&st);
     test_v50_list(&st);
     test_no_speed_and_errors(&st);
     return check_summary(&st, "test_mil662");
