@@ -12,6 +12,8 @@
 #     beyond 0.1 % of the energy given (a contact does not create energy);
 #   - the clay resists: the projectile at 0.5 ms is slower than on the same
 #     ply without a backing;
+#   - the run ends where the crater has settled (-settle 1; a coarse block, 0.1 ms
+#     windows), the same settling found with -settle 0, which runs on to -tend;
 #   - checkpointed at 0.1 ms and restarted: the uninterrupted run's history.csv,
 #     state_hash and signature, byte for byte;
 #   - refusals naming the options: -backing sand; -backing with -obliquity
@@ -70,6 +72,27 @@ cmp -s "$base.whole/history.csv" "$base.part/history.csv" &&
     [ "$(value whole state_hash)" = "$(value part state_hash)" ] &&
     [ "$(value whole backface_signature)" = "$(value part backface_signature)" ] ||
     { echo "restarted with a backing: not the uninterrupted run's history and state"; fail=1; }
+# the run ends once the crater has settled (-settle 1, the default): a coarse block (8 mm
+# elements), windows of 0.1 ms; the ball rebounds at ~1.2 ms. With -settle 0 the same
+# settling is found and the run goes on to -tend.
+settle="-mesh coarse -vtkdt 1 -backing clay -backingsize 8e-3 -settlewindow 0.1e-3 -plots 0"
+for k in 1 0; do
+    rm -rf "$base.settle$k"
+    sh tools/ff.sh freefem_scripts/ballistic_impact.edp $settle -settle $k -tend 1.8e-3 -out "$base.settle$k" \
+        > "$base.settle$k.log" 2>&1 || { tail -3 "$base.settle$k.log"; echo "settle $k: the run failed"; fail=1; }
+done
+s1=$(value settle1 crater_settle_time); s0=$(value settle0 crater_settle_time)
+last1=$(tail -1 "$base.settle1/history.csv" | cut -d, -f1); last0=$(tail -1 "$base.settle0/history.csv" | cut -d, -f1)
+echo "settling: -settle 1 ended at $last1 s (settled $s1 s); -settle 0 ran to $last0 s (settled $s0 s)"
+[ "$(value settle1 crater_settled)" = true ] && [ "$(value settle0 crater_settled)" = true ] \
+    || { echo "settle: crater_settled $(value settle1 crater_settled) / $(value settle0 crater_settled), want true"; fail=1; }
+awk -v s1="$s1" -v s0="$s0" -v l1="$last1" -v l0="$last0" 'BEGIN {
+    if (!(s1 > 0.5e-3 && s1 < 1.8e-3)) { print "settled at " s1 " s: not after the rebound and before -tend"; exit 1 }
+    if (l1 != s1) { print "-settle 1: the history ends at " l1 " s, not where it settled (" s1 " s)"; exit 1 }
+    if (s0 != s1) { print "-settle 0 settled at " s0 " s, not at " s1 " s"; exit 1 }
+    if (!(l0 > 1.79e-3)) { print "-settle 0 ended at " l0 " s, before -tend"; exit 1 }
+}' || fail=1
+grep -q "the crater has settled" "$base.settle1.log" || { echo "-settle 1: the terminal does not say it settled"; fail=1; }
 refused() { # name, wanted text, options
     name=$1; want=$2; shift 2
     sh tools/ff.sh freefem_scripts/ballistic_impact.edp -mesh coarse -tend 1e-5 -plots 0 \

@@ -13,9 +13,11 @@
 #  2. a budget too small (-shots 7, two a round): exit 7, "mil662_status":
 #     "budget", "v50_mil662": null, the terminal says "no V50";
 #  2a. no -vfirst: sighting shots from the Phoenix-Porwal estimate, the first shot from
-#     the slowest perforating one's residual, the rule met;
+#     the slowest perforating one's residual, the rule met; four a round: at most two
+#     sighting shots a round, none below a stopped one; -shots 6: no room for them,
+#     exit 7 with the files;
 #  3. option errors (exit 2, naming the option, nothing written): -method bogus,
-#     -vfirst not a speed, a fit option with mil662, a mil662 option
+#     -vfirst not a speed, -plies 0 (the estimate's option), a fit option with mil662, a mil662 option
 #     with the fit;
 #  4. the real scene, cheapest (one ply, coarse mesh, the default ball, the fixed
 #     clamp; its V50 16.3 m/s with the fit: docs/pack_study.md), -vfirst 14 -step 1
@@ -117,6 +119,25 @@ awk -F, -v est="$est" -v n="$nsight" -v vf="$vfirst" -v shots="$(list sight mil6
           printf "sighting: estimate %s m/s, %d sighting shots, the first shot at %s m/s\n", est, n, vf }' "$tmp/sight/limit.csv" || fail=1
 [ "$(key sight mil662_status)" = '"met"' ] || { echo "sighting: status $(key sight mil662_status)"; fail=1; }
 
+# 2b. sighting with four a round: at most two sighting shots a round (est, 0.8 est, then 1.5
+#     and 2.25 times the fastest), none below a stopped one, the rule still met within -shots
+limit sight4 -scene $standin -method mil662 -base "-law 121.7,0.9,2.5" -jobs 4
+rc=$?
+rule=$(key sight4 mil662_rule)
+n4=$(echo "$rule" | sed -n 's/.*"sighting_shots": \([0-9]*\),.*/\1/p')
+[ $rc -eq 0 ] && [ "$(key sight4 mil662_status)" = '"met"' ] \
+    || { echo "sighting, -jobs 4: exit $rc, status $(key sight4 mil662_status), want 0 and met"; fail=1; }
+awk -v n="$n4" -v shots="$(list sight4 mil662_shots)" 'BEGIN { k = split(shots, s, " ")
+    if (!(n >= 2 && n <= 8)) { print "sighting, -jobs 4: " n " sighting shots"; exit 1 }
+    for (i = 3; i <= n; i++) for (j = 1; j < i; j++) if (s[j] < 121.7 && s[i] < s[j]) {
+        print "sighting, -jobs 4: shot " i " at " s[i] " below the stopped " s[j]; exit 1 } }' || fail=1
+# 2c. no room for sighting shots (-shots 6 leaves none): exit 7, the files written, said why
+limit sight6 -scene $standin -method mil662 -base "-law 121.7,0.9,2.5" -jobs 2 -shots 6
+rc=$?
+[ $rc -eq 7 ] && [ "$(key sight6 mil662_status)" = '"sighting"' ] && [ -s "$tmp/sight6/mil662.csv" ] \
+    && grep -q '^MIL-STD-662F: no V50: no sighting shot perforated' "$tmp/sight6.log" \
+    || { echo "sighting, -shots 6: exit $rc, status $(key sight6 mil662_status), want 7, sighting, mil662.csv, said"; fail=1; }
+
 # 3. option errors: exit 2, the option named, nothing written
 refuse() { # name, pattern, options...
     name=$1; pattern=$2; shift 2
@@ -129,6 +150,7 @@ refuse() { # name, pattern, options...
 }
 refuse bogus "-method" -method bogus
 refuse badvfirst "-vfirst 'fast' is not a speed" -method mil662 -vfirst fast
+refuse noplies "-plies 0" -method mil662 -plies 0
 refuse fitopt "-runs is -method fit's" -method mil662 -vfirst 100 -runs 10
 refuse milopt "-shots is -method mil662's" -shots 10
 
