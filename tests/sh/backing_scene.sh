@@ -18,6 +18,7 @@
 #     state_hash and signature, byte for byte;
 #   - refusals naming the options: -backing sand; -backing with -obliquity
 #     and with -adapt (which features combine: plugin/combine.c).
+# test-runner: first (~43 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 base="${WFF_TEST_TMP:-/tmp}/backing_scene"
 fail=0
