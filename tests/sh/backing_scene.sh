@@ -16,9 +16,12 @@
 #     windows), the same settling found with -settle 0, which runs on to -tend;
 #   - checkpointed at 0.1 ms and restarted: the uninterrupted run's history.csv,
 #     state_hash and signature, byte for byte;
+#   - straps (-straps 200 N) in place of the clamp: the edge slips in by 0.5 ms,
+#     the balance within 1 %;
 #   - refusals naming the options: -backing sand; -backing with -obliquity
-#     and with -adapt (which features combine: plugin/combine.c).
-# test-runner: first (~43 s: one of the longest tests; tests/run.sh starts the longest first)
+#     and with -adapt (which features combine: plugin/combine.c); -straps without
+#     a backing, and with a clamp option.
+# test-runner: first (~50 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 base="${WFF_TEST_TMP:-/tmp}/backing_scene"
 fail=0
@@ -94,6 +97,11 @@ awk -v s1="$s1" -v s0="$s0" -v l1="$last1" -v l0="$last0" 'BEGIN {
     if (!(l0 > 1.79e-3)) { print "-settle 0 ended at " l0 " s, before -tend"; exit 1 }
 }' || fail=1
 grep -q "the crater has settled" "$base.settle1.log" || { echo "-settle 1: the terminal does not say it settled"; fail=1; }
+# straps in place of the clamp: the edge slips in under the straps' light hold (fixed: none)
+run straps -backing clay -straps 200 -plots 0
+slip=$(value straps max_clamp_slip); serr=$(value straps max_energy_error)
+echo "straps 200 N: the edge slipped $slip m by 0.5 ms, energy error $serr"
+awk -v s="$slip" -v e="$serr" 'BEGIN { if (!(s > 1e-5 && e < 0.01)) { print "straps: slip " s " m, energy error " e; exit 1 } }' || fail=1
 refused() { # name, wanted text, options
     name=$1; want=$2; shift 2
     sh tools/ff.sh freefem_scripts/ballistic_impact.edp -mesh coarse -tend 1e-5 -plots 0 \
@@ -106,5 +114,7 @@ refused() { # name, wanted text, options
 refused sand "-backing" -backing sand
 refused oblique "backing" -backing clay -obliquity 30
 refused adapt "backing" -backing clay -adapt 5
+refused strapsbare "-straps" -straps 100
+refused strapsclamp "-straps replaces the clamp" -backing clay -straps 100 -clamp fixed
 [ $fail = 0 ] && echo "backing_scene: ok"
 exit $fail
