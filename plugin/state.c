@@ -5,6 +5,7 @@
  * elements' force pass and a cell's reference geometry; nothing of how a
  * step is taken, of contact, of FreeFEM. */
 #include "solver_internal.h"
+#include "state_fields.h"
 #include "zones.h"
 #include "wovenff/state.h"
 #include "wovenff/renumber.h"
@@ -207,5 +208,12 @@ unsigned long long wff_model_state_hash(const wff_model *m)
                                               wff_element_first_point(m->el.n_tris, n_el));
     if (m->el.eroded)
         h = hash_bytes(h, m->el.eroded, (size_t)n_el);
+    /* the parts' own fields, as a checkpoint saves them (a pack's accounts, a backing
+     * block's nodes, points and account; a block not yet built is built, as a
+     * checkpoint would) */
+    wff_state_field parts[WFF_STATE_FIELDS_MAX];
+    const int n_parts = wff_parts_state_fields((wff_model *)m, parts);
+    for (int i = 0; i < n_parts; i++)
+        h = hash_bytes(h, parts[i].data, parts[i].size * parts[i].count);
     return h;
 }

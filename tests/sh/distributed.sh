@@ -9,7 +9,8 @@
 #    for byte; summary.json byte for byte but for what the wall clock and the rank
 #    count set (wall and pass times, mpi_ranks, threads, the options' -out);
 #    state_hash in it (the bits of u, v, f, every point's internal state, the erosion
-#    flags, the projectile and the energy accounts) the serial run's;
+#    flags, the projectile, the energy accounts and the parts' own fields: a pack's
+#    accounts) the serial run's;
 #  - 2 ranks of 2 threads each: the pack's serial one-thread state and history;
 #  - a checkpoint written at 2 ranks is the serial run's checkpoint byte for byte, and
 #    restarted at 3 ranks ends on the serial run's state, history and summary (the
