@@ -335,6 +335,17 @@ static double backing_dissipated(const wff_model *m)
            B->run.work_projectile;
 }
 
+/* What the ply-block and projectile-block contacts removed (their springs' damping,
+ * friction): the work they took from fabric and projectile less what they did on the
+ * block (part.h `loss`; backing_contact_loss). */
+static double backing_loss(const wff_model *m)
+{
+    const struct wff_backing *B = on(m);
+    if (!B || !B->built)
+        return 0;
+    return -B->run.work_fabric - B->run.work_projectile - B->run.work_block;
+}
+
 /* ---- values -------------------------------------------------------------------- */
 
 /* The crater now: the top face's indentation, the area (whole specimen) where
@@ -401,7 +412,7 @@ static void backing_value(const wff_model *m, const char *key, double *value)
     else if (strcmp(key, "backing_dissipated") == 0)
         *value = s * b->dissipated;
     else if (strcmp(key, "backing_contact_loss") == 0)
-        *value = s * (-B->run.work_fabric - B->run.work_projectile - B->run.work_block);
+        *value = s * backing_loss(m);
     else if (strcmp(key, "backing_elements") == 0)
         *value = b->n_elements;
     else if (strcmp(key, "backing_contacts") == 0)
@@ -474,6 +485,7 @@ const wff_part_ops wff_backing_part = {
     .correct = backing_correct,
     .book = backing_book,
     .dissipated = backing_dissipated,
+    .loss = backing_loss,
     .settings = backing_settings,
     .value_names = backing_value_names,
     .value = backing_value,

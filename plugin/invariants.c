@@ -70,6 +70,15 @@ int wff_model_invariants(const wff_model *m, char *out, size_t size)
     if (used > 0 && (size_t)used < sizeof name)
         snprintf(name + used, sizeof name - (size_t)used, ")");
     check_dissipation(name, contacts, tol, out, size, &n);
+    /* a part whose term holds more than dissipation (a backing block's energy):
+     * its contacts' own loss, which a contact putting energy in would make
+     * negative while the term stayed positive */
+    for (const wff_part_ops *const *p = wff_parts; *p; p++)
+        if ((*p)->loss) {
+            char what[96];
+            snprintf(what, sizeof what, "%s_contact_loss (what its contacts removed)", (*p)->name);
+            check_dissipation(what, s * (*p)->loss(m), tol, out, size, &n);
+        }
     if (m->projectile.active && m->v_half_valid) {
         /* all the energy given: the start's kinetic (the balance's) and stored,
          * the work done on the model and the transfers' changes, whole specimen */

@@ -76,6 +76,12 @@ typedef struct wff_part_ops {
      * J (model part), a term of D in wff_energies.error. */
     double (*dissipated)(const wff_model *m);
 
+    /* What its contacts alone have removed so far, J (model part), where its
+     * `dissipated` holds more than dissipation (a backing block's own energy):
+     * never negative (wff_model_invariants checks it: a contact that puts
+     * energy in would hide in the block's term of the balance). NULL: none. */
+    double (*loss)(const wff_model *m);
+
     /* A model-wide setting changed that the part follows (`what`:
      * "orientation", the warp direction in rad as value). */
     void (*follow)(wff_model *m, const char *what, double value);
