@@ -92,7 +92,7 @@ static const char *likely_unit(const char *unit, int p)
 }
 
 static int report(wff_error *err, const char *hint, const char *unit, const char *format, ...)
-    __attribute__((format(printf, 4, 5)));
+    __attribute__((__format__(printf, 4, 5)));
 
 static int report(wff_error *err, const char *hint, const char *unit, const char *format, ...)
 {
