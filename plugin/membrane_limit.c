@@ -68,11 +68,8 @@ static int text_number_or(const char *text, const char *path, const char *key, d
         *value = fallback;
         return 0;
     }
-    char buf[WFF_KV_VALUE_MAX], *end;
-    snprintf(buf, sizeof buf, "%.*s", (int)(e - b), b);
-    *value = strtod(buf, &end);
-    if (end == buf || *end != '\0' || !isfinite(*value))
-        return wff_fail(err, "%s:%d: %s = '%s': not a number", path, line, key, buf);
+    if (wff_parse_number_span(b, e, value) || !isfinite(*value))
+        return wff_fail(err, "%s:%d: %s = '%.*s': not a number", path, line, key, (int)(e - b), b);
     return 0;
 }
 
