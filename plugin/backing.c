@@ -325,16 +325,6 @@ static double block_kinetic(const wff_block *b)
     return k;
 }
 
-/* Its term of the balance (model part, J). */
-static double backing_dissipated(const wff_model *m)
-{
-    const struct wff_backing *B = on(m);
-    if (!B || !B->built)
-        return 0;
-    return B->run.kinetic + B->block.stored + B->block.dissipated - B->run.work_block - B->run.work_fabric -
-           B->run.work_projectile;
-}
-
 /* What the ply-block and projectile-block contacts removed (their springs' damping,
  * friction): the work they took from fabric and projectile less what they did on the
  * block (part.h `loss`; backing_contact_loss). */
@@ -344,6 +334,16 @@ static double backing_loss(const wff_model *m)
     if (!B || !B->built)
         return 0;
     return -B->run.work_fabric - B->run.work_projectile - B->run.work_block;
+}
+
+/* Its term of the balance (model part, J): the block's own energy and what its
+ * contacts removed. */
+static double backing_dissipated(const wff_model *m)
+{
+    const struct wff_backing *B = on(m);
+    if (!B || !B->built)
+        return 0;
+    return B->run.kinetic + B->block.stored + B->block.dissipated + backing_loss(m);
 }
 
 /* ---- values -------------------------------------------------------------------- */
