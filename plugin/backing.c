@@ -41,9 +41,10 @@ static void release(struct wff_backing *B)
     wff_face_contacts *C = &B->contacts;
     free(C->node), free(C->face), free(C->weight), free(C->normal), free(C->gap);
     free(C->lambda), free(C->impulse);
-    free(B->ply_nodes), free(B->block_impulse), free(B->on_nose);
+    free(B->ply_nodes), free(B->ply_area), free(B->block_impulse), free(B->on_nose);
     memset(C, 0, sizeof *C);
-    B->ply_nodes = NULL, B->block_impulse = NULL, B->on_nose = NULL, B->built = 0;
+    B->ply_nodes = NULL, B->ply_area = NULL, B->block_impulse = NULL, B->on_nose = NULL;
+    B->built = 0;
 }
 
 /* The back ply's base z (its mid-plane's reference), m. */
@@ -79,16 +80,27 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
     C->lambda = malloc(n * sizeof(double));
     C->impulse = malloc(3 * n * sizeof(double));
     B->ply_nodes = malloc(n * sizeof(int));
+    B->ply_area = calloc(n, sizeof(double));
     B->block_impulse = calloc(3 * (size_t)B->block.n_nodes, sizeof(double));
     B->on_nose = calloc((size_t)m->n_nodes, 1);
     if (!C->node || !C->face || !C->weight || !C->normal || !C->gap || !C->lambda ||
-        !C->impulse || !B->ply_nodes || !B->block_impulse || !B->on_nose) {
+        !C->impulse || !B->ply_nodes || !B->ply_area || !B->block_impulse || !B->on_nose) {
         release(B);
         return wff_fail(err, "backing: out of memory");
     }
     B->n_ply_nodes = per_ply;
+    const int first = (plies - 1) * per_ply, nt = m->el.n_tris;
     for (int k = 0; k < per_ply; k++)
-        B->ply_nodes[k] = (plies - 1) * per_ply + k;
+        B->ply_nodes[k] = first + k;
+    for (int e = 0; e < nt + m->el.n_quads; e++) { /* the back ply's elements' areas, shared */
+        const int np = e < nt ? 3 : 4, *node = e < nt ? m->el.tri + 3 * e : m->el.quad + 4 * (e - nt);
+        double area = e < nt ? m->el.tri_area[e] : 0;
+        for (int q = 0; e >= nt && q < WFF_QUAD_POINTS; q++)
+            area += m->el.quad_weight[WFF_QUAD_POINTS * (e - nt) + q];
+        for (int a = 0; a < np; a++)
+            if (node[a] >= first)
+                B->ply_area[node[a] - first] += area / np;
+    }
     B->built = 1;
     memset(&B->run, 0, sizeof B->run);
     B->overlap = 0;

@@ -29,6 +29,8 @@ struct wff_backing {
     int built;               /* 1: the block is made (at the run's first step) */
     wff_block block;
     int *ply_nodes, n_ply_nodes; /* the back ply's nodes that may touch the block */
+    double *ply_area;        /* per back-ply node (as ply_nodes): its tributary area, m²
+                                (the friction's cap: backing_contact.c) */
     unsigned char *on_nose;  /* per model node: 1 while the projectile's contact holds it
                                 this step (set and cleared by the ply contact below) */
     wff_face_contacts contacts;

@@ -272,7 +272,11 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
         if (C->lambda[c] > 0)
             apply(m, B, c, j);
     }
-    /* friction: the tangential slip stopped within μ λ */
+    /* friction: the tangential slip stopped within μ λ, and within what the
+     * clay under the face can carry in shear over the node's area (Coulomb
+     * capped by the surface's yield in shear: the layer that would shear is
+     * far thinner than an element, and an element dragged along by the full
+     * Coulomb force is crushed where the fabric slides in toward the axis) */
     for (int c = 0; B->mu > 0 && c < C->n; c++) {
         if (!(C->lambda[c] > 0))
             continue;
@@ -284,7 +288,10 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
         if (!(slip > 0))
             continue;
         const double w = mobility(m, B, c);
-        const double stop = slip / w, limit = B->mu * C->lambda[c];
+        const int top = C->face[4 * c], row = b->n[0] + 1; /* the face's corner (i, j, 0) */
+        const double strength = wff_block_surface_shear_strength(b, top % row, top / row);
+        const double area = B->ply_area[C->node[c] - B->ply_nodes[0]];
+        const double stop = slip / w, limit = fmin(B->mu * C->lambda[c], strength * area * dt_mid);
         const double jt = stop < limit ? stop : limit;
         const double j[3] = {-jt * vt[0] / slip, -jt * vt[1] / slip, -jt * vt[2] / slip};
         apply(m, B, c, j);

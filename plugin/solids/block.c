@@ -185,6 +185,14 @@ void wff_block_free(wff_block *b)
     memset(b, 0, sizeof *b);
 }
 
+double wff_block_surface_shear_strength(const wff_block *b, int i, int j)
+{
+    if (!b->clay_state)
+        return INFINITY;
+    const wff_clay_state *s = &b->clay_state[i + b->n[0] * j]; /* (k = 0: the top layer) */
+    return wff_clay_yield(&b->clay, s->eq_plastic, s->plastic_rate) / sqrt(3.0);
+}
+
 int wff_block_forces(wff_block *b, double dt, int *bad)
 {
     memset(b->f, 0, 3 * (size_t)b->n_nodes * sizeof(double));

@@ -74,6 +74,12 @@ static inline int wff_block_node(const wff_block *b, int i, int j, int k)
     return i + (b->n[0] + 1) * (j + (b->n[1] + 1) * k);
 }
 
+/* The shear stress the top face's element under top node (i, j) (its corner
+ * of least i, j) can carry before its clay yields, Pa: the J2 law's yield
+ * in shear σ_y / √3 at the element's plastic strain and last rate; INFINITY
+ * for gelatin (no yield). */
+double wff_block_surface_shear_strength(const wff_block *b, int i, int j);
+
 /* The internal forces at b->u into b->f (written), with the bulk viscosity's
  * at the velocities b->v, the elements' states advanced over dt (s; 0: held,
  * the stress of the states as they are; the viscosity's work over dt at that
