@@ -20,7 +20,8 @@
 #     the balance within 1 %;
 #   - refusals naming the options: -backing sand; -backing with -obliquity
 #     and with -adapt (which features combine: plugin/combine.c); -straps without
-#     a backing, and with a clamp option.
+#     a backing, and with a clamp option; the block's own options (-backingmu,
+#     -settletol) without one.
 # test-runner: first (~50 s: one of the longest tests; tests/run.sh starts the longest first)
 set -u
 base="${WFF_TEST_TMP:-/tmp}/backing_scene"
@@ -116,5 +117,7 @@ refused oblique "backing" -backing clay -obliquity 30
 refused adapt "backing" -backing clay -adapt 5
 refused strapsbare "-straps" -straps 100
 refused strapsclamp "-straps replaces the clamp" -backing clay -straps 100 -clamp fixed
+refused mubare "-backingmu sets the backing block" -backingmu 0.5
+refused settlebare "-settletol sets the backing block" -settletol 0.05
 [ $fail = 0 ] && echo "backing_scene: ok"
 exit $fail
