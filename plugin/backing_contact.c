@@ -61,7 +61,9 @@ static void block_predicted(const wff_block *b, int a, double dt, double x[3])
  * its nodes, the natural coordinates of the point (Newton on the bilinear map
  * projected on x-y), walking to a neighbour while the point lies outside.
  * 0 and the face's nodes, weights, point and normal (out of the block) when
- * found; -1 when the point lies off the block. */
+ * found; -1 when the point lies off the block, or the face under it is folded
+ * over in x-y or its point does not settle (a crater whose surface tangled:
+ * its plane would give a node millimetres of overlap it never travelled). */
 static int locate(const wff_block *b, double dt, double px, double py, int face[4],
                   double weight[4], double point[3], double normal[3])
 {
@@ -73,7 +75,7 @@ static int locate(const wff_block *b, double dt, double px, double py, int face[
         for (int a = 0; a < 4; a++)
             block_predicted(b, face[a], dt, x[a]);
         static const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
-        double xi = 0, eta = 0;
+        double xi = 0, eta = 0, dxi_last = INFINITY, deta_last = INFINITY;
         for (int it = 0; it < 8; it++) {
             double r[2] = {-px, -py}, J[4] = {0, 0, 0, 0};
             for (int a = 0; a < 4; a++) {
@@ -87,11 +89,12 @@ static int locate(const wff_block *b, double dt, double px, double py, int face[
                 }
             }
             const double det = J[0] * J[3] - J[1] * J[2];
-            if (!(fabs(det) > 0))
-                return -1;
+            if (!(det > 0))
+                return -1; /* the face folded over in x-y (a tangled crater): no point under */
             const double dxi = (J[3] * r[0] - J[1] * r[1]) / det;
             const double deta = (-J[2] * r[0] + J[0] * r[1]) / det;
             xi -= dxi, eta -= deta;
+            dxi_last = dxi, deta_last = deta;
             if (fabs(dxi) + fabs(deta) < 1e-12)
                 break;
         }
@@ -109,6 +112,8 @@ static int locate(const wff_block *b, double dt, double px, double py, int face[
             continue;
         if (fabs(xi) > slack || fabs(eta) > slack)
             return -1; /* off the block's edge */
+        if (!(fabs(dxi_last) + fabs(deta_last) < 1e-9))
+            return -1; /* Newton did not settle: no single point under (px, py) */
         double t_xi[3] = {0, 0, 0}, t_eta[3] = {0, 0, 0};
         point[0] = point[1] = point[2] = 0;
         for (int a = 0; a < 4; a++) {
