@@ -1,6 +1,6 @@
 # crater.gp — the crater in the backing block at the run's end: the top face's
 # indentation (m, downward) along x through the impact point (crater.csv: x, depth),
-# with the back-face signature (the deepest point now) and the dynamic peak marked.
+# with the back-face signature (the settled crater's depth, its mean over the last window; or the deepest point at the end) and the dynamic peak marked.
 # gnuplot -e "data='crater.csv'; out='crater.png'; bfs=0.02; peak=0.025" freefem_scripts/plots/crater.gp
 set datafile separator ','
 set datafile columnheaders
