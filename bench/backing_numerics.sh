@@ -10,7 +10,7 @@
 #   sh bench/backing_numerics.sh [-plies 24] [-tend 0.1e-3] [-jobs 2] [-out results/backing_numerics]
 #                                [-settings "default|-massfactor 10|..."]
 # -settings: '|'-separated option sets ("default": none); each run in OUT/runK.
-# Writes OUT/table.md. Cost (2 cores): 24 plies to 0.1 ms, the five default settings ~12 min.
+# Writes OUT/table.md. Cost: 24 plies to 0.1 ms, the five default settings ~5 min one at a time.
 set -u
 plies=24 tend=0.1e-3 jobs=2 out=results/backing_numerics
 settings="default|-massfactor 3|-massfactor 10|-travelfraction 0.3|-travel 0"
