@@ -89,14 +89,12 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
         return wff_fail(err, "backing: out of memory");
     }
     B->n_ply_nodes = per_ply;
-    const int first = (plies - 1) * per_ply, nt = m->el.n_tris;
+    const int first = (plies - 1) * per_ply;
     for (int k = 0; k < per_ply; k++)
         B->ply_nodes[k] = first + k;
-    for (int e = 0; e < nt + m->el.n_quads; e++) { /* the back ply's elements' areas, shared */
-        const int np = e < nt ? 3 : 4, *node = e < nt ? m->el.tri + 3 * e : m->el.quad + 4 * (e - nt);
-        double area = e < nt ? m->el.tri_area[e] : 0;
-        for (int q = 0; e >= nt && q < WFF_QUAD_POINTS; q++)
-            area += m->el.quad_weight[WFF_QUAD_POINTS * (e - nt) + q];
+    for (int e = 0; e < m->el.n_tris + m->el.n_quads; e++) { /* the back ply's elements' areas, shared */
+        const int *node, np = wff_element_nodes(&m->el, e, &node);
+        const double area = wff_element_area(&m->el, e);
         for (int a = 0; a < np; a++)
             if (node[a] >= first)
                 B->ply_area[node[a] - first] += area / np;

@@ -75,7 +75,7 @@ static int locate(const wff_block *b, double dt, double px, double py, int face[
         for (int a = 0; a < 4; a++)
             block_predicted(b, face[a], dt, x[a]);
         static const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
-        double xi = 0, eta = 0, dxi_last = INFINITY, deta_last = INFINITY;
+        double xi = 0, eta = 0, step = INFINITY; /* Newton's last step, |Δξ| + |Δη| */
         for (int it = 0; it < 8; it++) {
             double r[2] = {-px, -py}, J[4] = {0, 0, 0, 0};
             for (int a = 0; a < 4; a++) {
@@ -94,8 +94,8 @@ static int locate(const wff_block *b, double dt, double px, double py, int face[
             const double dxi = (J[3] * r[0] - J[1] * r[1]) / det;
             const double deta = (-J[2] * r[0] + J[0] * r[1]) / det;
             xi -= dxi, eta -= deta;
-            dxi_last = dxi, deta_last = deta;
-            if (fabs(dxi) + fabs(deta) < 1e-12)
+            step = fabs(dxi) + fabs(deta);
+            if (step < 1e-12)
                 break;
         }
         const double slack = 1 + 1e-9;
@@ -112,7 +112,7 @@ static int locate(const wff_block *b, double dt, double px, double py, int face[
             continue;
         if (fabs(xi) > slack || fabs(eta) > slack)
             return -1; /* off the block's edge */
-        if (!(fabs(dxi_last) + fabs(deta_last) < 1e-9))
+        if (!(step < 1e-9))
             return -1; /* Newton did not settle: no single point under (px, py) */
         double t_xi[3] = {0, 0, 0}, t_eta[3] = {0, 0, 0};
         point[0] = point[1] = point[2] = 0;

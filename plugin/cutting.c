@@ -58,13 +58,6 @@ static void cutting_free(wff_model *m)
     m->cutting = NULL;
 }
 
-static int element_nodes(const wff_model *m, int e, const int **nodes)
-{
-    const int nt = m->el.n_tris;
-    *nodes = e < nt ? m->el.tri + 3 * e : m->el.quad + 4 * (e - nt);
-    return e < nt ? 3 : 4;
-}
-
 /* The set-up at the first correction: areas, each node's elements, each
  * element's state slot. -1 (err set) if out of memory. */
 static int cutting_init(wff_model *m, wff_error *err)
@@ -92,10 +85,8 @@ static int cutting_init(wff_model *m, wff_error *err)
             slot = wff_material_state_index(mat, WFF_CONTACT_PRESSURE_STATE), last = mat;
         c->slot[e] = slot;
         c->on |= slot >= 0;
-        const int *nodes, np = element_nodes(m, e, &nodes);
-        double area = e < nt ? m->el.tri_area[e] : 0;
-        for (int q = 0; e >= nt && q < WFF_QUAD_POINTS; q++)
-            area += m->el.quad_weight[WFF_QUAD_POINTS * (e - nt) + q];
+        const int *nodes, np = wff_element_nodes(&m->el, e, &nodes);
+        const double area = wff_element_area(&m->el, e);
         for (int a = 0; a < np; a++) {
             c->node_area[nodes[a]] += area / np;
             c->node_start[nodes[a] + 1]++;
@@ -111,7 +102,7 @@ static int cutting_init(wff_model *m, wff_error *err)
     }
     memcpy(fill, c->node_start, sizeof(int) * (size_t)nn);
     for (int e = 0; e < n_el; e++) {
-        const int *nodes, np = element_nodes(m, e, &nodes);
+        const int *nodes, np = wff_element_nodes(&m->el, e, &nodes);
         for (int a = 0; a < np; a++)
             c->node_elements[fill[nodes[a]]++] = e; /* (ascending e per node) */
     }
@@ -207,7 +198,7 @@ static double press_element(wff_model *m, const struct wff_cutting *c, int e)
 {
     const int nt = m->el.n_tris, ns = m->n_state, slot = c->slot[e];
     double *state = m->state + (size_t)ns * wff_element_first_point(nt, e) + slot;
-    const int *nodes, np = element_nodes(m, e, &nodes);
+    const int *nodes, np = wff_element_nodes(&m->el, e, &nodes);
     double most = 0;
     for (int a = 0; a < np; a++)
         most = fmax(most, c->node_pressure[nodes[a]]);

@@ -105,16 +105,8 @@ int wff_model_nodal_field(const wff_model *m, const char *name, double *out, wff
             int d = wff_model_element_diag(m, e, diag); /* a zone's cell may lack it: 0 there */
             value = energy ? r.energy : d >= 0 ? r.diag[d] : 0;
         }
-        int nn = e < m->el.n_tris ? 3 : 4;
-        const int *node = e < m->el.n_tris ? m->el.tri + 3 * e : m->el.quad + 4 * (e - m->el.n_tris);
-        double area;
-        if (e < m->el.n_tris)
-            area = m->el.tri_area[e];
-        else {
-            area = 0;
-            for (int q = 0; q < 4; q++)
-                area += m->el.quad_weight[4 * (e - m->el.n_tris) + q];
-        }
+        const int *node, nn = wff_element_nodes(&m->el, e, &node);
+        const double area = wff_element_area(&m->el, e);
         for (int a = 0; a < nn; a++) {
             out[node[a]] += area * value;
             weight[node[a]] += area;

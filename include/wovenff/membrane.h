@@ -124,6 +124,24 @@ static inline size_t wff_elements_point_count(const wff_elements *el)
     return wff_element_first_point(el->n_tris, el->n_tris + el->n_quads);
 }
 
+/* Element e's nodes (tris first, then quads): their count, 3 or 4, *nodes
+ * pointed at them. */
+static inline int wff_element_nodes(const wff_elements *el, int e, const int **nodes)
+{
+    const int nt = el->n_tris;
+    *nodes = e < nt ? el->tri + 3 * e : el->quad + 4 * (e - nt);
+    return e < nt ? 3 : 4;
+}
+
+/* Element e's reference area, m²: a triangle's, a quad's quadrature weights summed. */
+static inline double wff_element_area(const wff_elements *el, int e)
+{
+    if (e < el->n_tris)
+        return el->tri_area[e];
+    const double *w = el->quad_weight + WFF_QUAD_POINTS * (e - el->n_tris);
+    return w[0] + w[1] + w[2] + w[3];
+}
+
 /* Element e's characteristic length for yarn failure's crack band
  * (docs/model.md §20), m, from its reference area A: sqrt(2 A) for a
  * triangle, the legs of a right isosceles triangle (the side of the square two
@@ -133,10 +151,7 @@ static inline size_t wff_elements_point_count(const wff_elements *el)
  * stable step): a band crosses an element at any angle. */
 static inline double wff_element_band_length(const wff_elements *el, int e)
 {
-    if (e < el->n_tris)
-        return sqrt(2 * el->tri_area[e]);
-    const double *w = el->quad_weight + WFF_QUAD_POINTS * (e - el->n_tris);
-    return sqrt(w[0] + w[1] + w[2] + w[3]);
+    return sqrt((e < el->n_tris ? 2 : 1) * wff_element_area(el, e));
 }
 
 /* Most threads a force pass uses. */
