@@ -27,12 +27,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The defaults: the NIJ 0101.06 box's depth (140 mm), elements of 2 mm under
+/* The defaults: the NIJ 0101.06 box's depth (140 mm), elements of 4 mm under
  * the impact growing by 20 % a layer, Coulomb friction 0.3 between fabric and
  * clay (assumed: not measured), hourglass springs at 5 % of the shear
- * stiffness, the pack laid on the block. */
+ * stiffness with dashpots at critical damping (docs/backing.md "Element"),
+ * the pack laid on the block. */
 static const struct wff_backing defaults = {
     .depth = 0.14, .finest = 4e-3, .growth = 1.2, .mu = 0.3, .hourglass = 0.05, .gap = 0,
+    .hourglass_damping = 1,
 };
 
 static void release(struct wff_backing *B)
@@ -69,6 +71,7 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
     s.centre[1] = m->projectile.active ? m->projectile.axis[1] : 0.5 * (s.y0 + s.y1);
     if (wff_block_create(&B->block, B->law, &s, B->hourglass, err))
         return -1;
+    B->block.hourglass_damping = B->hourglass_damping;
     wff_face_contacts *C = &B->contacts;
     const size_t n = (size_t)per_ply;
     C->max = per_ply;
@@ -146,6 +149,8 @@ RANGE_CHECK(check_finest, "backing_element", value > 0 && value <= 1, "must be i
 RANGE_CHECK(check_growth, "backing_growth", value >= 1 && value <= 3, "must be in [1, 3]")
 RANGE_CHECK(check_mu, "backing_mu", value >= 0, "must be a friction coefficient >= 0")
 RANGE_CHECK(check_hourglass, "backing_hourglass", value >= 0 && value <= 1, "must be in [0, 1]")
+RANGE_CHECK(check_hourglass_damping, "backing_hourglass_damping", value >= 0 && value <= 2,
+            "must be in [0, 2] (a fraction of critical damping)")
 RANGE_CHECK(check_gap, "backing_gap", value >= 0 && value <= 1, "must be in [0, 1] m")
 
 #define APPLY(fn, field, convert)                                 \
@@ -167,6 +172,7 @@ APPLY(apply_growth, growth, AS_IS)
 APPLY(apply_mu, mu, AS_IS)
 APPLY(apply_hourglass, hourglass, AS_IS)
 APPLY(apply_gap, gap, AS_IS)
+APPLY(apply_hourglass_damping, hourglass_damping, AS_IS)
 
 static const wff_setting backing_settings[] = {
     {"backing", check_law, apply_law},
@@ -176,6 +182,7 @@ static const wff_setting backing_settings[] = {
     {"backing_mu", check_mu, apply_mu},
     {"backing_hourglass", check_hourglass, apply_hourglass},
     {"backing_gap", check_gap, apply_gap},
+    {"backing_hourglass_damping", check_hourglass_damping, apply_hourglass_damping},
     {NULL, NULL, NULL},
 };
 
@@ -390,7 +397,7 @@ static const char *const backing_value_names[] = {
     "backing", "backface_signature", "crater_diameter", "crater_volume", "backing_peak_depth",
     "backing_kinetic", "backing_stored", "backing_dissipated", "backing_contact_loss",
     "backing_elements", "backing_contacts", "backing_seconds", "backing_step", "backing_overlap",
-    "backing_kinetic_peak", NULL,
+    "backing_kinetic_peak", "backing_hourglass_dissipated", NULL,
 };
 
 static void backing_value(const wff_model *m, const char *key, double *value)
@@ -413,6 +420,8 @@ static void backing_value(const wff_model *m, const char *key, double *value)
         crater(m, b, &deepest, value, &volume);
     else if (strcmp(key, "crater_volume") == 0)
         crater(m, b, &deepest, &diameter, value);
+    else if (strcmp(key, "backing_hourglass_dissipated") == 0)
+        *value = s * b->hourglass_viscous;
     else if (strcmp(key, "backing_peak_depth") == 0)
         *value = B->run.peak_depth;
     else if (strcmp(key, "backing_kinetic") == 0)
@@ -457,6 +466,7 @@ static int backing_state_fields(wff_model *m, wff_state_field *f)
     f[k++] = (wff_state_field){&b->stored, sizeof b->stored, 1};
     f[k++] = (wff_state_field){&b->dissipated, sizeof b->dissipated, 1};
     f[k++] = (wff_state_field){&b->viscous, sizeof b->viscous, 1};
+    f[k++] = (wff_state_field){&b->hourglass_viscous, sizeof b->hourglass_viscous, 1};
     f[k++] = (wff_state_field){&B->run, sizeof B->run, 1};
     return k;
 }
@@ -466,8 +476,8 @@ static uint64_t backing_fingerprint(const wff_model *m, uint64_t g)
     const struct wff_backing *B = on(m);
     if (!B)
         return g;
-    const double settings[7] = {B->law, B->depth, B->finest, B->growth, B->mu, B->hourglass,
-                                B->gap};
+    const double settings[8] = {B->law, B->depth, B->finest, B->growth, B->mu, B->hourglass,
+                                B->gap, B->hourglass_damping};
     return wff_fnv1a(g, settings, sizeof settings);
 }
 

@@ -196,7 +196,7 @@ double wff_block_surface_shear_strength(const wff_block *b, int i, int j)
 int wff_block_forces(wff_block *b, double dt, int *bad)
 {
     memset(b->f, 0, 3 * (size_t)b->n_nodes * sizeof(double));
-    double stored = 0, dissipated = 0, viscous = 0;
+    double stored = 0, dissipated = 0, viscous = 0, hourglass_viscous = 0;
     for (int e = 0; e < b->n_elements; e++) {
         const int *node = b->hex + 8 * e;
         const wff_hex8_ref *r = &b->ref[e];
@@ -229,6 +229,10 @@ int wff_block_forces(wff_block *b, double dt, int *bad)
         }
         wff_hex8_forces(r, F, U_inv, stress, fe);
         stored += r->volume * density + wff_hex8_hourglass(r, u, b->hourglass_k[e], fe);
+        if (b->hourglass_damping > 0)
+            hourglass_viscous += dt * wff_hex8_hourglass_damping(r, v, b->hourglass_k[e],
+                                                                 b->density * r->volume / 8,
+                                                                 b->hourglass_damping, fe);
         if (b->viscosity[0] > 0 || b->viscosity[1] > 0)
             viscous += dt * wff_hex8_bulk_viscosity(r, F, J, v, b->density, b->wave_speed,
                                                     b->viscosity[0], b->viscosity[1], fe);
@@ -237,9 +241,24 @@ int wff_block_forces(wff_block *b, double dt, int *bad)
                 b->f[3 * node[a] + c] += fe[a][c];
     }
     b->stored = stored;
-    b->viscous += viscous;
+    b->viscous += viscous + hourglass_viscous;
+    b->hourglass_viscous += hourglass_viscous;
     b->dissipated = dissipated + b->viscous;
     return 0;
+}
+
+/* The hourglass springs' highest frequency on the element's node masses alone,
+ * √(k max_α |γ_α|² / m_node), rad/s. */
+static double hourglass_frequency(const wff_hex8_ref *r, double k, double node_mass)
+{
+    double gamma_max = 0;
+    for (int al = 0; al < 4; al++) {
+        double g = 0;
+        for (int a = 0; a < WFF_HEX_NODES; a++)
+            g += r->gamma[al][a] * r->gamma[al][a];
+        gamma_max = fmax(gamma_max, g);
+    }
+    return node_mass > 0 ? sqrt(k * gamma_max / node_mass) : 0;
 }
 
 double wff_block_stable_step(const wff_block *b, int *worst)
@@ -252,10 +271,14 @@ double wff_block_stable_step(const wff_block *b, int *worst)
         for (int a = 0; a < 8; a++)
             memcpy(u[a], b->u + 3 * node[a], sizeof u[a]);
         wff_hex8_gradient(&b->ref[e], u, F);
-        const double b1 = b->viscosity[0];
-        const double step = wff_hex8_stable_step(&b->ref[e], F, b->wave_speed, b->hourglass_k[e],
-                                                 b->density * b->ref[e].volume / 8) *
-                            (sqrt(1 + b1 * b1) - b1);
+        const double node_mass = b->density * b->ref[e].volume / 8;
+        const double bare = wff_hex8_stable_step(&b->ref[e], F, b->wave_speed, b->hourglass_k[e],
+                                                 node_mass);
+        /* the damping's fraction of critical at the highest frequency 2/bare: the
+         * bulk viscosity's b1 and the hourglass dashpots' ζ ω_hg/ω_max */
+        const double damping = b->viscosity[0] + b->hourglass_damping * 0.5 * bare *
+                                                     hourglass_frequency(&b->ref[e], b->hourglass_k[e], node_mass);
+        const double step = bare * (sqrt(1 + damping * damping) - damping);
         if (step < dt || *worst < 0) {
             dt = step;
             *worst = e;

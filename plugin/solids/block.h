@@ -37,6 +37,7 @@ typedef struct wff_block {
     wff_clay_params clay;
     wff_gelatin_params gelatin;
     double hourglass;            /* κ of the hourglass springs */
+    double hourglass_damping;    /* ζ of the hourglass dashpots (hex8.h; 0 by default: none) */
     double viscosity[2];         /* the bulk viscosity's linear and quadratic factors b1, b2
                                     (hex8.h; 0.06, 1.2 by default) */
     double density, wave_speed, shear; /* of the law: kg/m³, m/s, Pa */
@@ -57,7 +58,9 @@ typedef struct wff_block {
     double stored;               /* of the last pass: Σ V0 W + hourglass energy, J */
     double dissipated;           /* Σ V0 × the law's dissipation so far (states) + the bulk
                                     viscosity's, J */
-    double viscous;              /* the bulk viscosity's dissipation so far, J */
+    double viscous;              /* the bulk viscosity's and the hourglass dashpots' dissipation
+                                    so far, J */
+    double hourglass_viscous;    /* the hourglass dashpots' share of it, J */
 } wff_block;
 
 /* A block of the law (WFF_BLOCK_CLAY / GELATIN, with the default parameters

@@ -249,6 +249,30 @@ double wff_hex8_hourglass(const wff_hex8_ref *r, const double u[WFF_HEX_NODES][3
     return energy;
 }
 
+double wff_hex8_hourglass_damping(const wff_hex8_ref *r, const double v[WFF_HEX_NODES][3],
+                                  double k, double node_mass, double ratio,
+                                  double f[WFF_HEX_NODES][3])
+{
+    if (k == 0 || ratio == 0 || node_mass <= 0)
+        return 0;
+    const double critical = 2 * sqrt(k * node_mass);
+    double power = 0;
+    for (int al = 0; al < 4; al++) {
+        double rate[3] = {0, 0, 0}, norm = 0;
+        for (int a = 0; a < WFF_HEX_NODES; a++) {
+            norm += r->gamma[al][a] * r->gamma[al][a];
+            for (int i = 0; i < 3; i++)
+                rate[i] += r->gamma[al][a] * v[a][i];
+        }
+        const double c = ratio * critical / sqrt(norm);
+        power += c * (rate[0] * rate[0] + rate[1] * rate[1] + rate[2] * rate[2]);
+        for (int a = 0; a < WFF_HEX_NODES; a++)
+            for (int i = 0; i < 3; i++)
+                f[a][i] -= c * r->gamma[al][a] * rate[i];
+    }
+    return power;
+}
+
 double wff_hex8_stable_step(const wff_hex8_ref *r, const double F[9], double wave_speed,
                             double k, double node_mass)
 {

@@ -9,7 +9,8 @@
  * grid; and NIJ 0101.06's clay check (a 1.043 kg, 63.5 mm sphere from 2 m)
  * dropped on the clay block, its indentation against the 19 mm the clay's
  * yield was calibrated to through Tabor's estimate, with the block's energy
- * balance and the contact's loss >= 0. */
+ * balance and the contact's loss >= 0; the hourglass dashpots against the damped
+ * oscillator's closed form. */
 #include "check.h"
 #include "rng.h"
 #include "backing.h"
@@ -155,6 +156,112 @@ static void affine_and_rotation(check_state *st)
             most = fmax(most, fabs(f[a][c]));
     /* against the force of a 1 % strain: E · 0.01 · area */
     CHECK(st, most < 1e-10 * p->youngs * 0.01 * 4e-6, "a rigid rotation's forces %g N", most);
+}
+
+/* The hourglass dashpots (wff_hex8_hourglass_damping): no force on an affine
+ * velocity field (a rigid motion or a uniform strain rate), their power the
+ * work rate −Σ f·v of their forces and >= 0 on random velocities; and one
+ * hourglass mode of a cube, free but for its springs and dashpots, integrated
+ * by central differences at a small step: its amplitude decays as the damped
+ * oscillator's closed form, exp(−ζ ω t) at ω² = k |γ|² / m, the frequency
+ * ω √(1 − ζ²) (ζ = 0.2: its first zero), and at ζ = 1 it does not swing
+ * through zero. */
+static void hourglass_dashpots(check_state *st)
+{
+    wff_rng r = {4242};
+    double X[8][3], v[8][3], f[8][3];
+    for (int a = 0; a < 8; a++)
+        for (int c = 0; c < 3; c++)
+            X[a][c] = 2e-3 * (unit_cube[a][c] + wff_rng_uniform(&r, -0.2, 0.2));
+    wff_hex8_ref ref;
+    wff_hex8_reference(X, &ref);
+    const double k = 500, node_mass = 1.2e-5;
+    double A[9], w[3];
+    for (int q = 0; q < 9; q++)
+        A[q] = wff_rng_uniform(&r, -50, 50);
+    for (int c = 0; c < 3; c++)
+        w[c] = wff_rng_uniform(&r, -10, 10);
+    double scale = 0;
+    for (int a = 0; a < 8; a++)
+        for (int i = 0; i < 3; i++) {
+            v[a][i] = w[i] + A[3 * i] * X[a][0] + A[3 * i + 1] * X[a][1] + A[3 * i + 2] * X[a][2];
+            scale = fmax(scale, fabs(v[a][i]));
+        }
+    memset(f, 0, sizeof f);
+    const double power = wff_hex8_hourglass_damping(&ref, v, k, node_mass, 1.0, f);
+    double most = 0;
+    for (int a = 0; a < 8; a++)
+        for (int c = 0; c < 3; c++)
+            most = fmax(most, fabs(f[a][c]));
+    const double critical = 2 * sqrt(k * node_mass); /* N s/m: a dashpot's force per m/s */
+    CHECK(st, most < 1e-12 * critical * scale && power < 1e-12 * critical * scale * scale,
+          "dashpots on an affine velocity field: force %g N, power %g W", most, power);
+    double worst = 0, least = INFINITY;
+    for (int trial = 0; trial < 100; trial++) {
+        for (int a = 0; a < 8; a++)
+            for (int c = 0; c < 3; c++)
+                v[a][c] = wff_rng_uniform(&r, -1, 1);
+        memset(f, 0, sizeof f);
+        const double P = wff_hex8_hourglass_damping(&ref, v, k, node_mass, 0.7, f);
+        double work = 0;
+        for (int a = 0; a < 8; a++)
+            for (int c = 0; c < 3; c++)
+                work -= f[a][c] * v[a][c];
+        worst = fmax(worst, fabs(work - P) / fmax(P, 1e-300));
+        least = fmin(least, P);
+    }
+    CHECK(st, worst < 1e-12 && least >= 0, "dashpots' power against −f·v: worst %g, least %g W",
+          worst, least);
+    /* one mode of a unit cube (2 mm), its nodes free: u_a = s(t) γ_1a e_z */
+    for (int a = 0; a < 8; a++)
+        for (int c = 0; c < 3; c++)
+            X[a][c] = 2e-3 * unit_cube[a][c];
+    wff_hex8_reference(X, &ref);
+    double norm = 0;
+    for (int a = 0; a < 8; a++)
+        norm += ref.gamma[0][a] * ref.gamma[0][a];
+    const double omega = sqrt(k * norm / node_mass), period = 2 * M_PI / omega;
+    const double ratios[2] = {0.2, 1.0};
+    for (int t = 0; t < 2; t++) {
+        const double zeta = ratios[t], dt = period / 4000;
+        double u[8][3] = {{0}}, vel[8][3] = {{0}};
+        for (int a = 0; a < 8; a++)
+            u[a][2] = 1e-4 * ref.gamma[0][a]; /* s(0) = 1e-4 m, at rest */
+        double s_end = 0, crossed_at = -1, last = 1e-4;
+        const int steps = lrint(period / dt);
+        for (int n = 1; n <= steps; n++) {
+            /* central differences: v at n − ½ kicked by the force at n */
+            for (int a = 0; a < 8; a++)
+                for (int c = 0; c < 3; c++)
+                    u[a][c] += (n == 1 ? 0 : dt) * vel[a][c];
+            double fe[8][3] = {{0}};
+            wff_hex8_hourglass(&ref, u, k, fe);
+            wff_hex8_hourglass_damping(&ref, vel, k, node_mass, zeta, fe);
+            for (int a = 0; a < 8; a++)
+                for (int c = 0; c < 3; c++)
+                    vel[a][c] += (n == 1 ? 0.5 : 1) * dt * fe[a][c] / node_mass;
+            double s = 0;
+            for (int a = 0; a < 8; a++)
+                s += u[a][2] * ref.gamma[0][a] / norm;
+            if (crossed_at < 0 && last > 0 && s <= 0)
+                crossed_at = (n - 1) * dt;
+            last = s, s_end = s;
+        }
+        const double t_end = (steps - 1) * dt, wd = omega * sqrt(fmax(1 - zeta * zeta, 0));
+        /* s(t) = s0 e^{−ζωt} (cos ω_d t + ζω/ω_d sin ω_d t), or (1 + ωt) e^{−ωt} critical */
+        const double exact = zeta < 1 ? 1e-4 * exp(-zeta * omega * t_end) *
+                                            (cos(wd * t_end) + zeta * omega / wd * sin(wd * t_end))
+                                      : 1e-4 * (1 + omega * t_end) * exp(-omega * t_end);
+        CHECK(st, fabs(s_end - exact) < 2e-3 * 1e-4,
+              "hourglass mode at ζ = %.1f after one undamped period: %g m, closed form %g m", zeta,
+              s_end, exact);
+        if (zeta < 1) {
+            const double zero = (M_PI - atan(wd / (zeta * omega))) / wd;
+            CHECK(st, fabs(crossed_at - zero) < 2e-3 * period,
+                  "hourglass mode at ζ = 0.2 crosses zero at %g s, closed form %g s", crossed_at, zero);
+        } else
+            CHECK(st, crossed_at < 0, "critically damped hourglass mode swung through zero");
+    }
 }
 
 /* The patch test on a graded block: an affine field's interior nodes balanced. */
@@ -355,6 +462,7 @@ int main(void)
     hencky_closed_form(&st);
     forces_against_energy(&st);
     affine_and_rotation(&st);
+    hourglass_dashpots(&st);
     patch_test(&st);
     stable_step_bound(&st);
     graded_block(&st);
