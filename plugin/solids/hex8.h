@@ -3,7 +3,8 @@
  * element's mean, so the nearly incompressible plastic flow of clay does not
  * lock), at finite strain, with a stiffness hourglass control (Flanagan &
  * Belytschko 1981, Int. J. Numer. Meth. Eng. 17: the γ vectors orthogonal to
- * every linear field).
+ * every linear field) and dashpots beside its springs (without them a crater's
+ * bottom node rings on the springs for milliseconds: docs/backing.md).
  *
  * Kinematics (total Lagrangian): F at the centre from the reference
  * gradients B0 (∂N_a/∂X there); C = FᵀF = Q diag(λ) Qᵀ; the Hencky strain in
