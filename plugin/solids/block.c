@@ -247,20 +247,6 @@ int wff_block_forces(wff_block *b, double dt, int *bad)
     return 0;
 }
 
-/* The hourglass springs' highest frequency on the element's node masses alone,
- * √(k max_α |γ_α|² / m_node), rad/s. */
-static double hourglass_frequency(const wff_hex8_ref *r, double k, double node_mass)
-{
-    double gamma_max = 0;
-    for (int al = 0; al < 4; al++) {
-        double g = 0;
-        for (int a = 0; a < WFF_HEX_NODES; a++)
-            g += r->gamma[al][a] * r->gamma[al][a];
-        gamma_max = fmax(gamma_max, g);
-    }
-    return node_mass > 0 ? sqrt(k * gamma_max / node_mass) : 0;
-}
-
 double wff_block_stable_step(const wff_block *b, int *worst)
 {
     double dt = INFINITY;
@@ -276,8 +262,9 @@ double wff_block_stable_step(const wff_block *b, int *worst)
                                                  node_mass);
         /* the damping's fraction of critical at the highest frequency 2/bare: the
          * bulk viscosity's b1 and the hourglass dashpots' ζ ω_hg/ω_max */
-        const double damping = b->viscosity[0] + b->hourglass_damping * 0.5 * bare *
-                                                     hourglass_frequency(&b->ref[e], b->hourglass_k[e], node_mass);
+        const double hourglass = wff_hex8_hourglass_frequency(&b->ref[e], b->hourglass_k[e],
+                                                              node_mass);
+        const double damping = b->viscosity[0] + b->hourglass_damping * 0.5 * bare * hourglass;
         const double step = bare * (sqrt(1 + damping * damping) - damping);
         if (step < dt || *worst < 0) {
             dt = step;

@@ -273,6 +273,18 @@ double wff_hex8_hourglass_damping(const wff_hex8_ref *r, const double v[WFF_HEX_
     return power;
 }
 
+double wff_hex8_hourglass_frequency(const wff_hex8_ref *r, double k, double node_mass)
+{
+    double gamma_max = 0;
+    for (int al = 0; al < 4; al++) {
+        double g = 0;
+        for (int a = 0; a < WFF_HEX_NODES; a++)
+            g += r->gamma[al][a] * r->gamma[al][a];
+        gamma_max = fmax(gamma_max, g);
+    }
+    return node_mass > 0 ? sqrt(k * gamma_max / node_mass) : 0;
+}
+
 double wff_hex8_stable_step(const wff_hex8_ref *r, const double F[9], double wave_speed,
                             double k, double node_mass)
 {
@@ -289,14 +301,7 @@ double wff_hex8_stable_step(const wff_hex8_ref *r, const double F[9], double wav
                              inv[6 + i] * r->gradient[a][2];
             sum += b * b;
         }
-    double gamma_max = 0;
-    for (int al = 0; al < 4; al++) {
-        double g = 0;
-        for (int a = 0; a < WFF_HEX_NODES; a++)
-            g += r->gamma[al][a] * r->gamma[al][a];
-        gamma_max = fmax(gamma_max, g);
-    }
-    const double omega2 = 8 * wave_speed * wave_speed * sum +
-                          (node_mass > 0 ? k * gamma_max / node_mass : 0);
+    const double hourglass = wff_hex8_hourglass_frequency(r, k, node_mass);
+    const double omega2 = 8 * wave_speed * wave_speed * sum + hourglass * hourglass;
     return omega2 > 0 ? 2 / sqrt(omega2) : INFINITY;
 }

@@ -87,6 +87,10 @@ double wff_hex8_bulk_viscosity(const wff_hex8_ref *r, const double F[9], double 
                                double wave_speed, double linear, double quadratic,
                                double f[WFF_HEX_NODES][3]);
 
+/* The hourglass springs' highest frequency on the element's node masses
+ * alone, √(k max_α |γ_α|² / m_node), rad/s (0 without mass). */
+double wff_hex8_hourglass_frequency(const wff_hex8_ref *r, double k, double node_mass);
+
 /* The stable step of the element, s: 2/ω with ω² bounded by the sum of
  * Flanagan & Belytschko's bound for the centre point, 8 c² Σ_a |b_a|²
  * (b_a = F⁻ᵀ B0_a, the current gradients; c the dilatational wave speed, m/s),
