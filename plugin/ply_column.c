@@ -381,6 +381,50 @@ double wff_ply_pair_friction(wff_model *m, const struct solve_step *T, int start
     return moved;
 }
 
+/* Pair c sticks: its friction inside its cone (not at its edge, where the
+ * pair friction leaves a pair that slips). */
+static int sticks(const struct wff_pack *P, const struct wff_ply_solve *S, int c)
+{
+    const double *F = S->friction + 3 * c, cone = P->mu * S->lambda[c];
+    return cone > 0 && F[0] * F[0] + F[1] * F[1] + F[2] * F[2] < (1 - STICK_MARGIN) * (1 - STICK_MARGIN) * cone * cone;
+}
+
+/* The inverse mass along unit t of node `node` and the nodes of its column
+ * stuck to it through its pairs (their friction inside the cone), taken as
+ * one body: 1 / Σ 1/w_j; the node's alone if one of them is held along t.
+ * The nose friction's step: the pair friction passes a nose's change on to
+ * the stack stuck behind its node, and the stack of n nodes gives back
+ * (n − 1)/n of the node's alone each sweep (two steps in three of the 8-ply
+ * pack at the sweeps' cap); sized for the stack, it stops the stack at once.
+ * The solve's fixed points are the same (at one: stick, vt = 0; slip, vt
+ * against F, whatever the step). */
+static double stack_inverse_mass(const wff_model *m, int start, int K, int node, const double t[3])
+{
+    const struct wff_pack *P = m->pack;
+    const struct wff_ply_solve *S = P->solve;
+    const double own = inverse_mass(m, node, t);
+    if (!(own > 0) || !(P->mu > 0))
+        return own;
+    double mass = 1 / own;
+    for (int dir = 0; dir < 2; dir++) { /* up the column, then down */
+        int at = node;
+        for (int step = 0; step < K; step++) {
+            int next = -1;
+            for (int c = start; c < start + K && next < 0; c++)
+                if (S->kind[c] == PAIR && (dir ? S->b[c] : S->a[c]) == at && sticks(P, S, c))
+                    next = dir ? S->a[c] : S->b[c];
+            if (next < 0)
+                break;
+            const double w = inverse_mass(m, next, t);
+            if (!(w > 0))
+                return own;
+            mass += 1 / w;
+            at = next;
+        }
+    }
+    return 1 / mass;
+}
+
 /* The nose contacts' Coulomb friction of a column against the node's
  * tangential velocity less the projectile's, |F| <= μ λ (μ the projectile's,
  * its normal impulse and F the projectile contact's and the solve's
@@ -416,7 +460,8 @@ double wff_ply_nose_friction(wff_model *m, const struct solve_step *T, int start
             trial[k] = F[k];
         if (speed > 0) {
             const double t[3] = {vt[0] / speed, vt[1] / speed, vt[2] / speed};
-            const double wt = nose ? inverse_mass(m, A, t) + t[2] * t[2] / pr->mass
+            const double wt = nose ? (P->nose_step_alone ? inverse_mass(m, A, t) : stack_inverse_mass(m, start, K, A, t)) +
+                                         t[2] * t[2] / pr->mass
                                    : inverse_mass(m, A, t) + inverse_mass(m, B, t);
             if (wt > 0)
                 for (int k = 0; k < 3; k++)
