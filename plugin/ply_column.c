@@ -389,13 +389,26 @@ static int sticks(const struct wff_pack *P, const struct wff_ply_solve *S, int c
     return cone > 0 && F[0] * F[0] + F[1] * F[1] + F[2] * F[2] < (1 - STICK_MARGIN) * (1 - STICK_MARGIN) * cone * cone;
 }
 
+/* The nose contacts of the column at node n that hold friction (a normal
+ * impulse above their bound: a cone). */
+static int noses_at(const wff_model *m, int start, int K, int n)
+{
+    const struct wff_ply_solve *S = m->pack->solve;
+    int count = 0;
+    for (int c = start; c < start + K; c++)
+        count += S->kind[c] == NOSE && S->a[c] == n && m->projectile.mu > 0 && S->lambda[c] > S->lo[c];
+    return count;
+}
+
 /* The inverse mass along unit t of node `node` and the nodes of its column
  * stuck to it through its pairs (their friction inside the cone), taken as
- * one body: 1 / Σ 1/w_j; the node's alone if one of them is held along t.
- * The nose friction's step: the pair friction passes a nose's change on to
- * the stack stuck behind its node, and the stack of n nodes gives back
- * (n − 1)/n of the node's alone each sweep (two steps in three of the 8-ply
- * pack at the sweeps' cap); sized for the stack, it stops the stack at once.
+ * one body and shared by the nose contacts on it: k / Σ 1/w_j for k nose
+ * contacts; the node's alone if one of them is held along t. The nose
+ * friction's step: the pair friction passes a nose's change on to the stack
+ * stuck behind its node, and the stack of n nodes gives back (n − 1)/n of the
+ * node's alone each sweep (two steps in three of the 8-ply pack at the
+ * sweeps' cap); sized for the stack, it stops the stack at once (each of k
+ * noses on it its k-th share, or together they would overshoot it k times).
  * The solve's fixed points are the same (at one: stick, vt = 0; slip, vt
  * against F, whatever the step). */
 static double stack_inverse_mass(const wff_model *m, int start, int K, int node, const double t[3])
@@ -406,6 +419,7 @@ static double stack_inverse_mass(const wff_model *m, int start, int K, int node,
     if (!(own > 0) || !(P->mu > 0))
         return own;
     double mass = 1 / own;
+    int noses = noses_at(m, start, K, node);
     for (int dir = 0; dir < 2; dir++) { /* up the column, then down */
         int at = node;
         for (int step = 0; step < K; step++) {
@@ -419,10 +433,11 @@ static double stack_inverse_mass(const wff_model *m, int start, int K, int node,
             if (!(w > 0))
                 return own;
             mass += 1 / w;
+            noses += noses_at(m, start, K, next);
             at = next;
         }
     }
-    return 1 / mass;
+    return (noses > 1 ? noses : 1) / mass;
 }
 
 /* The nose contacts' Coulomb friction of a column against the node's
