@@ -386,7 +386,8 @@ double wff_ply_pair_friction(wff_model *m, const struct solve_step *T, int start
 static int sticks(const struct wff_pack *P, const struct wff_ply_solve *S, int c)
 {
     const double *F = S->friction + 3 * c, cone = P->mu * S->lambda[c];
-    return cone > 0 && F[0] * F[0] + F[1] * F[1] + F[2] * F[2] < (1 - STICK_MARGIN) * (1 - STICK_MARGIN) * cone * cone;
+    const double inside = (1 - STICK_MARGIN) * cone;
+    return cone > 0 && F[0] * F[0] + F[1] * F[1] + F[2] * F[2] < inside * inside;
 }
 
 /* The nose contacts of the column at node n that hold friction (a normal
@@ -475,9 +476,11 @@ double wff_ply_nose_friction(wff_model *m, const struct solve_step *T, int start
             trial[k] = F[k];
         if (speed > 0) {
             const double t[3] = {vt[0] / speed, vt[1] / speed, vt[2] / speed};
-            const double wt = nose ? (P->nose_step_alone ? inverse_mass(m, A, t) : stack_inverse_mass(m, start, K, A, t)) +
-                                         t[2] * t[2] / pr->mass
-                                   : inverse_mass(m, A, t) + inverse_mass(m, B, t);
+            /* (a nose: its step sized for the stack stuck behind its node, or
+             * for the node alone, the plain step) */
+            const double node = nose && !P->nose_step_alone ? stack_inverse_mass(m, start, K, A, t)
+                                                            : inverse_mass(m, A, t);
+            const double wt = nose ? node + t[2] * t[2] / pr->mass : node + inverse_mass(m, B, t);
             if (wt > 0)
                 for (int k = 0; k < 3; k++)
                     trial[k] -= vt[k] / wt;
