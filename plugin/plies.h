@@ -53,7 +53,8 @@ struct wff_pack {
     int sweeps;               /* sweeps over the columns in the last step */
     int nose_step_alone;      /* 1: the nose friction's step sized for its node alone (the
                                  plain solve, a reference for tests/c/test_ply_sweeps.c);
-                                 0 (the default): for the stack stuck behind the node */
+                                 0 (the default): for the stack stuck behind the node,
+                                 while erosion is off (plugin/ply_column.c) */
 };
 
 static inline int wff_pack_plies(const wff_model *m)
