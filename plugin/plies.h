@@ -51,6 +51,10 @@ struct wff_pack {
     int *node_facet_start;    /* nodes + 1 */
     struct wff_ply_solve *solve; /* the contact's solve: its workspace (ply_contact.c) */
     int sweeps;               /* sweeps over the columns in the last step */
+    int nose_step_alone;      /* 1: the nose friction's step sized for its node alone (the
+                                 plain solve, a reference for tests/c/test_ply_sweeps.c);
+                                 0 (the default): for the stack stuck behind the node,
+                                 while erosion is off (plugin/ply_column.c) */
 };
 
 static inline int wff_pack_plies(const wff_model *m)

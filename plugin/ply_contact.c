@@ -41,7 +41,15 @@
  * each constraint against its tangential relative velocity (a pair's B − A,
  * μ = ply_mu; a nose's node less the projectile, μ the projectile's, with the
  * projectile contact's friction), its accumulated impulse F held in the cone
- * |F| <= μ λ (stick if the cone allows), after each column's normal solve.
+ * |F| <= μ λ (stick if the cone allows), after each column's normal solve:
+ * the column's pairs together, then its nose contacts, a nose's step sized
+ * for the stack its sticking pairs hold to its node (the pairs' friction
+ * spreads a nose's change over that stack: sized for its node alone, the
+ * stack of n gave back (n − 1)/n of it each sweep, and two steps in three of
+ * the 8-ply pack ended at the sweeps' cap; the same fixed points either way,
+ * the plain step kept: pack->nose_step_alone, and with erosion on). The
+ * sweeps' slow mode was that, not the columns' coupling: the normal impulses
+ * settle in a few sweeps.
  *
  * Through a hole: a node whose facets have all eroded has no pair; node i of
  * the ply below it pairs with node i of the first ply above it that has a

@@ -22,6 +22,8 @@
  * SWEEP_TOLERANCE h. */
 #define MAX_SWEEPS 30
 #define SWEEP_TOLERANCE 1e-6
+/* A pair whose friction is within STICK_MARGIN of its cone's edge slips. */
+#define STICK_MARGIN 1e-6
 
 enum { PAIR = 0, NOSE = 1 };
 
