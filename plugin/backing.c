@@ -44,6 +44,8 @@ static void release(struct wff_backing *B)
     free(C->node), free(C->face), free(C->weight), free(C->normal), free(C->gap);
     free(C->lambda), free(C->impulse);
     free(B->ply_nodes), free(B->ply_area), free(B->block_impulse), free(B->on_nose);
+    free(B->ply_gap), free(B->ply_held);
+    B->ply_gap = NULL, B->ply_held = NULL;
     memset(C, 0, sizeof *C);
     B->ply_nodes = NULL, B->ply_area = NULL, B->block_impulse = NULL, B->on_nose = NULL;
     B->built = 0;
@@ -84,10 +86,13 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
     C->impulse = malloc(3 * n * sizeof(double));
     B->ply_nodes = malloc(n * sizeof(int));
     B->ply_area = calloc(n, sizeof(double));
+    B->ply_gap = calloc(n, sizeof(double));
+    B->ply_held = calloc(n, sizeof(double));
     B->block_impulse = calloc(3 * (size_t)B->block.n_nodes, sizeof(double));
     B->on_nose = calloc((size_t)m->n_nodes, 1);
     if (!C->node || !C->face || !C->weight || !C->normal || !C->gap || !C->lambda ||
-        !C->impulse || !B->ply_nodes || !B->ply_area || !B->block_impulse || !B->on_nose) {
+        !C->impulse || !B->ply_nodes || !B->ply_area || !B->block_impulse || !B->on_nose ||
+        !B->ply_gap || !B->ply_held) {
         release(B);
         return wff_fail(err, "backing: out of memory");
     }
@@ -467,6 +472,8 @@ static int backing_state_fields(wff_model *m, wff_state_field *f)
     f[k++] = (wff_state_field){&b->dissipated, sizeof b->dissipated, 1};
     f[k++] = (wff_state_field){&b->viscous, sizeof b->viscous, 1};
     f[k++] = (wff_state_field){&b->hourglass_viscous, sizeof b->hourglass_viscous, 1};
+    f[k++] = (wff_state_field){B->ply_gap, sizeof(double), (size_t)B->n_ply_nodes};
+    f[k++] = (wff_state_field){B->ply_held, sizeof(double), (size_t)B->n_ply_nodes};
     f[k++] = (wff_state_field){&B->run, sizeof B->run, 1};
     return k;
 }

@@ -32,6 +32,10 @@ struct wff_backing {
     int *ply_nodes, n_ply_nodes; /* the back ply's nodes that may touch the block */
     double *ply_area;        /* per back-ply node (as ply_nodes): its tributary area, m²
                                 (the friction's cap: backing_contact.c) */
+    double *ply_gap;         /* per back-ply node: its gap to the face at the last step, m
+                                (0 out of contact) */
+    double *ply_held;        /* per back-ply node: the part of its overlap no approach made
+                                (a jump of the face under it), held, not pushed out, m */
     unsigned char *on_nose;  /* per model node: 1 while the projectile's contact holds it
                                 this step (set and cleared by the ply contact below) */
     wff_face_contacts contacts;

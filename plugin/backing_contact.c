@@ -246,19 +246,33 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
         const int c = C->n;
         double point[3];
         if (locate(b, 0, xs[0], xs[1], C->face + 4 * c, C->weight + 4 * c, point,
-                   C->normal + 3 * c))
+                   C->normal + 3 * c)) {
+            B->ply_gap[t] = 0, B->ply_held[t] = 0;
             continue;
+        }
         const double *n = C->normal + 3 * c;
         const double gap = (xs[0] - point[0]) * n[0] + (xs[1] - point[1]) * n[1] +
                            (xs[2] - point[2]) * n[2] - h;
-        if (gap >= 0)
+        if (gap >= 0) {
+            B->ply_gap[t] = 0, B->ply_held[t] = 0;
             continue;
+        }
         C->node[c] = s;
         C->gap[c] = gap;
         C->lambda[c] = 0;
         C->impulse[3 * c] = C->impulse[3 * c + 1] = C->impulse[3 * c + 2] = 0;
         C->n++;
         deepest = fmax(deepest, -gap);
+        /* an overlap that grew by more than the approach could make (twice
+         * the normal closing speed over the step) came from a jump of the
+         * face under the node: held, the spring on the rest */
+        double rel[3];
+        const double closing = fmax(0, -normal_speed(m, b, C, c, rel));
+        const double jump = (B->ply_gap[t] - gap) - 2 * closing * dt;
+        if (jump > 0)
+            B->ply_held[t] += jump;
+        B->ply_held[t] = fmin(B->ply_held[t], -gap);
+        B->ply_gap[t] = gap;
     }
     /* the normal force: a spring on the overlap with a dashpot, each contact's
      * stiffness PENALTY m_s / Δt_0² (its own frequency at most √PENALTY / Δt_0
@@ -270,7 +284,8 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
         const double w = mobility(m, B, c);
         const double stiffness = B->run.stiffness_per_mass * m->mass[D * C->node[c] + WFF_UZ];
         const double damping = 2 * DAMPING * sqrt(stiffness / w);
-        const double force = fmax(0, stiffness * -C->gap[c] - damping * vn);
+        const double held = B->ply_held[C->node[c] - B->ply_nodes[0]];
+        const double force = fmax(0, stiffness * (-C->gap[c] - held) - damping * vn);
         C->lambda[c] = force * dt_mid;
         const double *n = C->normal + 3 * c;
         const double j[3] = {C->lambda[c] * n[0], C->lambda[c] * n[1], C->lambda[c] * n[2]};
