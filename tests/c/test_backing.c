@@ -19,7 +19,12 @@
  *   - A flat top face folded over in x-y (one node moved past its diagonal
  *     neighbour, none in z: a tangled crater) gives a ply resting half its
  *     thickness above it no overlap: the folded faces are skipped, where
- *     their flipped normals gave the plane's overlap. */
+ *     their flipped normals gave the plane's overlap.
+ *   - A face that jumps up under a ply at rest (the top nodes moved 0.5 mm
+ *     into it between two looks, none moving) is an overlap no approach made:
+ *     held, the ply not pushed (its nodes stay at rest, where the spring on
+ *     the whole overlap threw them); a ply then moving down onto it is still
+ *     stopped (the spring on what the approach adds). */
 #include "check.h"
 #include "test_meshes.h"
 #include "wovenff/backing.h"
@@ -159,6 +164,55 @@ static void folded_face_skipped(check_state *st)
     wff_model_free(&m);
 }
 
+/* A face jumping up under a resting ply: its overlap held, an approach still met. */
+static void face_jump_held(check_state *st)
+{
+    wff_model m;
+    wff_error err;
+    const test_rect r = {0, 0.04, 0, 0.04, 16, 16, TEST_MESH_TRI, 1, 0, 0};
+    if (test_model_rect(&m, &r, KEVLAR, &err) ||
+        wff_model_set_option(&m, "backing_depth", 0.02, &err) ||
+        wff_model_set_option(&m, "backing_element", 2e-3, &err) ||
+        wff_model_set_option(&m, "backing", 1, &err) || wff_model_advance(&m, 1e-9, 1, &err)) {
+        CHECK(st, 0, "model: %s", err.message);
+        return;
+    }
+    struct wff_backing *B = m.backing;
+    wff_block *b = &B->block;
+    const double h = 0.5 * wff_ply_thickness(&m), jump = 0.5e-3;
+    for (int k = 0; k < D * m.n_nodes; k++)
+        m.v[k] = 0;
+    for (int k = 0; k < 3 * b->n_nodes; k++)
+        b->v[k] = 0;
+    wff_backing_ply_contact(&m, B, h, m.dt, m.dt_mid); /* the ply resting h above the face */
+    for (int j = 0; j <= b->n[1]; j++)
+        for (int i = 0; i <= b->n[0]; i++)
+            b->u[3 * wff_block_node(b, i, j, 0) + 2] = -jump;
+    const double overlap = wff_backing_ply_contact(&m, B, h, m.dt, m.dt_mid);
+    double thrown = 0;
+    for (int n = 0; n < m.n_nodes; n++)
+        thrown = fmax(thrown, fabs(m.v[D * n + WFF_UZ]));
+    /* then the ply moving down onto it at 1 m/s */
+    const double v0 = 1.0;
+    for (int n = 0; n < m.n_nodes; n++)
+        if (m.dof_kind[D * n + WFF_UZ] == WFF_DOF_FREE)
+            m.v[D * n + WFF_UZ] = v0;
+    wff_backing_ply_contact(&m, B, h, m.dt, m.dt_mid);
+    double slowest = INFINITY;
+    for (int n = 0; n < m.n_nodes; n++)
+        if (m.dof_kind[D * n + WFF_UZ] == WFF_DOF_FREE)
+            slowest = fmin(slowest, m.v[D * n + WFF_UZ]);
+    printf("face jump: the face up %.3g m under the resting ply: overlap seen %.3g m, the ply "
+           "thrown at %.3g m/s; then moving down at %.3g m/s, its slowest node %.4g m/s\n", jump,
+           overlap, thrown, v0, slowest);
+    CHECK(st, fabs(overlap - jump) < 0.05 * jump, "the jump's overlap %g m, not seen as %g m",
+          overlap, jump);
+    CHECK(st, thrown < 1e-12, "a face jumping up threw the resting ply at %g m/s", thrown);
+    CHECK(st, slowest < v0 * (1 - 1e-3), "a ply moving down onto the face was not slowed (%g m/s)",
+          slowest);
+    wff_model_free(&m);
+}
+
 int main(void)
 {
     check_state st = {0, 0};
@@ -221,5 +275,6 @@ int main(void)
     wff_model_free(&m);
     friction_capped(&st);
     folded_face_skipped(&st);
+    face_jump_held(&st);
     return check_summary(&st, "test_backing");
 }
