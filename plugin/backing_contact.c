@@ -9,7 +9,10 @@
  *   along the face's normal is pushed out by a stiff damped spring (a penalty
  *   contact: a force, not a kinematic correction, so that a pack's column,
  *   held kinematically by the ply contact, is slowed through it over a few
- *   steps instead of being corrected back and forth between the two), the
+ *   steps instead of being corrected back and forth between the two) on the
+ *   overlap the approach made (an overlap that grew by a jump of the face
+ *   under the node, more than twice its closing over the step, is held, not
+ *   pushed out: pushed out, it flung nodes off a finer block's faces), the
  *   impulse F Δt_mid n on the node, −N_a of it on the face's nodes; then
  *   Coulomb friction, the tangential slip stopped within μ of the normal
  *   impulse, in one pass. A node the projectile's contact holds on the nose in

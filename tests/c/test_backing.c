@@ -127,19 +127,28 @@ static void friction_capped(check_state *st)
     wff_model_free(&m);
 }
 
+/* A free 4 cm square ply of cells × cells squares on a clay block 2 cm deep
+ * (2 mm elements), one step taken so the block is made: 0, or -1 (checked). */
+static int ply_on_block(check_state *st, wff_model *m, int cells)
+{
+    wff_error err;
+    const test_rect r = {0, 0.04, 0, 0.04, cells, cells, TEST_MESH_TRI, 1, 0, 0};
+    if (test_model_rect(m, &r, KEVLAR, &err) ||
+        wff_model_set_option(m, "backing_depth", 0.02, &err) ||
+        wff_model_set_option(m, "backing_element", 2e-3, &err) ||
+        wff_model_set_option(m, "backing", 1, &err) || wff_model_advance(m, 1e-9, 1, &err)) {
+        CHECK(st, 0, "model: %s", err.message);
+        return -1;
+    }
+    return 0;
+}
+
 /* No overlap from faces folded over in x-y (backing_contact.c's locate). */
 static void folded_face_skipped(check_state *st)
 {
     wff_model m;
-    wff_error err;
-    const test_rect r = {0, 0.04, 0, 0.04, 32, 32, TEST_MESH_TRI, 1, 0, 0};
-    if (test_model_rect(&m, &r, KEVLAR, &err) ||
-        wff_model_set_option(&m, "backing_depth", 0.02, &err) ||
-        wff_model_set_option(&m, "backing_element", 2e-3, &err) ||
-        wff_model_set_option(&m, "backing", 1, &err) || wff_model_advance(&m, 1e-9, 1, &err)) {
-        CHECK(st, 0, "model: %s", err.message);
+    if (ply_on_block(st, &m, 32))
         return;
-    }
     struct wff_backing *B = m.backing;
     wff_block *b = &B->block;
     const double h = 0.5 * wff_ply_thickness(&m);
@@ -168,15 +177,8 @@ static void folded_face_skipped(check_state *st)
 static void face_jump_held(check_state *st)
 {
     wff_model m;
-    wff_error err;
-    const test_rect r = {0, 0.04, 0, 0.04, 16, 16, TEST_MESH_TRI, 1, 0, 0};
-    if (test_model_rect(&m, &r, KEVLAR, &err) ||
-        wff_model_set_option(&m, "backing_depth", 0.02, &err) ||
-        wff_model_set_option(&m, "backing_element", 2e-3, &err) ||
-        wff_model_set_option(&m, "backing", 1, &err) || wff_model_advance(&m, 1e-9, 1, &err)) {
-        CHECK(st, 0, "model: %s", err.message);
+    if (ply_on_block(st, &m, 16))
         return;
-    }
     struct wff_backing *B = m.backing;
     wff_block *b = &B->block;
     const double h = 0.5 * wff_ply_thickness(&m), jump = 0.5e-3;
