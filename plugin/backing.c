@@ -73,7 +73,7 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
     s.centre[1] = m->projectile.active ? m->projectile.axis[1] : 0.5 * (s.y0 + s.y1);
     if (wff_block_create(&B->block, B->law, &s, B->hourglass, err))
         return -1;
-    B->block.hourglass_damping = B->hourglass_damping;
+    wff_block_set_hourglass_damping(&B->block, B->hourglass_damping);
     wff_face_contacts *C = &B->contacts;
     const size_t n = (size_t)per_ply;
     C->max = per_ply;

@@ -139,7 +139,10 @@ static inline double wff_element_area(const wff_elements *el, int e)
     if (e < el->n_tris)
         return el->tri_area[e];
     const double *w = el->quad_weight + WFF_QUAD_POINTS * (e - el->n_tris);
-    return w[0] + w[1] + w[2] + w[3];
+    double area = 0;
+    for (int q = 0; q < WFF_QUAD_POINTS; q++)
+        area += w[q];
+    return area;
 }
 
 /* Element e's characteristic length for yarn failure's crack band

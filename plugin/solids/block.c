@@ -124,6 +124,7 @@ int wff_block_create(wff_block *b, int law, const wff_block_shape *s, double hou
     b->hex = malloc(8 * ne * sizeof(int));
     b->ref = malloc(ne * sizeof(wff_hex8_ref));
     b->hourglass_k = malloc(ne * sizeof(double));
+    b->hourglass_c = calloc(4 * ne, sizeof(double));
     const size_t top = (size_t)(b->n[0] + 1) * (b->n[1] + 1);
     b->contact_node = malloc(top * sizeof(int));
     b->contact_depth = malloc(top * sizeof(double));
@@ -135,7 +136,7 @@ int wff_block_create(wff_block *b, int law, const wff_block_shape *s, double hou
     else
         b->gelatin_state = calloc(ne, sizeof(wff_gelatin_state));
     if (!b->X || !b->u || !b->v || !b->f || !b->mass || !b->held || !b->hex || !b->ref ||
-        !b->hourglass_k || !b->contact_node || !b->contact_depth ||
+        !b->hourglass_k || !b->hourglass_c || !b->contact_node || !b->contact_depth ||
         !b->contact_normal || !b->contact_speed || !b->contact_lambda || (!b->clay_state && !b->gelatin_state)) {
         wff_block_free(b);
         return wff_fail(err, "backing block: out of memory (%ld elements)", elements);
@@ -178,7 +179,7 @@ void wff_block_free(wff_block *b)
     for (int d = 0; d < 3; d++)
         free(b->grid[d]);
     free(b->X), free(b->u), free(b->v), free(b->f), free(b->mass), free(b->held);
-    free(b->hex), free(b->ref), free(b->hourglass_k);
+    free(b->hex), free(b->ref), free(b->hourglass_k), free(b->hourglass_c);
     free(b->clay_state), free(b->gelatin_state);
     free(b->contact_node), free(b->contact_depth), free(b->contact_normal);
     free(b->contact_speed), free(b->contact_lambda);
@@ -191,6 +192,14 @@ double wff_block_surface_shear_strength(const wff_block *b, int i, int j)
         return INFINITY;
     const wff_clay_state *s = &b->clay_state[i + b->n[0] * j]; /* (k = 0: the top layer) */
     return wff_clay_yield(&b->clay, s->eq_plastic, s->plastic_rate) / sqrt(3.0);
+}
+
+void wff_block_set_hourglass_damping(wff_block *b, double ratio)
+{
+    b->hourglass_damping = ratio;
+    for (int e = 0; e < b->n_elements; e++)
+        wff_hex8_hourglass_dashpots(&b->ref[e], b->hourglass_k[e], b->density * b->ref[e].volume / 8,
+                                    ratio, b->hourglass_c + 4 * e);
 }
 
 int wff_block_forces(wff_block *b, double dt, int *bad)
@@ -230,9 +239,7 @@ int wff_block_forces(wff_block *b, double dt, int *bad)
         wff_hex8_forces(r, F, U_inv, stress, fe);
         stored += r->volume * density + wff_hex8_hourglass(r, u, b->hourglass_k[e], fe);
         if (b->hourglass_damping > 0)
-            hourglass_viscous += dt * wff_hex8_hourglass_damping(r, v, b->hourglass_k[e],
-                                                                 b->density * r->volume / 8,
-                                                                 b->hourglass_damping, fe);
+            hourglass_viscous += dt * wff_hex8_hourglass_damping(r, v, b->hourglass_c + 4 * e, fe);
         if (b->viscosity[0] > 0 || b->viscosity[1] > 0)
             viscous += dt * wff_hex8_bulk_viscosity(r, F, J, v, b->density, b->wave_speed,
                                                     b->viscosity[0], b->viscosity[1], fe);

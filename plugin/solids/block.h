@@ -37,7 +37,8 @@ typedef struct wff_block {
     wff_clay_params clay;
     wff_gelatin_params gelatin;
     double hourglass;            /* κ of the hourglass springs */
-    double hourglass_damping;    /* ζ of the hourglass dashpots (hex8.h; 0 by default: none) */
+    double hourglass_damping;    /* ζ of the hourglass dashpots (hex8.h; 0 by default: none;
+                                    wff_block_set_hourglass_damping) */
     double viscosity[2];         /* the bulk viscosity's linear and quadratic factors b1, b2
                                     (hex8.h; 0.06, 1.2 by default) */
     double density, wave_speed, shear; /* of the law: kg/m³, m/s, Pa */
@@ -50,6 +51,7 @@ typedef struct wff_block {
     int *hex;                    /* 8 nodes an element (hex8.h's order) */
     wff_hex8_ref *ref;           /* an element's reference shape */
     double *hourglass_k;         /* an element's hourglass stiffness, N/m */
+    double *hourglass_c;         /* an element's 4 hourglass dashpots, N s/m */
     wff_clay_state *clay_state;  /* an element's (clay), or NULL */
     wff_gelatin_state *gelatin_state; /* an element's (gelatin), or NULL */
     /* the top face's contacts with a rigid body (backing_contact.c), a slot a top node */
@@ -88,6 +90,10 @@ double wff_block_surface_shear_strength(const wff_block *b, int i, int j);
  * the stress of the states as they are; the viscosity's work over dt at that
  * power); b->stored and b->dissipated follow. -1 with *bad the element (from 0) whose
  * deformation is inverted or not finite, nothing of the states changed. */
+/* The hourglass dashpots at the fraction ζ (>= 0) of critical damping
+ * (hex8.h), their coefficients set once for every element. */
+void wff_block_set_hourglass_damping(wff_block *b, double ratio);
+
 int wff_block_forces(wff_block *b, double dt, int *bad);
 
 /* The block's stable step, s, at b->u (INFINITY for no element), the element

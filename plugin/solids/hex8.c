@@ -249,26 +249,34 @@ double wff_hex8_hourglass(const wff_hex8_ref *r, const double u[WFF_HEX_NODES][3
     return energy;
 }
 
-double wff_hex8_hourglass_damping(const wff_hex8_ref *r, const double v[WFF_HEX_NODES][3],
-                                  double k, double node_mass, double ratio,
-                                  double f[WFF_HEX_NODES][3])
+void wff_hex8_hourglass_dashpots(const wff_hex8_ref *r, double k, double node_mass, double ratio,
+                                 double c[4])
 {
-    if (k == 0 || ratio == 0 || node_mass <= 0)
-        return 0;
-    const double critical = 2 * sqrt(k * node_mass);
+    const int none = k == 0 || ratio == 0 || node_mass <= 0;
+    const double critical = none ? 0 : 2 * sqrt(k * node_mass);
+    for (int al = 0; al < 4; al++) {
+        double norm = 0;
+        for (int a = 0; a < WFF_HEX_NODES; a++)
+            norm += r->gamma[al][a] * r->gamma[al][a];
+        c[al] = none ? 0 : ratio * critical / sqrt(norm);
+    }
+}
+
+double wff_hex8_hourglass_damping(const wff_hex8_ref *r, const double v[WFF_HEX_NODES][3],
+                                  const double c[4], double f[WFF_HEX_NODES][3])
+{
     double power = 0;
     for (int al = 0; al < 4; al++) {
-        double rate[3] = {0, 0, 0}, norm = 0;
-        for (int a = 0; a < WFF_HEX_NODES; a++) {
-            norm += r->gamma[al][a] * r->gamma[al][a];
-            for (int i = 0; i < 3; i++)
-                rate[i] += r->gamma[al][a] * v[a][i];
-        }
-        const double c = ratio * critical / sqrt(norm);
-        power += c * (rate[0] * rate[0] + rate[1] * rate[1] + rate[2] * rate[2]);
+        if (c[al] == 0)
+            continue;
+        double rate[3] = {0, 0, 0};
         for (int a = 0; a < WFF_HEX_NODES; a++)
             for (int i = 0; i < 3; i++)
-                f[a][i] -= c * r->gamma[al][a] * rate[i];
+                rate[i] += r->gamma[al][a] * v[a][i];
+        power += c[al] * (rate[0] * rate[0] + rate[1] * rate[1] + rate[2] * rate[2]);
+        for (int a = 0; a < WFF_HEX_NODES; a++)
+            for (int i = 0; i < 3; i++)
+                f[a][i] -= c[al] * r->gamma[al][a] * rate[i];
     }
     return power;
 }

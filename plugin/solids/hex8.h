@@ -61,16 +61,20 @@ double wff_hex8_hourglass(const wff_hex8_ref *r, const double u[WFF_HEX_NODES][3
 
 /* Viscous hourglass damping beside the springs: each hourglass mode α of the
  * element a dashpot on its rate q̇_α = Σ_a γ_αa v_a (v the nodal velocities,
- * m/s), force −c_α γ_αa q̇_α, c_α = 2 ζ √(k m_node) / |γ_α| (N s/m): the
- * fraction ζ of the critical damping of that mode's oscillator (the spring k
- * on the element's lumped node masses m_node, kg, alone), so that ζ = 1 stops
- * an hourglass mode's ringing within its period. Like the springs it acts on
- * no linear velocity field (γ_α is orthogonal to them): a rigid motion or a
- * uniform strain rate meets no force. Adds its forces to f and returns the
- * power it dissipates, Σ_α c_α |q̇_α|² >= 0, W. */
+ * m/s), force −c_α γ_αa q̇_α. The coefficients, once per element:
+ * c_α = 2 ζ √(k m_node) / |γ_α| (N s/m), the fraction ζ of the critical
+ * damping of that mode's oscillator (the spring k on the element's lumped
+ * node masses m_node, kg, alone), so that ζ = 1 stops an hourglass mode's
+ * ringing within its period (all 0 for k, ζ or m_node 0). */
+void wff_hex8_hourglass_dashpots(const wff_hex8_ref *r, double k, double node_mass, double ratio,
+                                 double c[4]);
+
+/* The dashpots' forces at the velocities v, added to f; returns the power
+ * they dissipate, Σ_α c_α |q̇_α|² >= 0, W. Like the springs they act on no
+ * linear velocity field (γ_α is orthogonal to them): a rigid motion or a
+ * uniform strain rate meets no force. */
 double wff_hex8_hourglass_damping(const wff_hex8_ref *r, const double v[WFF_HEX_NODES][3],
-                                  double k, double node_mass, double ratio,
-                                  double f[WFF_HEX_NODES][3]);
+                                  const double c[4], double f[WFF_HEX_NODES][3]);
 
 /* Bulk viscosity (the explicit codes' artificial viscosity, von Neumann &
  * Richtmyer's quadratic term with a linear one; the factors Abaqus/Explicit

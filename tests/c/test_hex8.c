@@ -158,7 +158,7 @@ static void affine_and_rotation(check_state *st)
     CHECK(st, most < 1e-10 * p->youngs * 0.01 * 4e-6, "a rigid rotation's forces %g N", most);
 }
 
-/* The hourglass dashpots (wff_hex8_hourglass_damping): no force on an affine
+/* The hourglass dashpots (wff_hex8_hourglass_dashpots, _damping): no force on an affine
  * velocity field (a rigid motion or a uniform strain rate), their power the
  * work rate −Σ f·v of their forces and >= 0 on random velocities; and one
  * hourglass mode of a cube, free but for its springs and dashpots, integrated
@@ -188,7 +188,9 @@ static void hourglass_dashpots(check_state *st)
             scale = fmax(scale, fabs(v[a][i]));
         }
     memset(f, 0, sizeof f);
-    const double power = wff_hex8_hourglass_damping(&ref, v, k, node_mass, 1.0, f);
+    double c[4];
+    wff_hex8_hourglass_dashpots(&ref, k, node_mass, 1.0, c);
+    const double power = wff_hex8_hourglass_damping(&ref, v, c, f);
     double most = 0;
     for (int a = 0; a < 8; a++)
         for (int c = 0; c < 3; c++)
@@ -202,7 +204,8 @@ static void hourglass_dashpots(check_state *st)
             for (int c = 0; c < 3; c++)
                 v[a][c] = wff_rng_uniform(&r, -1, 1);
         memset(f, 0, sizeof f);
-        const double P = wff_hex8_hourglass_damping(&ref, v, k, node_mass, 0.7, f);
+        wff_hex8_hourglass_dashpots(&ref, k, node_mass, 0.7, c);
+        const double P = wff_hex8_hourglass_damping(&ref, v, c, f);
         double work = 0;
         for (int a = 0; a < 8; a++)
             for (int c = 0; c < 3; c++)
@@ -224,6 +227,7 @@ static void hourglass_dashpots(check_state *st)
     const double ratios[2] = {0.2, 1.0};
     for (int t = 0; t < 2; t++) {
         const double zeta = ratios[t], dt = period / 4000;
+        wff_hex8_hourglass_dashpots(&ref, k, node_mass, zeta, c);
         double u[8][3] = {{0}}, vel[8][3] = {{0}};
         for (int a = 0; a < 8; a++)
             u[a][2] = 1e-4 * ref.gamma[0][a]; /* s(0) = 1e-4 m, at rest */
@@ -236,7 +240,7 @@ static void hourglass_dashpots(check_state *st)
                     u[a][c] += (n == 1 ? 0 : dt) * vel[a][c];
             double fe[8][3] = {{0}};
             wff_hex8_hourglass(&ref, u, k, fe);
-            wff_hex8_hourglass_damping(&ref, vel, k, node_mass, zeta, fe);
+            wff_hex8_hourglass_damping(&ref, vel, c, fe);
             for (int a = 0; a < 8; a++)
                 for (int c = 0; c < 3; c++)
                     vel[a][c] += (n == 1 ? 0.5 : 1) * dt * fe[a][c] / node_mass;
@@ -402,7 +406,8 @@ static void drop_test(check_state *st)
     wff_block b;
     wff_error err;
     CHECK(st, wff_block_create(&b, WFF_BLOCK_CLAY, &shape, 0.05, &err) == 0, "%s", err.message);
-    b.hourglass_damping = 1; /* the backing's default (plugin/backing.c): 20.47 mm without */
+    wff_block_set_hourglass_damping(&b, 1); /* the backing's default (plugin/backing.c): 20.47 mm
+                                                without */
     int worst, bad;
     double dt = 0.8 * wff_block_stable_step(&b, &worst), dt_before = 0, dt_taken = 0;
     sphere s = {R, -R};
