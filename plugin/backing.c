@@ -73,6 +73,8 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
     s.centre[1] = m->projectile.active ? m->projectile.axis[1] : 0.5 * (s.y0 + s.y1);
     if (wff_block_create(&B->block, B->law, &s, B->hourglass, err))
         return -1;
+    if (B->integration && wff_block_integrate_fully(&B->block, err))
+        return -1;
     wff_block_set_hourglass_damping(&B->block, B->hourglass_damping);
     wff_face_contacts *C = &B->contacts;
     const size_t n = (size_t)per_ply;
@@ -156,6 +158,8 @@ RANGE_CHECK(check_mu, "backing_mu", value >= 0, "must be a friction coefficient 
 RANGE_CHECK(check_hourglass, "backing_hourglass", value >= 0 && value <= 1, "must be in [0, 1]")
 RANGE_CHECK(check_hourglass_damping, "backing_hourglass_damping", value >= 0 && value <= 2,
             "must be in [0, 2] (a fraction of critical damping)")
+RANGE_CHECK(check_integration, "backing_integration", value == 0 || value == 1,
+            "must be 0 (one point, hourglass control) or 1 (fully integrated, F-bar)")
 RANGE_CHECK(check_gap, "backing_gap", value >= 0 && value <= 1, "must be in [0, 1] m")
 
 #define APPLY(fn, field, convert)                                 \
@@ -178,6 +182,7 @@ APPLY(apply_mu, mu, AS_IS)
 APPLY(apply_hourglass, hourglass, AS_IS)
 APPLY(apply_gap, gap, AS_IS)
 APPLY(apply_hourglass_damping, hourglass_damping, AS_IS)
+APPLY(apply_integration, integration, AS_INT)
 
 static const wff_setting backing_settings[] = {
     {"backing", check_law, apply_law},
@@ -188,6 +193,7 @@ static const wff_setting backing_settings[] = {
     {"backing_hourglass", check_hourglass, apply_hourglass},
     {"backing_gap", check_gap, apply_gap},
     {"backing_hourglass_damping", check_hourglass_damping, apply_hourglass_damping},
+    {"backing_integration", check_integration, apply_integration},
     {NULL, NULL, NULL},
 };
 
@@ -460,7 +466,7 @@ static int backing_state_fields(wff_model *m, wff_state_field *f)
     if (!B || (!B->built && build(m, B, &err)))
         return 0;
     wff_block *b = &B->block;
-    const size_t nd = 3 * (size_t)b->n_nodes, ne = (size_t)b->n_elements;
+    const size_t nd = 3 * (size_t)b->n_nodes, ne = (size_t)b->n_elements * b->points;
     int k = 0;
     f[k++] = (wff_state_field){b->u, sizeof(double), nd};
     f[k++] = (wff_state_field){b->v, sizeof(double), nd};
@@ -485,7 +491,8 @@ static uint64_t backing_fingerprint(const wff_model *m, uint64_t g)
         return g;
     const double settings[8] = {B->law, B->depth, B->finest, B->growth, B->mu, B->hourglass,
                                 B->gap, B->hourglass_damping};
-    return wff_fnv1a(g, settings, sizeof settings);
+    g = wff_fnv1a(g, settings, sizeof settings);
+    return B->integration ? wff_fnv1a(g, &B->integration, sizeof B->integration) : g;
 }
 
 static int backing_refuses_remesh(const wff_model *m, char *why, size_t size)

@@ -27,6 +27,8 @@ struct wff_backing {
                                 backing_element (m), backing_growth, backing_mu,
                                 backing_hourglass, backing_gap (m) */
     double hourglass_damping; /* the setting backing_hourglass_damping (ζ, hex8.h) */
+    int integration;         /* the setting backing_integration: 0 the one-point element with
+                                hourglass control, 1 fully integrated (F-bar; hex8.h) */
     int built;               /* 1: the block is made (at the run's first step) */
     wff_block block;
     int *ply_nodes, n_ply_nodes; /* the back ply's nodes that may touch the block */

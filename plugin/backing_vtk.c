@@ -76,8 +76,12 @@ int wff_model_backing_vtk(const wff_model *m, const char *path, wff_error *err)
     }
     put(&t, "</PointData>\n<CellData Scalars=\"eq_plastic_strain\">\n"
             "<DataArray type=\"Float64\" Name=\"eq_plastic_strain\" format=\"ascii\">\n");
-    for (int e = 0; e < b->n_elements; e++)
-        put(&t, "%.9g\n", b->clay_state ? b->clay_state[e].eq_plastic : 0.0);
+    for (int e = 0; e < b->n_elements; e++) { /* (fully integrated: its points' mean) */
+        double sum = 0;
+        for (int g = 0; g < b->points && b->clay_state; g++)
+            sum += b->clay_state[b->points * e + g].eq_plastic;
+        put(&t, "%.9g\n", sum / b->points);
+    }
     put(&t, "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
     int rc = t.failed ? wff_fail(err, "%s: out of memory", path)
                       : wff_write_whole(path, t.data, t.used, err);

@@ -71,6 +71,7 @@ int wff_block_create(wff_block *b, int law, const wff_block_shape *s, double hou
     if (!(hourglass >= 0) || !(hourglass <= 1))
         return wff_fail(err, "backing_hourglass = %g: must be in [0, 1]", hourglass);
     b->law = law;
+    b->points = 1;
     b->hourglass = hourglass;
     b->viscosity[0] = 0.06, b->viscosity[1] = 1.2;
     b->clay = wff_clay_roma_plastilina;
@@ -179,19 +180,102 @@ void wff_block_free(wff_block *b)
     for (int d = 0; d < 3; d++)
         free(b->grid[d]);
     free(b->X), free(b->u), free(b->v), free(b->f), free(b->mass), free(b->held);
-    free(b->hex), free(b->ref), free(b->hourglass_k), free(b->hourglass_c);
+    free(b->hex), free(b->ref), free(b->hourglass_k), free(b->hourglass_c), free(b->full);
     free(b->clay_state), free(b->gelatin_state);
     free(b->contact_node), free(b->contact_depth), free(b->contact_normal);
     free(b->contact_speed), free(b->contact_lambda);
     memset(b, 0, sizeof *b);
 }
 
+int wff_block_integrate_fully(wff_block *b, wff_error *err)
+{
+    const size_t ne = (size_t)b->n_elements;
+    b->full = malloc(ne * sizeof(wff_hex8_full));
+    void *states = b->clay_state ? calloc(WFF_HEX_POINTS * ne, sizeof(wff_clay_state))
+                                 : calloc(WFF_HEX_POINTS * ne, sizeof(wff_gelatin_state));
+    if (!b->full || !states) {
+        free(states);
+        wff_block_free(b);
+        return wff_fail(err, "backing block: out of memory (%ld fully integrated elements)",
+                        (long)ne);
+    }
+    if (b->clay_state)
+        free(b->clay_state), b->clay_state = states;
+    else
+        free(b->gelatin_state), b->gelatin_state = states;
+    b->points = WFF_HEX_POINTS;
+    for (int e = 0; e < b->n_elements; e++) {
+        double X[8][3];
+        for (int a = 0; a < 8; a++)
+            memcpy(X[a], b->X + 3 * b->hex[8 * e + a], sizeof X[a]);
+        wff_hex8_full_reference(X, &b->full[e]); /* (a box: never inverted) */
+        b->hourglass_k[e] = 0;
+        for (int al = 0; al < 4; al++)
+            b->hourglass_c[4 * e + al] = 0;
+    }
+    return 0;
+}
+
 double wff_block_surface_shear_strength(const wff_block *b, int i, int j)
 {
     if (!b->clay_state)
         return INFINITY;
-    const wff_clay_state *s = &b->clay_state[i + b->n[0] * j]; /* (k = 0: the top layer) */
-    return wff_clay_yield(&b->clay, s->eq_plastic, s->plastic_rate) / sqrt(3.0);
+    const int e = i + b->n[0] * j; /* (k = 0: the top layer) */
+    if (b->points == 1) {
+        const wff_clay_state *s = &b->clay_state[e];
+        return wff_clay_yield(&b->clay, s->eq_plastic, s->plastic_rate) / sqrt(3.0);
+    }
+    double sum = 0; /* the points at ζ = −1, the top face (g = 0..3) */
+    for (int g = 0; g < 4; g++) {
+        const wff_clay_state *s = &b->clay_state[WFF_HEX_POINTS * e + g];
+        sum += wff_clay_yield(&b->clay, s->eq_plastic, s->plastic_rate);
+    }
+    return sum / 4 / sqrt(3.0);
+}
+
+/* The law at one point: its state advanced over dt (0: held) to the strain,
+ * the stress into `stress`; adds V × its dissipation so far to *dissipated;
+ * returns V × its stored energy density, J. */
+static double law_at(wff_block *b, int point, const double strain[6], double dt, double volume,
+                     double stress[6], double *dissipated)
+{
+    if (b->clay_state) {
+        wff_clay_state *s = &b->clay_state[point];
+        if (dt > 0)
+            wff_clay_update(&b->clay, strain, dt, s, s, stress);
+        else
+            wff_clay_stress(&b->clay, strain, s, stress);
+        *dissipated += volume * s->dissipated;
+        return volume * wff_clay_energy(&b->clay, strain, s);
+    } else {
+        wff_gelatin_state *s = &b->gelatin_state[point];
+        wff_gelatin_update(&b->gelatin, strain, dt, s, s, stress);
+        *dissipated += volume * s->dissipated;
+        return volume * wff_gelatin_energy(&b->gelatin, strain, s);
+    }
+}
+
+static int finite6(const double a[6])
+{
+    return isfinite(a[0] + a[1] + a[2] + a[3] + a[4] + a[5]);
+}
+
+/* The fully integrated element e's forces into fe (added) at the centre's F:
+ * 0, or -1 if a point is inverted or its strain not finite. */
+static int full_element(wff_block *b, int e, const double u[8][3], const double F_centre[9],
+                        double dt, double fe[8][3], double *stored, double *dissipated)
+{
+    const wff_hex8_full *r = &b->full[e];
+    for (int g = 0; g < WFF_HEX_POINTS; g++) {
+        double F[9], F_bar[9], strain[6], U_inv[9], stress[6];
+        if (!(wff_hex8_fbar(r, g, u, F_centre, F, F_bar) > 0))
+            return -1;
+        if (!(wff_hencky(F_bar, strain, U_inv) > 0) || !finite6(strain))
+            return -1;
+        *stored += law_at(b, WFF_HEX_POINTS * e + g, strain, dt, r->volume[g], stress, dissipated);
+        wff_hex8_fbar_forces(&b->ref[e], r, g, F_centre, F, F_bar, U_inv, stress, fe);
+    }
+    return 0;
 }
 
 void wff_block_set_hourglass_damping(wff_block *b, double ratio)
@@ -216,28 +300,21 @@ int wff_block_forces(wff_block *b, double dt, int *bad)
         }
         wff_hex8_gradient(r, u, F);
         const double J = wff_hencky(F, strain, U_inv);
-        if (!(J > 0) || !isfinite(strain[0] + strain[1] + strain[2] + strain[3] + strain[4] +
-                                  strain[5])) {
+        if (!(J > 0) || !finite6(strain)) {
             *bad = e;
             return -1;
         }
-        double density;
-        if (b->clay_state) {
-            wff_clay_state *s = &b->clay_state[e];
-            if (dt > 0)
-                wff_clay_update(&b->clay, strain, dt, s, s, stress);
-            else
-                wff_clay_stress(&b->clay, strain, s, stress);
-            density = wff_clay_energy(&b->clay, strain, s);
-            dissipated += r->volume * s->dissipated;
+        if (b->full) {
+            memset(fe, 0, sizeof fe);
+            if (full_element(b, e, u, F, dt, fe, &stored, &dissipated)) {
+                *bad = e;
+                return -1;
+            }
         } else {
-            wff_gelatin_state *s = &b->gelatin_state[e];
-            wff_gelatin_update(&b->gelatin, strain, dt, s, s, stress);
-            density = wff_gelatin_energy(&b->gelatin, strain, s);
-            dissipated += r->volume * s->dissipated;
+            const double energy = law_at(b, e, strain, dt, r->volume, stress, &dissipated);
+            wff_hex8_forces(r, F, U_inv, stress, fe);
+            stored += energy + wff_hex8_hourglass(r, u, b->hourglass_k[e], fe);
         }
-        wff_hex8_forces(r, F, U_inv, stress, fe);
-        stored += r->volume * density + wff_hex8_hourglass(r, u, b->hourglass_k[e], fe);
         if (b->hourglass_damping > 0)
             hourglass_viscous += dt * wff_hex8_hourglass_damping(r, v, b->hourglass_c + 4 * e, fe);
         if (b->viscosity[0] > 0 || b->viscosity[1] > 0)
@@ -265,7 +342,10 @@ double wff_block_stable_step(const wff_block *b, int *worst)
             memcpy(u[a], b->u + 3 * node[a], sizeof u[a]);
         wff_hex8_gradient(&b->ref[e], u, F);
         const double node_mass = b->density * b->ref[e].volume / 8;
-        const double bare = wff_hex8_stable_step(&b->ref[e], F, b->wave_speed, b->hourglass_k[e],
+        const double bare = b->full ? wff_hex8_full_stable_step(&b->ref[e], &b->full[e], u,
+                                                                 b->density, b->wave_speed,
+                                                                 b->shear)
+                                    : wff_hex8_stable_step(&b->ref[e], F, b->wave_speed, b->hourglass_k[e],
                                                  node_mass);
         /* the damping's fraction of critical at the highest frequency 2/bare: the
          * bulk viscosity's b1 and the hourglass dashpots' ζ ω_hg/ω_max */

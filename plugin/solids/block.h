@@ -50,10 +50,13 @@ typedef struct wff_block {
     unsigned char *held;         /* 3 a node: 1 where the box holds the DOF */
     int *hex;                    /* 8 nodes an element (hex8.h's order) */
     wff_hex8_ref *ref;           /* an element's reference shape */
+    int points;                  /* law states an element: 1 (the one-point element) or
+                                    WFF_HEX_POINTS (fully integrated, wff_block_integrate_fully) */
+    wff_hex8_full *full;         /* an element's Gauss points (fully integrated), or NULL */
     double *hourglass_k;         /* an element's hourglass stiffness, N/m */
     double *hourglass_c;         /* an element's 4 hourglass dashpots, N s/m */
-    wff_clay_state *clay_state;  /* an element's (clay), or NULL */
-    wff_gelatin_state *gelatin_state; /* an element's (gelatin), or NULL */
+    wff_clay_state *clay_state;  /* `points` an element (clay), or NULL */
+    wff_gelatin_state *gelatin_state; /* `points` an element (gelatin), or NULL */
     /* the top face's contacts with a rigid body (backing_contact.c), a slot a top node */
     int *contact_node;
     double *contact_depth, *contact_normal, *contact_speed, *contact_lambda;
@@ -73,6 +76,12 @@ int wff_block_create(wff_block *b, int law, const wff_block_shape *shape, double
                      wff_error *err);
 void wff_block_free(wff_block *b);
 
+/* The block's elements made fully integrated (hex8.h's wff_hex8_full: eight
+ * Gauss points with F-bar, a law state at each, no hourglass springs or
+ * dashpots), at rest, before its first force pass. 0, or -1 (err set) out of
+ * memory (the block then freed). */
+int wff_block_integrate_fully(wff_block *b, wff_error *err);
+
 /* Node (i, j, k) of the grid, k = 0 the top face. */
 static inline int wff_block_node(const wff_block *b, int i, int j, int k)
 {
@@ -81,8 +90,9 @@ static inline int wff_block_node(const wff_block *b, int i, int j, int k)
 
 /* The shear stress the top face's element under top node (i, j) (its corner
  * of least i, j) can carry before its clay yields, Pa: the J2 law's yield
- * in shear σ_y / √3 at the element's plastic strain and last rate; INFINITY
- * for gelatin (no yield). */
+ * in shear σ_y / √3 at the element's plastic strain and last rate (fully
+ * integrated: the mean of its four top points'); INFINITY for gelatin (no
+ * yield). */
 double wff_block_surface_shear_strength(const wff_block *b, int i, int j);
 
 /* The internal forces at b->u into b->f (written), with the bulk viscosity's

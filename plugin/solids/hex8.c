@@ -313,3 +313,118 @@ double wff_hex8_stable_step(const wff_hex8_ref *r, const double F[9], double wav
     const double omega2 = 8 * wave_speed * wave_speed * sum + hourglass * hourglass;
     return omega2 > 0 ? 2 / sqrt(omega2) : INFINITY;
 }
+
+/* ---- the fully integrated element (2×2×2 Gauss points, F-bar) ---- */
+
+int wff_hex8_full_reference(const double X[WFF_HEX_NODES][3], wff_hex8_full *r)
+{
+    const double at = 1 / sqrt(3.0);
+    for (int g = 0; g < WFF_HEX_POINTS; g++) {
+        double dN[WFF_HEX_NODES][3], J0[9] = {0};
+        for (int a = 0; a < WFF_HEX_NODES; a++)
+            for (int j = 0; j < 3; j++) {
+                /* ∂N_a/∂ξ_j = ξ_aj / 8 Π_{k≠j} (1 + ξ_ak ξ_gk) */
+                double d = natural[a][j] / 8;
+                for (int k = 0; k < 3; k++)
+                    if (k != j)
+                        d *= 1 + natural[a][k] * natural[g][k] * at;
+                dN[a][j] = d;
+            }
+        for (int a = 0; a < WFF_HEX_NODES; a++)
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++)
+                    J0[3 * i + j] += X[a][i] * dN[a][j];
+        const double det = det3(J0);
+        if (!(det > 0))
+            return -1;
+        double inv[9];
+        inverse3(J0, det, inv);
+        for (int a = 0; a < WFF_HEX_NODES; a++)
+            for (int i = 0; i < 3; i++)
+                r->gradient[g][a][i] = inv[i] * dN[a][0] + inv[3 + i] * dN[a][1] +
+                                       inv[6 + i] * dN[a][2];
+        r->volume[g] = det;
+    }
+    return 0;
+}
+
+double wff_hex8_fbar(const wff_hex8_full *r, int g, const double u[WFF_HEX_NODES][3],
+                     const double F_centre[9], double F[9], double F_bar[9])
+{
+    double G[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    for (int a = 0; a < WFF_HEX_NODES; a++)
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                G[3 * i + j] += u[a][i] * r->gradient[g][a][j];
+    memcpy(F, G, sizeof G);
+    const double J = det3(F), J_centre = det3(F_centre);
+    if (!(J > 0) || !(J_centre > 0))
+        return J > 0 ? J_centre : J;
+    const double scale = cbrt(J_centre / J);
+    for (int k = 0; k < 9; k++)
+        F_bar[k] = scale * F[k];
+    return J;
+}
+
+void wff_hex8_fbar_forces(const wff_hex8_ref *centre, const wff_hex8_full *r, int g,
+                          const double F_centre[9], const double F[9], const double F_bar[9],
+                          const double U_inv[9], const double stress[6],
+                          double f[WFF_HEX_NODES][3])
+{
+    double T[9], A[9], S[9], P[9], inv_centre[9], inv[9];
+    sym6_to_3(stress, T);
+    mul3(U_inv, T, A);
+    mul3(A, U_inv, S);   /* S̄ = U⁻¹ τ̄ U⁻¹ */
+    mul3(F_bar, S, P);   /* P̄ = F̄ S̄ */
+    const double J = det3(F), J_centre = det3(F_centre), scale = cbrt(J_centre / J);
+    inverse3(F, J, inv);
+    inverse3(F_centre, J_centre, inv_centre);
+    const double third_trace = (stress[0] + stress[1] + stress[2]) / 3, V = r->volume[g];
+    for (int a = 0; a < WFF_HEX_NODES; a++) {
+        const double *B = r->gradient[g][a], *B0 = centre->gradient[a];
+        for (int i = 0; i < 3; i++) {
+            const double direct = P[3 * i] * B[0] + P[3 * i + 1] * B[1] + P[3 * i + 2] * B[2];
+            /* (F⁻ᵀ B)_i = Σ_j inv[j][i] B_j */
+            const double b = inv[i] * B[0] + inv[3 + i] * B[1] + inv[6 + i] * B[2];
+            const double b0 = inv_centre[i] * B0[0] + inv_centre[3 + i] * B0[1] +
+                              inv_centre[6 + i] * B0[2];
+            f[a][i] -= V * (scale * direct + third_trace * (b0 - b));
+        }
+    }
+}
+
+/* Σ_a |F⁻ᵀ B_a|², the current gradients' squares (0 if F is inverted) */
+static double current_gradient_square(const double F[9], const double B[WFF_HEX_NODES][3])
+{
+    const double J = det3(F);
+    if (!(J > 0))
+        return 0;
+    double inv[9], sum = 0;
+    inverse3(F, J, inv);
+    for (int a = 0; a < WFF_HEX_NODES; a++)
+        for (int i = 0; i < 3; i++) {
+            const double b = inv[i] * B[a][0] + inv[3 + i] * B[a][1] + inv[6 + i] * B[a][2];
+            sum += b * b;
+        }
+    return sum;
+}
+
+double wff_hex8_full_stable_step(const wff_hex8_ref *centre, const wff_hex8_full *r,
+                                 const double u[WFF_HEX_NODES][3], double density,
+                                 double wave_speed, double shear)
+{
+    double F0[9];
+    wff_hex8_gradient(centre, u, F0);
+    if (!(det3(F0) > 0))
+        return 0;
+    const double bulk = fmax(density * wave_speed * wave_speed - 4 * shear / 3, 0);
+    double omega2 = bulk * centre->volume * current_gradient_square(F0, centre->gradient);
+    for (int g = 0; g < WFF_HEX_POINTS; g++) {
+        double F[9], F_bar[9];
+        if (!(wff_hex8_fbar(r, g, u, F0, F, F_bar) > 0))
+            return 0;
+        omega2 += 2 * shear * r->volume[g] * current_gradient_square(F, r->gradient[g]);
+    }
+    omega2 /= density * centre->volume / 8;
+    return omega2 > 0 ? 2 / sqrt(omega2) : INFINITY;
+}

@@ -104,4 +104,51 @@ double wff_hex8_hourglass_frequency(const wff_hex8_ref *r, double k, double node
 double wff_hex8_stable_step(const wff_hex8_ref *r, const double F[9], double wave_speed,
                             double k, double node_mass);
 
+/* ---- the fully integrated element: 2×2×2 Gauss points with F-bar ----
+ * The one-point element's hourglass modes carry a share of a crater's flow
+ * that grows as the block is refined (docs/backing.md "Element"); this is
+ * its reference beside it, with no hourglass mode and no control: the
+ * deviatoric strain at the eight Gauss points ξ = ±1/√3, the volumetric at
+ * the centre (F-bar, de Souza Neto, Perić, Dutko & Owen 1996, Int. J. Solids
+ * Struct. 33: F̄_g = (J_0/J_g)^(1/3) F_g, J_0 = det F at the centre), so the
+ * nearly incompressible plastic flow does not lock either. Stored energy
+ * Σ_g V_g W(ε̄_g) with ε̄_g = ½ ln(F̄_gᵀF̄_g); its forces (the derivative
+ * through J_0 and J_g included) are wff_hex8_fbar_forces'. Eight law states
+ * an element. Costs ~8× the one-point element. */
+#define WFF_HEX_POINTS 8
+
+typedef struct wff_hex8_full {
+    double gradient[WFF_HEX_POINTS][WFF_HEX_NODES][3]; /* B_ga = ∂N_a/∂X at point g, 1/m */
+    double volume[WFF_HEX_POINTS];                     /* V_g = det J0(ξ_g) (weight 1), m³ */
+} wff_hex8_full;
+
+/* The points' reference gradients and volumes; -1 if any point is inverted
+ * or flat. */
+int wff_hex8_full_reference(const double X[WFF_HEX_NODES][3], wff_hex8_full *r);
+
+/* F̄_g = (J_0/J_g)^(1/3) F_g at point g from the nodal displacements u and
+ * the centre's F_0 (wff_hex8_gradient); F_g into F (for the forces). Returns
+ * J_g (<= 0: inverted, F̄ unset). */
+double wff_hex8_fbar(const wff_hex8_full *r, int g, const double u[WFF_HEX_NODES][3],
+                     const double F_centre[9], double F[9], double F_bar[9]);
+
+/* Adds point g's nodal forces −V_g ∂W(F̄_g)/∂u_a to f from the law's
+ * material-frame stress τ̄ at ε̄_g (6 entries) and U⁻¹ of F̄_g (wff_hencky of
+ * F̄_g): −V_g [(J_0/J_g)^(1/3) F̄ S̄ B_ga + ⅓ tr τ̄ (F_0⁻ᵀ B0_a − F_g⁻ᵀ B_ga)],
+ * S̄ = U⁻¹ τ̄ U⁻¹; `centre` the element's one-point reference (B0_a). */
+void wff_hex8_fbar_forces(const wff_hex8_ref *centre, const wff_hex8_full *r, int g,
+                          const double F_centre[9], const double F[9], const double F_bar[9],
+                          const double U_inv[9], const double stress[6],
+                          double f[WFF_HEX_NODES][3]);
+
+/* The fully integrated element's stable step, s: 2/ω with ω² bounded by
+ * [K V0 Σ_a |b0_a|² + 2 G Σ_g V_g Σ_a |b_ga|²] / m_node (the F-bar energy's
+ * volumetric term at the centre and deviatoric terms at the points, each
+ * strain's square bounded by Σ_a |b_a|² Σ_a |u_a|²; b = F⁻ᵀ B at the
+ * current shape), K = ρ c² − 4G/3 from the dilatational wave speed c (m/s),
+ * the density ρ (kg/m³) and the shear modulus G (Pa); m_node = ρ V0 / 8. */
+double wff_hex8_full_stable_step(const wff_hex8_ref *centre, const wff_hex8_full *r,
+                                 const double u[WFF_HEX_NODES][3], double density,
+                                 double wave_speed, double shear);
+
 #endif
