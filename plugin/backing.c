@@ -41,8 +41,8 @@ static void release(struct wff_backing *B)
 {
     wff_block_free(&B->block);
     wff_face_contacts *C = &B->contacts;
-    free(C->node), free(C->face), free(C->weight), free(C->normal), free(C->gap);
-    free(C->lambda), free(C->impulse);
+    free(C->node), free(C->slot), free(C->face), free(C->weight), free(C->normal), free(C->gap);
+    free(C->lambda), free(C->bound), free(C->impulse);
     free(B->ply_nodes), free(B->ply_area), free(B->block_impulse), free(B->on_nose);
     free(B->ply_gap), free(B->ply_held);
     B->ply_gap = NULL, B->ply_held = NULL;
@@ -77,22 +77,24 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
         return -1;
     wff_block_set_hourglass_damping(&B->block, B->hourglass_damping);
     wff_face_contacts *C = &B->contacts;
-    const size_t n = (size_t)per_ply;
-    C->max = per_ply;
-    C->node = malloc(n * sizeof(int));
-    C->face = malloc(4 * n * sizeof(int));
-    C->weight = malloc(4 * n * sizeof(double));
-    C->normal = malloc(3 * n * sizeof(double));
-    C->gap = malloc(n * sizeof(double));
-    C->lambda = malloc(n * sizeof(double));
-    C->impulse = malloc(3 * n * sizeof(double));
+    const size_t n = (size_t)per_ply, points = WFF_FOOTPRINT_POINTS * n;
+    C->max = (int)points;
+    C->node = malloc(points * sizeof(int));
+    C->slot = malloc(points * sizeof(int));
+    C->face = malloc(4 * points * sizeof(int));
+    C->weight = malloc(4 * points * sizeof(double));
+    C->normal = malloc(3 * points * sizeof(double));
+    C->gap = malloc(points * sizeof(double));
+    C->lambda = malloc(points * sizeof(double));
+    C->bound = malloc(points * sizeof(double));
+    C->impulse = malloc(3 * points * sizeof(double));
     B->ply_nodes = malloc(n * sizeof(int));
     B->ply_area = calloc(n, sizeof(double));
-    B->ply_gap = calloc(n, sizeof(double));
-    B->ply_held = calloc(n, sizeof(double));
+    B->ply_gap = calloc(points, sizeof(double));
+    B->ply_held = calloc(points, sizeof(double));
     B->block_impulse = calloc(3 * (size_t)B->block.n_nodes, sizeof(double));
     B->on_nose = calloc((size_t)m->n_nodes, 1);
-    if (!C->node || !C->face || !C->weight || !C->normal || !C->gap || !C->lambda ||
+    if (!C->node || !C->slot || !C->face || !C->weight || !C->normal || !C->gap || !C->lambda || !C->bound ||
         !C->impulse || !B->ply_nodes || !B->ply_area || !B->block_impulse || !B->on_nose ||
         !B->ply_gap || !B->ply_held) {
         release(B);
@@ -478,8 +480,9 @@ static int backing_state_fields(wff_model *m, wff_state_field *f)
     f[k++] = (wff_state_field){&b->dissipated, sizeof b->dissipated, 1};
     f[k++] = (wff_state_field){&b->viscous, sizeof b->viscous, 1};
     f[k++] = (wff_state_field){&b->hourglass_viscous, sizeof b->hourglass_viscous, 1};
-    f[k++] = (wff_state_field){B->ply_gap, sizeof(double), (size_t)B->n_ply_nodes};
-    f[k++] = (wff_state_field){B->ply_held, sizeof(double), (size_t)B->n_ply_nodes};
+    const size_t points = WFF_FOOTPRINT_POINTS * (size_t)B->n_ply_nodes;
+    f[k++] = (wff_state_field){B->ply_gap, sizeof(double), points};
+    f[k++] = (wff_state_field){B->ply_held, sizeof(double), points};
     f[k++] = (wff_state_field){&B->run, sizeof B->run, 1};
     return k;
 }

@@ -10,14 +10,23 @@
 /* The contacts of one step between the back ply's nodes and the block's top
  * face (node to face: a ply node over the face's bilinear quad), a damped
  * penalty spring with Coulomb friction (backing_contact.c). */
+/* Points of a back-ply node's footprint on the block's face: the centres
+ * of the four quarters of the square of its tributary area (each takes a
+ * quarter of its contact: the node is not a needle on a face finer than the
+ * fabric, backing_contact.c). */
+#define WFF_FOOTPRINT_POINTS 4
+
 typedef struct wff_face_contacts {
     int n, max;            /* this step's contacts; room for */
     int *node;             /* the fabric node */
+    int *slot;             /* its footprint point, WFF_FOOTPRINT_POINTS t + k (t the back-ply
+                              node's index in ply_nodes) */
     int *face;             /* the face's 4 block nodes */
     double *weight;        /* their bilinear weights N_a at the node's point */
     double *normal;        /* the face's unit normal out of the block, 3 */
     double *gap;           /* the gap now (< 0: overlapping), m */
     double *lambda;        /* the normal impulse on the fabric node, N·s */
+    double *bound;         /* the most it may take this step, the spring's F Δt_mid, N·s */
     double *impulse;       /* the impulse on the fabric node, normal and friction, 3 */
 } wff_face_contacts;
 
@@ -34,9 +43,9 @@ struct wff_backing {
     int *ply_nodes, n_ply_nodes; /* the back ply's nodes that may touch the block */
     double *ply_area;        /* per back-ply node (as ply_nodes): its tributary area, m²
                                 (the friction's cap: backing_contact.c) */
-    double *ply_gap;         /* per back-ply node: its gap to the face at the last step, m
-                                (0 out of contact) */
-    double *ply_held;        /* per back-ply node: the part of its overlap no approach made
+    double *ply_gap;         /* per footprint point (slot): its gap to the face at the last
+                                step, m (0 out of contact) */
+    double *ply_held;        /* per footprint point: the part of its overlap no approach made
                                 (a jump of the face under it), held, not pushed out, m */
     unsigned char *on_nose;  /* per model node: 1 while the projectile's contact holds it
                                 this step (set and cleared by the ply contact below) */

@@ -4,16 +4,22 @@
  * solved by Gauss–Seidel sweeps in node order (the same order at any thread or
  * rank count).
  *
- * - The back ply on the block's top face, node to face: a fabric node over a
- *   face quad (its bilinear point under the node) closer than h to the face
- *   along the face's normal is pushed out by a stiff damped spring (a penalty
- *   contact: a force, not a kinematic correction, so that a pack's column,
- *   held kinematically by the ply contact, is slowed through it over a few
- *   steps instead of being corrected back and forth between the two) on the
- *   overlap the approach made (an overlap that grew by a jump of the face
- *   under the node, more than twice its closing over the step, is held, not
- *   pushed out: pushed out, it flung nodes off a finer block's faces), the
- *   impulse F Δt_mid n on the node, −N_a of it on the face's nodes; then
+ * - The back ply on the block's top face, footprint to face: each back-ply
+ *   node's tributary square sampled at its four quarters' centres
+ *   (WFF_FOOTPRINT_POINTS, each a quarter of the node's contact: a node is
+ *   not a needle on a face finer than the fabric); a point over a face quad
+ *   (its bilinear point under it) closer than h to the face along the face's
+ *   normal is slowed by a stiff damped spring (a penalty contact: a force,
+ *   not a kinematic correction, so that a pack's column, held kinematically
+ *   by the ply contact, is slowed through it over a few steps instead of
+ *   being corrected back and forth between the two) on the overlap the
+ *   approach made (an overlap that grew by a jump of the face under the
+ *   point, more than twice its closing over the step, is held, not pushed
+ *   out: pushed out, it flung nodes off a finer block's faces); the spring's
+ *   F Δt_mid is the most a point's impulse may be, and no more than stops its
+ *   approach is taken (projected Gauss–Seidel sweeps: the points' impulses
+ *   the complementarity problem's, none pushing a face that already parts
+ *   from the fabric), λ n on the node, −N_a λ n on the face's nodes; then
  *   Coulomb friction, the tangential slip stopped within μ of the normal
  *   impulse, in one pass. A node the projectile's contact holds on the nose in
  *   this step is pressed between nose and block: it moves with the
@@ -34,6 +40,9 @@
  * sweep below which the sweeps stop (the rigid contact). */
 #define SWEEPS_MAX 100
 #define SWEEP_TOLERANCE 1e-12
+/* The ply-on-block contact's sweeps stop when no contact's impulse changed
+ * its relative speed by more than this, m/s. */
+#define CAPPED_TOLERANCE 1e-3
 /* The ply-on-block contact's spring, (ω Δt)² of a contact's own mode, and its
  * dashpot's fraction of critical damping. */
 #define PENALTY 0.25
@@ -238,7 +247,9 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
      * the nose carries the projectile's mass) */
     if (!(B->run.stiffness_per_mass > 0))
         B->run.stiffness_per_mass = PENALTY / (dt * dt);
-    for (int t = 0; t < B->n_ply_nodes && C->n < C->max; t++) {
+    const double x_lo = b->grid[0][0], x_hi = b->grid[0][b->n[0]];
+    const double y_lo = b->grid[1][0], y_hi = b->grid[1][b->n[1]];
+    for (int t = 0; t < B->n_ply_nodes; t++) {
         const int s = B->ply_nodes[t];
         if (m->dof_kind[D * s + WFF_UZ] != WFF_DOF_FREE)
             continue;
@@ -246,54 +257,91 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
                               m->mesh.xy[2 * s + 1] + m->u[D * s + WFF_UY],
                               m->u[D * s + WFF_UZ]}; /* (a ply's plane is in its u_z:
                                                         include/wovenff/pack.h) */
-        const int c = C->n;
-        double point[3];
-        if (locate(b, 0, xs[0], xs[1], C->face + 4 * c, C->weight + 4 * c, point,
-                   C->normal + 3 * c)) {
-            B->ply_gap[t] = 0, B->ply_held[t] = 0;
-            continue;
+        /* the footprint's points: the node's tributary square's quarters'
+         * centres, reflected into the block's footprint at its sides (held in
+         * their normal direction, frictionless: mirror planes) */
+        const double quarter = 0.25 * sqrt(B->ply_area[t]);
+        for (int k = 0; k < WFF_FOOTPRINT_POINTS && C->n < C->max; k++) {
+            const int slot = WFF_FOOTPRINT_POINTS * t + k;
+            double x[3] = {xs[0] + (k & 1 ? quarter : -quarter),
+                           xs[1] + (k & 2 ? quarter : -quarter), xs[2]};
+            x[0] = x[0] < x_lo ? 2 * x_lo - x[0] : x[0] > x_hi ? 2 * x_hi - x[0] : x[0];
+            x[1] = x[1] < y_lo ? 2 * y_lo - x[1] : x[1] > y_hi ? 2 * y_hi - x[1] : x[1];
+            const int c = C->n;
+            double point[3];
+            if (locate(b, 0, x[0], x[1], C->face + 4 * c, C->weight + 4 * c, point,
+                       C->normal + 3 * c)) {
+                B->ply_gap[slot] = 0, B->ply_held[slot] = 0;
+                continue;
+            }
+            const double *n = C->normal + 3 * c;
+            const double gap = (x[0] - point[0]) * n[0] + (x[1] - point[1]) * n[1] +
+                               (x[2] - point[2]) * n[2] - h;
+            if (gap >= 0) {
+                B->ply_gap[slot] = 0, B->ply_held[slot] = 0;
+                continue;
+            }
+            C->node[c] = s;
+            C->slot[c] = slot;
+            C->gap[c] = gap;
+            C->lambda[c] = 0;
+            C->impulse[3 * c] = C->impulse[3 * c + 1] = C->impulse[3 * c + 2] = 0;
+            C->n++;
+            deepest = fmax(deepest, -gap);
+            /* an overlap that grew by more than the approach could make (twice
+             * the normal closing speed over the step) came from a jump of the
+             * face under the point: held, the spring on the rest */
+            double rel[3];
+            const double closing = fmax(0, -normal_speed(m, b, C, c, rel));
+            const double jump = (B->ply_gap[slot] - gap) - 2 * closing * dt;
+            if (jump > 0)
+                B->ply_held[slot] += jump;
+            B->ply_held[slot] = fmin(B->ply_held[slot], -gap);
+            B->ply_gap[slot] = gap;
         }
-        const double *n = C->normal + 3 * c;
-        const double gap = (xs[0] - point[0]) * n[0] + (xs[1] - point[1]) * n[1] +
-                           (xs[2] - point[2]) * n[2] - h;
-        if (gap >= 0) {
-            B->ply_gap[t] = 0, B->ply_held[t] = 0;
-            continue;
-        }
-        C->node[c] = s;
-        C->gap[c] = gap;
-        C->lambda[c] = 0;
-        C->impulse[3 * c] = C->impulse[3 * c + 1] = C->impulse[3 * c + 2] = 0;
-        C->n++;
-        deepest = fmax(deepest, -gap);
-        /* an overlap that grew by more than the approach could make (twice
-         * the normal closing speed over the step) came from a jump of the
-         * face under the node: held, the spring on the rest */
-        double rel[3];
-        const double closing = fmax(0, -normal_speed(m, b, C, c, rel));
-        const double jump = (B->ply_gap[t] - gap) - 2 * closing * dt;
-        if (jump > 0)
-            B->ply_held[t] += jump;
-        B->ply_held[t] = fmin(B->ply_held[t], -gap);
-        B->ply_gap[t] = gap;
     }
     /* the normal force: a spring on the overlap with a dashpot, each contact's
      * stiffness PENALTY m_s / Δt_0² (its own frequency at most √PENALTY / Δt_0
      * on the node's mass, well within the step's limit beside the fabric's
-     * own), damped at DAMPING of critical, never pulling; its impulse F Δt_mid */
+     * own), damped at DAMPING of critical, never pulling; its impulse F Δt_mid
+     * at most, and at most what stops the approach: projected Gauss–Seidel
+     * sweeps in contact order on 0 <= λ_c <= F_c Δt_mid towards a normal
+     * relative velocity of 0 (the spring slows a node against the face and
+     * never throws the face ahead of the node; pushed by its neighbours'
+     * springs one after the other, a light face node that had already
+     * outrun the fabric was driven to twice the projectile's speed: the
+     * crater's axis node, docs/backing.md) */
     for (int c = 0; c < C->n; c++) {
         double rel[3];
         const double vn = normal_speed(m, b, C, c, rel);
         const double w = mobility(m, B, c);
-        const double stiffness = B->run.stiffness_per_mass * m->mass[D * C->node[c] + WFF_UZ];
-        const double damping = 2 * DAMPING * sqrt(stiffness / w);
-        const double held = B->ply_held[C->node[c] - B->ply_nodes[0]];
-        const double force = fmax(0, stiffness * (-C->gap[c] - held) - damping * vn);
-        C->lambda[c] = force * dt_mid;
-        const double *n = C->normal + 3 * c;
-        const double j[3] = {C->lambda[c] * n[0], C->lambda[c] * n[1], C->lambda[c] * n[2]};
-        if (C->lambda[c] > 0)
+        /* (a footprint point's share: a quarter of the node's spring on a
+         * quarter of its mass, damped at DAMPING of that) */
+        const double share = m->mass[D * C->node[c] + WFF_UZ] / WFF_FOOTPRINT_POINTS;
+        const double stiffness = B->run.stiffness_per_mass * share;
+        const double w_share = w + (WFF_FOOTPRINT_POINTS - 1) / node_mass(m, B, C->node[c]);
+        const double damping = 2 * DAMPING * sqrt(stiffness / w_share);
+        const double held = B->ply_held[C->slot[c]];
+        C->bound[c] = fmax(0, stiffness * (-C->gap[c] - held) - damping * vn) * dt_mid;
+    }
+    for (int sweep = 0; sweep < SWEEPS_MAX; sweep++) {
+        double most = 0;
+        for (int c = 0; c < C->n; c++) {
+            double rel[3];
+            const double vn = normal_speed(m, b, C, c, rel);
+            const double w = mobility(m, B, c);
+            const double lambda = fmin(fmax(C->lambda[c] - vn / w, 0), C->bound[c]);
+            const double change = lambda - C->lambda[c];
+            if (change == 0)
+                continue;
+            C->lambda[c] = lambda;
+            const double *n = C->normal + 3 * c;
+            const double j[3] = {change * n[0], change * n[1], change * n[2]};
             apply(m, B, c, j);
+            most = fmax(most, fabs(change) * w);
+        }
+        if (most <= CAPPED_TOLERANCE)
+            break;
     }
     /* friction: the tangential slip stopped within μ λ, and within what the
      * clay under the face can carry in shear over the node's area (Coulomb
@@ -313,7 +361,7 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
         const double w = mobility(m, B, c);
         const int top = C->face[4 * c], row = b->n[0] + 1; /* the face's corner (i, j, 0) */
         const double strength = wff_block_surface_shear_strength(b, top % row, top / row);
-        const double area = B->ply_area[C->node[c] - B->ply_nodes[0]];
+        const double area = B->ply_area[C->slot[c] / WFF_FOOTPRINT_POINTS] / WFF_FOOTPRINT_POINTS;
         const double stop = slip / w, limit = fmin(B->mu * C->lambda[c], strength * area * dt_mid);
         const double jt = stop < limit ? stop : limit;
         const double j[3] = {-jt * vt[0] / slip, -jt * vt[1] / slip, -jt * vt[2] / slip};
