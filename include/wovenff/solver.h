@@ -535,7 +535,7 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
  * its checksum. Advancing after a load gives the same numbers, bit for bit, as
  * the run that wrote the checkpoint. Same machine type only (native doubles,
  * checked by the byte-order mark). */
-#define WFF_CHECKPOINT_VERSION 10 /* 2: the projectile's impulse_total added; 3: the points'
+#define WFF_CHECKPOINT_VERSION 11 /* 2: the projectile's impulse_total added; 3: the points'
                                     generic state (n_state and names in the header, every
                                     state saved), failure and eroded energies; 4: the
                                     erosion rule (header) and the eroded flags; 5: the
@@ -544,7 +544,9 @@ int wff_model_place_projectile(wff_model *m, double tip, wff_error *err);
                                     its stagger kept (stagger_reference); 8: the stagger's
                                     shift with the step (stagger_shift); 9: the contact
                                     forces (contact_force) and the last Δt_mid; 10: the
-                                    yarn slip's dissipation (dissipated_slip) */
+                                    yarn slip's dissipation (dissipated_slip); 11: the backing
+                                    block's law states a point (fully integrated: eight an
+                                    element) and its contact's overlaps a footprint point */
 int wff_model_save(const wff_model *m, const char *path, wff_error *err);
 int wff_model_load_state(wff_model *m, const char *path, wff_error *err);
 

@@ -189,6 +189,8 @@ void wff_block_free(wff_block *b)
 
 int wff_block_integrate_fully(wff_block *b, wff_error *err)
 {
+    if (b->full)
+        return 0; /* (already) */
     const size_t ne = (size_t)b->n_elements;
     b->full = malloc(ne * sizeof(wff_hex8_full));
     void *states = b->clay_state ? calloc(WFF_HEX_POINTS * ne, sizeof(wff_clay_state))

@@ -418,7 +418,10 @@ double wff_hex8_full_stable_step(const wff_hex8_ref *centre, const wff_hex8_full
     if (!(det3(F0) > 0))
         return 0;
     const double bulk = fmax(density * wave_speed * wave_speed - 4 * shear / 3, 0);
-    double omega2 = bulk * centre->volume * current_gradient_square(F0, centre->gradient);
+    double volume = 0; /* (Σ_g V_g, the element's exact volume; 8 det J0 only on a parallelepiped) */
+    for (int g = 0; g < WFF_HEX_POINTS; g++)
+        volume += r->volume[g];
+    double omega2 = bulk * volume * current_gradient_square(F0, centre->gradient);
     for (int g = 0; g < WFF_HEX_POINTS; g++) {
         double F[9], F_bar[9];
         if (!(wff_hex8_fbar(r, g, u, F0, F, F_bar) > 0))

@@ -128,7 +128,8 @@ int wff_hex8_full_reference(const double X[WFF_HEX_NODES][3], wff_hex8_full *r);
 
 /* F̄_g = (J_0/J_g)^(1/3) F_g at point g from the nodal displacements u and
  * the centre's F_0 (wff_hex8_gradient); F_g into F (for the forces). Returns
- * J_g (<= 0: inverted, F̄ unset). */
+ * J_g > 0, or <= 0 (F̄ unset) if the point (J_g) or the centre (J_0, then
+ * returned) is inverted. */
 double wff_hex8_fbar(const wff_hex8_full *r, int g, const double u[WFF_HEX_NODES][3],
                      const double F_centre[9], double F[9], double F_bar[9]);
 
@@ -142,7 +143,7 @@ void wff_hex8_fbar_forces(const wff_hex8_ref *centre, const wff_hex8_full *r, in
                           double f[WFF_HEX_NODES][3]);
 
 /* The fully integrated element's stable step, s: 2/ω with ω² bounded by
- * [K V0 Σ_a |b0_a|² + 2 G Σ_g V_g Σ_a |b_ga|²] / m_node (the F-bar energy's
+ * [K V Σ_a |b0_a|² + 2 G Σ_g V_g Σ_a |b_ga|²] / m_node, V = Σ_g V_g (the F-bar energy's
  * volumetric term at the centre and deviatoric terms at the points, each
  * strain's square bounded by Σ_a |b_a|² Σ_a |u_a|²; b = F⁻ᵀ B at the
  * current shape), K = ρ c² − 4G/3 from the dilatational wave speed c (m/s),

@@ -196,6 +196,9 @@ static void face_jump_held(check_state *st)
         for (int i = 0; i <= b->n[0]; i++)
             b->u[3 * wff_block_node(b, i, j, 0) + 2] = -jump;
     const double overlap = wff_backing_ply_contact(&m, B, h, m.dt, m.dt_mid);
+    double bound = 0; /* the springs' push on the jump: none (held), k × 0.5 mm without the hold */
+    for (int c = 0; c < B->contacts.n; c++)
+        bound = fmax(bound, B->contacts.bound[c]);
     double thrown = 0;
     for (int n = 0; n < m.n_nodes; n++)
         thrown = fmax(thrown, fabs(m.v[D * n + WFF_UZ]));
@@ -215,6 +218,8 @@ static void face_jump_held(check_state *st)
     CHECK(st, fabs(overlap - jump) < 0.05 * jump, "the jump's overlap %g m, not seen as %g m",
           overlap, jump);
     CHECK(st, thrown < 1e-12, "a face jumping up threw the resting ply at %g m/s", thrown);
+    CHECK(st, bound < 1e-12, "the springs would push the jump out: an impulse of up to %g N s",
+          bound);
     CHECK(st, slowest < v0 * (1 - 1e-3), "a ply moving down onto the face was not slowed (%g m/s)",
           slowest);
     wff_model_free(&m);
@@ -222,11 +227,12 @@ static void face_jump_held(check_state *st)
 
 /* A 9 mm bullet's nose (8 g, 4.5 mm round nose) at 400 m/s on a free ply
  * (2.5 mm squares) lying on a face of 4 mm elements, to 5 µs, then one more
- * pass of the ply-on-block contact: its impulses are the complementarity
- * problem's — every footprint point pushed (λ > 0) leaves the pass not
- * separating from the face (v_n <= 0 to the sweeps' tolerance) unless its
- * spring's bound stopped it (then still approaching), none pulls (λ >= 0),
- * none exceeds its bound. The contact before (one pass of springs, each
+ * pass of the ply-on-block contact (no friction: the normal problem alone):
+ * its impulses are the complementarity problem's — every footprint point
+ * pushed (λ > 0) leaves the pass not separating from the face (v_n <= 0 to
+ * the sweeps' tolerance, 1e-3 m/s), every point below its spring's bound
+ * leaves it not approaching (v_n >= 0), none pulls (λ >= 0), none exceeds
+ * its bound. The contact before (one pass of springs, each
  * point its node) pushed points already parting from the face (measured by
  * swapping it in: 8 of 192, 0.016 m/s). The face's fastest node against the
  * bullet is printed, not checked: 1.70 times its speed here (1.77 before; to
@@ -241,6 +247,7 @@ static void contact_complementary(check_state *st)
     if (test_model_rect(&m, &r, KEVLAR, &err) ||
         wff_model_set_option(&m, "backing_depth", 0.02, &err) ||
         wff_model_set_option(&m, "backing_element", 4e-3, &err) ||
+        wff_model_set_option(&m, "backing_mu", 0, &err) || /* (the normal problem alone) */
         wff_model_set_option(&m, "backing", 1, &err) ||
         wff_model_set_projectile(&m, 4.5e-3, 8e-3, speed, 0, &err) ||
         wff_model_set_impact_point(&m, 0.02, 0.02, &err) ||
@@ -252,8 +259,8 @@ static void contact_complementary(check_state *st)
     const wff_block *b = &B->block;
     wff_backing_ply_contact(&m, B, 0.5 * wff_ply_thickness(&m), m.dt, m.dt_mid);
     const wff_face_contacts *C = &B->contacts;
-    int pushed = 0, separating = 0, pulled = 0, over = 0;
-    double worst = 0, fastest = 0;
+    int pushed = 0, separating = 0, pulled = 0, over = 0, approaching = 0;
+    double worst = 0, fastest = 0, closing = 0;
     for (int c = 0; c < C->n; c++) {
         double vn = 0;
         for (int k = 0; k < 3; k++) {
@@ -263,6 +270,8 @@ static void contact_complementary(check_state *st)
             vn += rel * C->normal[3 * c + k];
         }
         pulled += C->lambda[c] < 0;
+        if (C->lambda[c] < C->bound[c] * (1 - 1e-9) && vn < -1e-3) /* free to push, still closing */
+            approaching++, closing = fmax(closing, -vn);
         over += C->lambda[c] > C->bound[c] * (1 + 1e-12);
         if (C->lambda[c] > 0) {
             pushed++;
@@ -281,6 +290,8 @@ static void contact_complementary(check_state *st)
     CHECK(st, pushed > 0, "no footprint point pushed");
     CHECK(st, separating == 0, "%d pushed points parting from the face (worst %g m/s)", separating,
           worst);
+    CHECK(st, approaching == 0, "%d points below their bound still approaching (worst %g m/s)",
+          approaching, closing);
     CHECK(st, pulled == 0 && over == 0, "%d impulses pulling, %d above their bound", pulled, over);
     wff_model_free(&m);
 }

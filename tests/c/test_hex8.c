@@ -399,7 +399,7 @@ static double sphere_penetration(const void *body, double advance, const double 
 }
 
 /* full: the block's elements fully integrated (wff_block_integrate_fully) */
-static void drop_test(check_state *st, int full)
+static double drop_test(check_state *st, int full)
 {
     /* a quarter: the symmetry planes x = 0, y = 0 held as the box's sides are */
     const double R = 63.5e-3 / 2, M = 1.043 / 4, v0 = sqrt(2 * 9.81 * 2.0);
@@ -462,6 +462,7 @@ static void drop_test(check_state *st, int full)
     CHECK(st, block <= given * 1.01, "the block holds %g J of the %g J given", block, given);
     CHECK_CLOSE(st, block, work, 0.03, given, "the block's energy against the impulses' work");
     wff_block_free(&b);
+    return depth;
 }
 
 int main(void)
@@ -474,7 +475,10 @@ int main(void)
     patch_test(&st);
     stable_step_bound(&st);
     graded_block(&st);
-    drop_test(&st, 0);
-    drop_test(&st, 1);
+    /* the one-point element against its fully integrated reference on a blunt
+     * indenter (measured: 20.42 against 20.57 mm) */
+    const double one = drop_test(&st, 0), full = drop_test(&st, 1);
+    CHECK(&st, fabs(one - full) <= 0.03 * full, "the drop test's indentation %.3f mm at one point "
+          "against %.3f mm fully integrated", 1e3 * one, 1e3 * full);
     return check_summary(&st, "test_hex8");
 }
