@@ -22,12 +22,12 @@ typedef struct wff_face_contacts {
     int *slot;             /* its footprint point, WFF_FOOTPRINT_POINTS t + k (t the back-ply
                               node's index in ply_nodes) */
     int *face;             /* the face's 4 block nodes */
-    double *weight;        /* their bilinear weights N_a at the node's point */
+    double *weight;        /* their bilinear weights N_a at the footprint point */
     double *normal;        /* the face's unit normal out of the block, 3 */
     double *gap;           /* the gap now (< 0: overlapping), m */
-    double *lambda;        /* the normal impulse on the fabric node, N·s */
+    double *lambda;        /* the point's normal impulse (on its fabric node), N·s */
     double *bound;         /* the most it may take this step, the spring's F Δt_mid, N·s */
-    double *impulse;       /* the impulse on the fabric node, normal and friction, 3 */
+    double *impulse;       /* the point's impulse on its fabric node, normal and friction, 3 */
 } wff_face_contacts;
 
 struct wff_backing {
@@ -75,10 +75,12 @@ struct wff_backing {
 
 extern const wff_part_ops wff_backing_part;
 
-/* The back ply's nodes against the block's top face (a node closer than h,
- * m, pushed out by a damped penalty spring; Coulomb friction mu): impulses on
- * both (the fabric's velocities and the block's) over dt_mid; dt the step to
- * be taken (the spring's stiffness). Fills B->contacts and B->block_impulse.
+/* The back ply's nodes against the block's top face through their
+ * footprints (a footprint point closer than h, m, slowed by a damped penalty
+ * spring, no more than stops its approach; Coulomb friction mu capped by the
+ * clay's shear strength): impulses on both (the fabric's velocities and the
+ * block's) over dt_mid; dt the step to be taken (the spring's stiffness).
+ * Fills B->contacts (a contact a footprint point) and B->block_impulse.
  * Returns the largest overlap now, m. */
 double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, double dt,
                                double dt_mid);
