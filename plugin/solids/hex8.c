@@ -33,27 +33,39 @@ static void inverse3(const double A[9], double det, double inv[9])
     inv[8] = (A[0] * A[4] - A[1] * A[3]) / det;
 }
 
-int wff_hex8_reference(const double X[WFF_HEX_NODES][3], wff_hex8_ref *r)
+/* The reference gradients B_a = J⁻ᵀ ∂N_a/∂ξ at a point from the shape
+ * functions' natural derivatives dN there (J = Σ_a X_a ⊗ dN_a); returns
+ * det J, <= 0 (B unset) if the point is inverted or flat. */
+static double reference_gradients(const double X[WFF_HEX_NODES][3],
+                                  const double dN[WFF_HEX_NODES][3], double B[WFF_HEX_NODES][3])
 {
-    /* J0 = Σ_a X_a ⊗ ∂N_a/∂ξ at the centre (∂N_a/∂ξ_j = ξ_aj / 8) */
     double J0[9] = {0};
     for (int a = 0; a < WFF_HEX_NODES; a++)
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++)
-                J0[3 * i + j] += X[a][i] * natural[a][j] / 8;
+                J0[3 * i + j] += X[a][i] * dN[a][j];
     const double det = det3(J0);
     if (!(det > 0))
-        return -1;
+        return det;
     double inv[9];
     inverse3(J0, det, inv);
-    /* B0_a = J0⁻ᵀ ∂N_a/∂ξ: (B0_a)_i = Σ_j inv[j][i] ξ_aj / 8 */
+    /* (B_a)_i = Σ_j inv[j][i] dN_aj */
     for (int a = 0; a < WFF_HEX_NODES; a++)
-        for (int i = 0; i < 3; i++) {
-            double s = 0;
-            for (int j = 0; j < 3; j++)
-                s += inv[3 * j + i] * natural[a][j] / 8;
-            r->gradient[a][i] = s;
-        }
+        for (int i = 0; i < 3; i++)
+            B[a][i] = inv[i] * dN[a][0] + inv[3 + i] * dN[a][1] + inv[6 + i] * dN[a][2];
+    return det;
+}
+
+int wff_hex8_reference(const double X[WFF_HEX_NODES][3], wff_hex8_ref *r)
+{
+    /* at the centre ∂N_a/∂ξ_j = ξ_aj / 8 */
+    double dN[WFF_HEX_NODES][3];
+    for (int a = 0; a < WFF_HEX_NODES; a++)
+        for (int j = 0; j < 3; j++)
+            dN[a][j] = natural[a][j] / 8;
+    const double det = reference_gradients(X, dN, r->gradient);
+    if (!(det > 0))
+        return -1;
     r->volume = 8 * det;
     /* h_α: ξη, ηζ, ξζ, ξηζ at the nodes; γ_α = h_α − (Σ_b h_αb X_b)·B0_a */
     for (int al = 0; al < 4; al++) {
@@ -320,7 +332,7 @@ int wff_hex8_full_reference(const double X[WFF_HEX_NODES][3], wff_hex8_full *r)
 {
     const double at = 1 / sqrt(3.0);
     for (int g = 0; g < WFF_HEX_POINTS; g++) {
-        double dN[WFF_HEX_NODES][3], J0[9] = {0};
+        double dN[WFF_HEX_NODES][3];
         for (int a = 0; a < WFF_HEX_NODES; a++)
             for (int j = 0; j < 3; j++) {
                 /* ∂N_a/∂ξ_j = ξ_aj / 8 Π_{k≠j} (1 + ξ_ak ξ_gk) */
@@ -330,19 +342,9 @@ int wff_hex8_full_reference(const double X[WFF_HEX_NODES][3], wff_hex8_full *r)
                         d *= 1 + natural[a][k] * natural[g][k] * at;
                 dN[a][j] = d;
             }
-        for (int a = 0; a < WFF_HEX_NODES; a++)
-            for (int i = 0; i < 3; i++)
-                for (int j = 0; j < 3; j++)
-                    J0[3 * i + j] += X[a][i] * dN[a][j];
-        const double det = det3(J0);
+        const double det = reference_gradients(X, dN, r->gradient[g]);
         if (!(det > 0))
             return -1;
-        double inv[9];
-        inverse3(J0, det, inv);
-        for (int a = 0; a < WFF_HEX_NODES; a++)
-            for (int i = 0; i < 3; i++)
-                r->gradient[g][a][i] = inv[i] * dN[a][0] + inv[3 + i] * dN[a][1] +
-                                       inv[6 + i] * dN[a][2];
         r->volume[g] = det;
     }
     return 0;

@@ -268,13 +268,15 @@ static void hourglass_dashpots(check_state *st)
     }
 }
 
-/* The patch test on a graded block: an affine field's interior nodes balanced. */
-static void patch_test(check_state *st)
+/* The patch test on a graded block: an affine field's interior nodes
+ * balanced; full: the elements fully integrated (wff_block_integrate_fully). */
+static void patch_test(check_state *st, int full)
 {
     wff_block b;
     wff_error err;
     const wff_block_shape shape = {0, 0.01, 0, 0.012, 0.05, 0.01, {0.003, 0.004}, 1.5e-3, 1.4};
-    CHECK(st, wff_block_create(&b, WFF_BLOCK_GELATIN, &shape, 0.05, &err) == 0, "%s", err.message);
+    CHECK(st, wff_block_create(&b, WFF_BLOCK_GELATIN, &shape, 0.05, &err) == 0 &&
+                  (!full || wff_block_integrate_fully(&b, &err) == 0), "%s", err.message);
     for (int n = 0; n < b.n_nodes; n++) {
         const double *x = b.X + 3 * n;
         b.u[3 * n] = 0.02 * x[0] - 0.01 * x[1] + 0.03 * (x[2] - 0.05);
@@ -296,8 +298,10 @@ static void patch_test(check_state *st)
             }
     CHECK(st, inner < 1e-10 * outer, "patch test: interior force %g against the boundary's %g",
           inner, outer);
-    printf("patch test (%d elements, graded): interior %.2e N, boundary %.2e N\n", b.n_elements,
-           inner, outer);
+    CHECK(st, !full || (b.points == WFF_HEX_POINTS && b.hourglass_k[0] == 0), "full: %d points, "
+          "k %g", b.points, b.hourglass_k[0]);
+    printf("patch test (%s, %d elements, graded): interior %.2e N, boundary %.2e N\n",
+           full ? "fully integrated" : "one point", b.n_elements, inner, outer);
     wff_block_free(&b);
 }
 
@@ -472,7 +476,8 @@ int main(void)
     forces_against_energy(&st);
     affine_and_rotation(&st);
     hourglass_dashpots(&st);
-    patch_test(&st);
+    patch_test(&st, 0);
+    patch_test(&st, 1);
     stable_step_bound(&st);
     graded_block(&st);
     /* the one-point element against its fully integrated reference on a blunt

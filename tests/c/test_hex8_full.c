@@ -7,8 +7,9 @@
  * hourglass modes of a cube, free in the one-point element without its
  * springs, resisted here (their energy a fraction of a uniform shear's of
  * the same size); the element's stiffness at rest has exactly six zero
- * modes; the patch test on a graded block; the stable-step bound against
- * the element's own largest frequency (a power iteration on M⁻¹K). */
+ * modes; the stable-step bound against
+ * the element's own largest frequency (a power iteration on M⁻¹K). The
+ * patch test and the NIJ drop test of a fully integrated block: test_hex8. */
 #include "check.h"
 #include "rng.h"
 #include "solids/block.h"
@@ -270,42 +271,6 @@ static void stable_step_bound(check_state *st)
     }
 }
 
-/* The patch test on a graded block of fully integrated elements. */
-static void patch_test(check_state *st)
-{
-    wff_block b;
-    wff_error err;
-    const wff_block_shape shape = {0, 0.01, 0, 0.012, 0.05, 0.01, {0.003, 0.004}, 1.5e-3, 1.4};
-    CHECK(st, wff_block_create(&b, WFF_BLOCK_CLAY, &shape, 0.05, &err) == 0 &&
-                  wff_block_integrate_fully(&b, &err) == 0, "%s", err.message);
-    for (int n = 0; n < b.n_nodes; n++) {
-        const double *x = b.X + 3 * n;
-        b.u[3 * n] = 0.002 * x[0] - 0.001 * x[1] + 0.003 * (x[2] - 0.05);
-        b.u[3 * n + 1] = 0.0015 * x[0] + 0.001 * x[1];
-        b.u[3 * n + 2] = -0.002 * (x[2] - 0.05) + 0.0005 * x[0];
-    }
-    int bad;
-    CHECK(st, wff_block_forces(&b, 0, &bad) == 0, "patch: element %d refused", bad);
-    double inner = 0, outer = 0;
-    for (int k = 0; k <= b.n[2]; k++)
-        for (int j = 0; j <= b.n[1]; j++)
-            for (int i = 0; i <= b.n[0]; i++) {
-                const int n = wff_block_node(&b, i, j, k);
-                const int interior = i > 0 && i < b.n[0] && j > 0 && j < b.n[1] && k > 0 && k < b.n[2];
-                for (int c = 0; c < 3; c++) {
-                    double *most = interior ? &inner : &outer;
-                    *most = fmax(*most, fabs(b.f[3 * n + c]));
-                }
-            }
-    CHECK(st, inner < 1e-10 * outer, "patch test: interior force %g against the boundary's %g",
-          inner, outer);
-    CHECK(st, b.points == WFF_HEX_POINTS && b.hourglass_k[0] == 0, "full: %d points, k %g",
-          b.points, b.hourglass_k[0]);
-    printf("patch test, fully integrated (%d elements, graded): interior %.2e N, boundary %.2e N\n",
-           b.n_elements, inner, outer);
-    wff_block_free(&b);
-}
-
 int main(void)
 {
     check_state st = {0, 0};
@@ -313,6 +278,5 @@ int main(void)
     affine_and_rotation(&st);
     no_hourglass(&st);
     stable_step_bound(&st);
-    patch_test(&st);
     return check_summary(&st, "test_hex8_full");
 }
