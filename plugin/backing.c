@@ -42,7 +42,7 @@ static void release(struct wff_backing *B)
     wff_block_free(&B->block);
     wff_face_contacts *C = &B->contacts;
     free(C->node), free(C->slot), free(C->face), free(C->weight), free(C->normal), free(C->gap);
-    free(C->lambda), free(C->bound), free(C->impulse);
+    free(C->lambda), free(C->bound), free(C->mobility), free(C->impulse);
     free(B->ply_nodes), free(B->ply_area), free(B->block_impulse), free(B->on_nose);
     free(B->ply_gap), free(B->ply_held);
     B->ply_gap = NULL, B->ply_held = NULL;
@@ -87,6 +87,7 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
     C->gap = malloc(points * sizeof(double));
     C->lambda = malloc(points * sizeof(double));
     C->bound = malloc(points * sizeof(double));
+    C->mobility = malloc(points * sizeof(double));
     C->impulse = malloc(3 * points * sizeof(double));
     B->ply_nodes = malloc(n * sizeof(int));
     B->ply_area = calloc(n, sizeof(double));
@@ -94,7 +95,7 @@ static int build(wff_model *m, struct wff_backing *B, wff_error *err)
     B->ply_held = calloc(points, sizeof(double));
     B->block_impulse = calloc(3 * (size_t)B->block.n_nodes, sizeof(double));
     B->on_nose = calloc((size_t)m->n_nodes, 1);
-    if (!C->node || !C->slot || !C->face || !C->weight || !C->normal || !C->gap || !C->lambda || !C->bound ||
+    if (!C->node || !C->slot || !C->face || !C->weight || !C->normal || !C->gap || !C->lambda || !C->bound || !C->mobility ||
         !C->impulse || !B->ply_nodes || !B->ply_area || !B->block_impulse || !B->on_nose ||
         !B->ply_gap || !B->ply_held) {
         release(B);

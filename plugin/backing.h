@@ -27,6 +27,7 @@ typedef struct wff_face_contacts {
     double *gap;           /* the gap now (< 0: overlapping), m */
     double *lambda;        /* the point's normal impulse (on its fabric node), N·s */
     double *bound;         /* the most it may take this step, the spring's F Δt_mid, N·s */
+    double *mobility;      /* 1/m_eff of the point's node and face along a direction, 1/kg */
     double *impulse;       /* the point's impulse on its fabric node, normal and friction, 3 */
 } wff_face_contacts;
 

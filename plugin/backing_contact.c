@@ -150,6 +150,13 @@ static int locate(const wff_block *b, double dt, double px, double py, int face[
     return -1;
 }
 
+/* x reflected into [lo, hi] at the end it passed (a side of the block: a
+ * mirror plane). */
+static double mirrored(double x, double lo, double hi)
+{
+    return x < lo ? 2 * lo - x : x > hi ? 2 * hi - x : x;
+}
+
 /* Δv on a fabric node's free translational DOFs by the impulse j (3). */
 static void kick_fabric(wff_model *m, int s, const double j[3])
 {
@@ -247,8 +254,6 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
      * the nose carries the projectile's mass) */
     if (!(B->run.stiffness_per_mass > 0))
         B->run.stiffness_per_mass = PENALTY / (dt * dt);
-    const double x_lo = b->grid[0][0], x_hi = b->grid[0][b->n[0]];
-    const double y_lo = b->grid[1][0], y_hi = b->grid[1][b->n[1]];
     for (int t = 0; t < B->n_ply_nodes; t++) {
         const int s = B->ply_nodes[t];
         if (m->dof_kind[D * s + WFF_UZ] != WFF_DOF_FREE)
@@ -265,8 +270,8 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
             const int slot = WFF_FOOTPRINT_POINTS * t + k;
             double x[3] = {xs[0] + (k & 1 ? quarter : -quarter),
                            xs[1] + (k & 2 ? quarter : -quarter), xs[2]};
-            x[0] = x[0] < x_lo ? 2 * x_lo - x[0] : x[0] > x_hi ? 2 * x_hi - x[0] : x[0];
-            x[1] = x[1] < y_lo ? 2 * y_lo - x[1] : x[1] > y_hi ? 2 * y_hi - x[1] : x[1];
+            x[0] = mirrored(x[0], b->grid[0][0], b->grid[0][b->n[0]]);
+            x[1] = mirrored(x[1], b->grid[1][0], b->grid[1][b->n[1]]);
             const int c = C->n;
             double point[3];
             if (locate(b, 0, x[0], x[1], C->face + 4 * c, C->weight + 4 * c, point,
@@ -292,12 +297,20 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
              * the normal closing speed over the step) came from a jump of the
              * face under the point: held, the spring on the rest */
             double rel[3];
-            const double closing = fmax(0, -normal_speed(m, b, C, c, rel));
-            const double jump = (B->ply_gap[slot] - gap) - 2 * closing * dt;
+            const double vn = normal_speed(m, b, C, c, rel);
+            const double jump = (B->ply_gap[slot] - gap) - 2 * fmax(0, -vn) * dt;
             if (jump > 0)
                 B->ply_held[slot] += jump;
             B->ply_held[slot] = fmin(B->ply_held[slot], -gap);
             B->ply_gap[slot] = gap;
+            /* the spring's bound on the point's impulse (below), a quarter of the
+             * node's spring on a quarter of its mass, damped at DAMPING of that */
+            const double w = C->mobility[c] = mobility(m, B, c);
+            const double stiffness = B->run.stiffness_per_mass * m->mass[D * s + WFF_UZ] /
+                                     WFF_FOOTPRINT_POINTS;
+            const double w_share = w + (WFF_FOOTPRINT_POINTS - 1) / node_mass(m, B, s);
+            const double damping = 2 * DAMPING * sqrt(stiffness / w_share);
+            C->bound[c] = fmax(0, stiffness * (-gap - B->ply_held[slot]) - damping * vn) * dt_mid;
         }
     }
     /* the normal force: a spring on the overlap with a dashpot, each contact's
@@ -311,25 +324,12 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
      * springs one after the other, a light face node that had already
      * outrun the fabric was driven to twice the projectile's speed: the
      * crater's axis node, docs/backing.md) */
-    for (int c = 0; c < C->n; c++) {
-        double rel[3];
-        const double vn = normal_speed(m, b, C, c, rel);
-        const double w = mobility(m, B, c);
-        /* (a footprint point's share: a quarter of the node's spring on a
-         * quarter of its mass, damped at DAMPING of that) */
-        const double share = m->mass[D * C->node[c] + WFF_UZ] / WFF_FOOTPRINT_POINTS;
-        const double stiffness = B->run.stiffness_per_mass * share;
-        const double w_share = w + (WFF_FOOTPRINT_POINTS - 1) / node_mass(m, B, C->node[c]);
-        const double damping = 2 * DAMPING * sqrt(stiffness / w_share);
-        const double held = B->ply_held[C->slot[c]];
-        C->bound[c] = fmax(0, stiffness * (-C->gap[c] - held) - damping * vn) * dt_mid;
-    }
     for (int sweep = 0; sweep < SWEEPS_MAX; sweep++) {
         double most = 0;
         for (int c = 0; c < C->n; c++) {
             double rel[3];
             const double vn = normal_speed(m, b, C, c, rel);
-            const double w = mobility(m, B, c);
+            const double w = C->mobility[c];
             const double lambda = fmin(fmax(C->lambda[c] - vn / w, 0), C->bound[c]);
             const double change = lambda - C->lambda[c];
             if (change == 0)
@@ -358,7 +358,7 @@ double wff_backing_ply_contact(wff_model *m, struct wff_backing *B, double h, do
         const double slip = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
         if (!(slip > 0))
             continue;
-        const double w = mobility(m, B, c);
+        const double w = C->mobility[c];
         const int top = C->face[4 * c], row = b->n[0] + 1; /* the face's corner (i, j, 0) */
         const double strength = wff_block_surface_shear_strength(b, top % row, top / row);
         const double area = B->ply_area[C->slot[c] / WFF_FOOTPRINT_POINTS] / WFF_FOOTPRINT_POINTS;

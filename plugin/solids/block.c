@@ -262,20 +262,27 @@ static int finite6(const double a[6])
     return isfinite(a[0] + a[1] + a[2] + a[3] + a[4] + a[5]);
 }
 
-/* The fully integrated element e's forces into fe (added) at the centre's F:
- * 0, or -1 if a point is inverted or its strain not finite. */
+/* The fully integrated element e's forces into fe (added) at the centre's F,
+ * its det into *J_centre: 0, or -1 if the centre or a point is inverted or a
+ * strain not finite. */
 static int full_element(wff_block *b, int e, const double u[8][3], const double F_centre[9],
-                        double dt, double fe[8][3], double *stored, double *dissipated)
+                        double dt, double fe[8][3], double *J_centre, double *stored,
+                        double *dissipated)
 {
     const wff_hex8_full *r = &b->full[e];
+    double b_centre[8][3]; /* F_0⁻ᵀ B0_a, the same at every point */
+    *J_centre = wff_hex8_current_gradients(F_centre, b->ref[e].gradient, b_centre);
+    if (!(*J_centre > 0))
+        return -1;
     for (int g = 0; g < WFF_HEX_POINTS; g++) {
-        double F[9], F_bar[9], strain[6], U_inv[9], stress[6];
-        if (!(wff_hex8_fbar(r, g, u, F_centre, F, F_bar) > 0))
+        wff_hex8_fbar_point p;
+        double strain[6], U_inv[9], stress[6];
+        if (wff_hex8_fbar(r, g, u, *J_centre, &p))
             return -1;
-        if (!(wff_hencky(F_bar, strain, U_inv) > 0) || !finite6(strain))
+        if (!(wff_hencky(p.F_bar, strain, U_inv) > 0) || !finite6(strain))
             return -1;
         *stored += law_at(b, WFF_HEX_POINTS * e + g, strain, dt, r->volume[g], stress, dissipated);
-        wff_hex8_fbar_forces(&b->ref[e], r, g, F_centre, F, F_bar, U_inv, stress, fe);
+        wff_hex8_fbar_forces(r, g, b_centre, &p, U_inv, stress, fe);
     }
     return 0;
 }
@@ -301,18 +308,19 @@ int wff_block_forces(wff_block *b, double dt, int *bad)
             memcpy(v[a], b->v + 3 * node[a], sizeof v[a]);
         }
         wff_hex8_gradient(r, u, F);
-        const double J = wff_hencky(F, strain, U_inv);
-        if (!(J > 0) || !finite6(strain)) {
-            *bad = e;
-            return -1;
-        }
-        if (b->full) {
+        double J;
+        if (b->full) { /* (the centre's J alone: its strain is the points') */
             memset(fe, 0, sizeof fe);
-            if (full_element(b, e, u, F, dt, fe, &stored, &dissipated)) {
+            if (full_element(b, e, u, F, dt, fe, &J, &stored, &dissipated)) {
                 *bad = e;
                 return -1;
             }
         } else {
+            J = wff_hencky(F, strain, U_inv);
+            if (!(J > 0) || !finite6(strain)) {
+                *bad = e;
+                return -1;
+            }
             const double energy = law_at(b, e, strain, dt, r->volume, stress, &dissipated);
             wff_hex8_forces(r, F, U_inv, stress, fe);
             stored += energy + wff_hex8_hourglass(r, u, b->hourglass_k[e], fe);

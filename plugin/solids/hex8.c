@@ -350,47 +350,55 @@ int wff_hex8_full_reference(const double X[WFF_HEX_NODES][3], wff_hex8_full *r)
     return 0;
 }
 
-double wff_hex8_fbar(const wff_hex8_full *r, int g, const double u[WFF_HEX_NODES][3],
-                     const double F_centre[9], double F[9], double F_bar[9])
+double wff_hex8_current_gradients(const double F[9], const double B[WFF_HEX_NODES][3],
+                                  double b[WFF_HEX_NODES][3])
+{
+    const double J = det3(F);
+    if (!(J > 0))
+        return J;
+    double inv[9];
+    inverse3(F, J, inv);
+    /* (F⁻ᵀ B)_i = Σ_j inv[j][i] B_j */
+    for (int a = 0; a < WFF_HEX_NODES; a++)
+        for (int i = 0; i < 3; i++)
+            b[a][i] = inv[i] * B[a][0] + inv[3 + i] * B[a][1] + inv[6 + i] * B[a][2];
+    return J;
+}
+
+int wff_hex8_fbar(const wff_hex8_full *r, int g, const double u[WFF_HEX_NODES][3],
+                  double J_centre, wff_hex8_fbar_point *p)
 {
     double G[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     for (int a = 0; a < WFF_HEX_NODES; a++)
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++)
                 G[3 * i + j] += u[a][i] * r->gradient[g][a][j];
-    memcpy(F, G, sizeof G);
-    const double J = det3(F), J_centre = det3(F_centre);
-    if (!(J > 0) || !(J_centre > 0))
-        return J > 0 ? J_centre : J;
-    const double scale = cbrt(J_centre / J);
+    memcpy(p->F, G, sizeof G);
+    p->J = det3(G);
+    if (!(p->J > 0))
+        return -1;
+    p->scale = cbrt(J_centre / p->J);
     for (int k = 0; k < 9; k++)
-        F_bar[k] = scale * F[k];
-    return J;
+        p->F_bar[k] = p->scale * G[k];
+    return 0;
 }
 
-void wff_hex8_fbar_forces(const wff_hex8_ref *centre, const wff_hex8_full *r, int g,
-                          const double F_centre[9], const double F[9], const double F_bar[9],
-                          const double U_inv[9], const double stress[6],
-                          double f[WFF_HEX_NODES][3])
+void wff_hex8_fbar_forces(const wff_hex8_full *r, int g, const double b_centre[WFF_HEX_NODES][3],
+                          const wff_hex8_fbar_point *p, const double U_inv[9],
+                          const double stress[6], double f[WFF_HEX_NODES][3])
 {
-    double T[9], A[9], S[9], P[9], inv_centre[9], inv[9];
+    double T[9], A[9], S[9], P[9], b[WFF_HEX_NODES][3];
     sym6_to_3(stress, T);
     mul3(U_inv, T, A);
-    mul3(A, U_inv, S);   /* S̄ = U⁻¹ τ̄ U⁻¹ */
-    mul3(F_bar, S, P);   /* P̄ = F̄ S̄ */
-    const double J = det3(F), J_centre = det3(F_centre), scale = cbrt(J_centre / J);
-    inverse3(F, J, inv);
-    inverse3(F_centre, J_centre, inv_centre);
+    mul3(A, U_inv, S);      /* S̄ = U⁻¹ τ̄ U⁻¹ */
+    mul3(p->F_bar, S, P);   /* P̄ = F̄ S̄ */
+    wff_hex8_current_gradients(p->F, r->gradient[g], b);
     const double third_trace = (stress[0] + stress[1] + stress[2]) / 3, V = r->volume[g];
     for (int a = 0; a < WFF_HEX_NODES; a++) {
-        const double *B = r->gradient[g][a], *B0 = centre->gradient[a];
+        const double *B = r->gradient[g][a];
         for (int i = 0; i < 3; i++) {
             const double direct = P[3 * i] * B[0] + P[3 * i + 1] * B[1] + P[3 * i + 2] * B[2];
-            /* (F⁻ᵀ B)_i = Σ_j inv[j][i] B_j */
-            const double b = inv[i] * B[0] + inv[3 + i] * B[1] + inv[6 + i] * B[2];
-            const double b0 = inv_centre[i] * B0[0] + inv_centre[3 + i] * B0[1] +
-                              inv_centre[6 + i] * B0[2];
-            f[a][i] -= V * (scale * direct + third_trace * (b0 - b));
+            f[a][i] -= V * (p->scale * direct + third_trace * (b_centre[a][i] - b[a][i]));
         }
     }
 }
@@ -398,16 +406,12 @@ void wff_hex8_fbar_forces(const wff_hex8_ref *centre, const wff_hex8_full *r, in
 /* Σ_a |F⁻ᵀ B_a|², the current gradients' squares (0 if F is inverted) */
 static double current_gradient_square(const double F[9], const double B[WFF_HEX_NODES][3])
 {
-    const double J = det3(F);
-    if (!(J > 0))
+    double b[WFF_HEX_NODES][3], sum = 0;
+    if (!(wff_hex8_current_gradients(F, B, b) > 0))
         return 0;
-    double inv[9], sum = 0;
-    inverse3(F, J, inv);
     for (int a = 0; a < WFF_HEX_NODES; a++)
-        for (int i = 0; i < 3; i++) {
-            const double b = inv[i] * B[a][0] + inv[3 + i] * B[a][1] + inv[6 + i] * B[a][2];
-            sum += b * b;
-        }
+        for (int i = 0; i < 3; i++)
+            sum += b[a][i] * b[a][i];
     return sum;
 }
 
@@ -417,7 +421,8 @@ double wff_hex8_full_stable_step(const wff_hex8_ref *centre, const wff_hex8_full
 {
     double F0[9];
     wff_hex8_gradient(centre, u, F0);
-    if (!(det3(F0) > 0))
+    const double J_centre = det3(F0);
+    if (!(J_centre > 0))
         return 0;
     const double bulk = fmax(density * wave_speed * wave_speed - 4 * shear / 3, 0);
     double volume = 0; /* (Σ_g V_g, the element's exact volume; 8 det J0 only on a parallelepiped) */
@@ -425,10 +430,10 @@ double wff_hex8_full_stable_step(const wff_hex8_ref *centre, const wff_hex8_full
         volume += r->volume[g];
     double omega2 = bulk * volume * current_gradient_square(F0, centre->gradient);
     for (int g = 0; g < WFF_HEX_POINTS; g++) {
-        double F[9], F_bar[9];
-        if (!(wff_hex8_fbar(r, g, u, F0, F, F_bar) > 0))
+        wff_hex8_fbar_point p;
+        if (wff_hex8_fbar(r, g, u, J_centre, &p))
             return 0;
-        omega2 += 2 * shear * r->volume[g] * current_gradient_square(F, r->gradient[g]);
+        omega2 += 2 * shear * r->volume[g] * current_gradient_square(p.F, r->gradient[g]);
     }
     omega2 /= density * centre->volume / 8;
     return omega2 > 0 ? 2 / sqrt(omega2) : INFINITY;

@@ -126,21 +126,32 @@ typedef struct wff_hex8_full {
  * or flat. */
 int wff_hex8_full_reference(const double X[WFF_HEX_NODES][3], wff_hex8_full *r);
 
-/* F̄_g = (J_0/J_g)^(1/3) F_g at point g from the nodal displacements u and
- * the centre's F_0 (wff_hex8_gradient); F_g into F (for the forces). Returns
- * J_g > 0, or <= 0 (F̄ unset) if the point (J_g) or the centre (J_0, then
- * returned) is inverted. */
-double wff_hex8_fbar(const wff_hex8_full *r, int g, const double u[WFF_HEX_NODES][3],
-                     const double F_centre[9], double F[9], double F_bar[9]);
+/* The current gradients b_a = F⁻ᵀ B_a of reference gradients B (1/m) at the
+ * deformation F; returns J = det F (<= 0: inverted, b unset). Once an
+ * element a step for its centre (F-bar's F_0⁻ᵀ B0_a, the same at its eight
+ * points). */
+double wff_hex8_current_gradients(const double F[9], const double B[WFF_HEX_NODES][3],
+                                  double b[WFF_HEX_NODES][3]);
+
+/* A Gauss point's deformation: F_g, F̄_g = s F_g with s = (J_0/J_g)^(1/3),
+ * J_g. */
+typedef struct wff_hex8_fbar_point {
+    double F[9], F_bar[9], J, scale;
+} wff_hex8_fbar_point;
+
+/* Point g's deformation from the nodal displacements u and the centre's
+ * J_0 = det F_0 (> 0): 0, or -1 if the point is inverted (J_g <= 0). */
+int wff_hex8_fbar(const wff_hex8_full *r, int g, const double u[WFF_HEX_NODES][3],
+                  double J_centre, wff_hex8_fbar_point *p);
 
 /* Adds point g's nodal forces −V_g ∂W(F̄_g)/∂u_a to f from the law's
  * material-frame stress τ̄ at ε̄_g (6 entries) and U⁻¹ of F̄_g (wff_hencky of
- * F̄_g): −V_g [(J_0/J_g)^(1/3) F̄ S̄ B_ga + ⅓ tr τ̄ (F_0⁻ᵀ B0_a − F_g⁻ᵀ B_ga)],
- * S̄ = U⁻¹ τ̄ U⁻¹; `centre` the element's one-point reference (B0_a). */
-void wff_hex8_fbar_forces(const wff_hex8_ref *centre, const wff_hex8_full *r, int g,
-                          const double F_centre[9], const double F[9], const double F_bar[9],
-                          const double U_inv[9], const double stress[6],
-                          double f[WFF_HEX_NODES][3]);
+ * F̄_g): −V_g [s F̄ S̄ B_ga + ⅓ tr τ̄ (b0_a − F_g⁻ᵀ B_ga)], S̄ = U⁻¹ τ̄ U⁻¹,
+ * b0_a = F_0⁻ᵀ B0_a the centre's current gradients
+ * (wff_hex8_current_gradients of the one-point reference's). */
+void wff_hex8_fbar_forces(const wff_hex8_full *r, int g, const double b_centre[WFF_HEX_NODES][3],
+                          const wff_hex8_fbar_point *p, const double U_inv[9],
+                          const double stress[6], double f[WFF_HEX_NODES][3]);
 
 /* The fully integrated element's stable step, s: 2/ω with ω² bounded by
  * [K V Σ_a |b0_a|² + 2 G Σ_g V_g Σ_a |b_ga|²] / m_node, V = Σ_g V_g (the F-bar energy's

@@ -31,16 +31,18 @@ static const double unit_cube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0
 static double full_energy(const wff_hex8_ref *ref, const wff_hex8_full *full,
                           const wff_clay_params *p, const double u[8][3], double f[8][3])
 {
-    double F0[9], energy = 0;
+    double F0[9], b0[8][3], energy = 0;
     wff_hex8_gradient(ref, u, F0);
+    const double J0 = wff_hex8_current_gradients(F0, ref->gradient, b0);
     memset(f, 0, 24 * sizeof(double));
     const wff_clay_state s = {{0}, 0, 0, 0};
     for (int g = 0; g < WFF_HEX_POINTS; g++) {
-        double F[9], F_bar[9], strain[6], U_inv[9], stress[6];
-        wff_hex8_fbar(full, g, u, F0, F, F_bar);
-        wff_hencky(F_bar, strain, U_inv);
+        wff_hex8_fbar_point pt;
+        double strain[6], U_inv[9], stress[6];
+        wff_hex8_fbar(full, g, u, J0, &pt);
+        wff_hencky(pt.F_bar, strain, U_inv);
         wff_clay_stress(p, strain, &s, stress);
-        wff_hex8_fbar_forces(ref, full, g, F0, F, F_bar, U_inv, stress, f);
+        wff_hex8_fbar_forces(full, g, b0, &pt, U_inv, stress, f);
         energy += full->volume[g] * wff_clay_energy(p, strain, &s);
     }
     return energy;
